@@ -1,0 +1,32 @@
+# patina_add_plugin(<name> SOURCES <files...>)
+# Builds a Patina shading plugin: a MODULE library that sees only Patina::abi, exports only
+# the two ABI symbols (hidden visibility for everything else) and has no "lib" prefix.
+# Works in Patina's own tree and out of tree after find_package(Patina).
+include_guard(GLOBAL)
+
+function(patina_add_plugin name)
+  cmake_parse_arguments(ARG "" "OUTPUT_DIRECTORY" "SOURCES" ${ARGN})
+  if(NOT ARG_SOURCES)
+    message(FATAL_ERROR "patina_add_plugin(${name}): no SOURCES given")
+  endif()
+  add_library(${name} MODULE ${ARG_SOURCES})
+  target_link_libraries(${name} PRIVATE Patina::abi)
+  if(TARGET patina_warnings)
+    target_link_libraries(${name} PRIVATE patina_warnings)
+  endif()
+  set_target_properties(${name} PROPERTIES
+    PREFIX ""
+    OUTPUT_NAME "patina_${name}"
+    C_VISIBILITY_PRESET hidden
+    CXX_VISIBILITY_PRESET hidden
+    VISIBILITY_INLINES_HIDDEN ON)
+  if(ARG_OUTPUT_DIRECTORY)
+    set_target_properties(${name} PROPERTIES LIBRARY_OUTPUT_DIRECTORY "${ARG_OUTPUT_DIRECTORY}")
+  elseif(PATINA_BUILD_PLUGIN_DIR)
+    set_target_properties(${name} PROPERTIES LIBRARY_OUTPUT_DIRECTORY "${PATINA_BUILD_PLUGIN_DIR}")
+  endif()
+  set_property(GLOBAL APPEND PROPERTY PATINA_PLUGINS ${name})
+  if(PROJECT_NAME STREQUAL "Patina")
+    install(TARGETS ${name} LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}/patina/plugins)
+  endif()
+endfunction()
