@@ -1,11 +1,11 @@
-# patina_add_plugin(<name> SOURCES <files...>)
+# patina_add_plugin(<name> SOURCES <files...> [OUTPUT_DIRECTORY <dir>] [NO_INSTALL])
 # Builds a Patina shading plugin: a MODULE library that sees only Patina::abi, exports only
 # the two ABI symbols (hidden visibility for everything else) and has no "lib" prefix.
 # Works in Patina's own tree and out of tree after find_package(Patina).
 include_guard(GLOBAL)
 
 function(patina_add_plugin name)
-  cmake_parse_arguments(ARG "" "OUTPUT_DIRECTORY" "SOURCES" ${ARGN})
+  cmake_parse_arguments(ARG "NO_INSTALL" "OUTPUT_DIRECTORY" "SOURCES" ${ARGN})
   if(NOT ARG_SOURCES)
     message(FATAL_ERROR "patina_add_plugin(${name}): no SOURCES given")
   endif()
@@ -26,7 +26,7 @@ function(patina_add_plugin name)
     set_target_properties(${name} PROPERTIES LIBRARY_OUTPUT_DIRECTORY "${PATINA_BUILD_PLUGIN_DIR}")
   endif()
   set_property(GLOBAL APPEND PROPERTY PATINA_PLUGINS ${name})
-  if(PROJECT_NAME STREQUAL "Patina")
+  if(PROJECT_NAME STREQUAL "Patina" AND NOT ARG_NO_INSTALL)
     install(TARGETS ${name} LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}/patina/plugins)
   endif()
 endfunction()

@@ -155,7 +155,8 @@ typedef enum PatinaParamType {
     PATINA_PARAM_FLOAT = 1,    /**< one float; range [min_value, max_value] checked */
     PATINA_PARAM_INT = 2,      /**< one integer; range checked */
     PATINA_PARAM_BOOL = 3,     /**< true / false */
-    PATINA_PARAM_COLOR = 4,    /**< RGB reflectance in the declared colour space, each in [min,max]; uplifted */
+    PATINA_PARAM_COLOR = 4,    /**< RGB in the declared colour space, each in [min,max]; uplifted as a
+                                    reflectance when max_value <= 1, else as an emission colour */
     PATINA_PARAM_SPECTRUM = 5, /**< tabulated spectrum, or a single number for a constant one */
     PATINA_PARAM_STRING = 6,   /**< free text, e.g. a file name or an enumerated choice */
     PATINA_PARAM_TEXTURE = 7   /**< a texture file; the host opens it and passes a handle */

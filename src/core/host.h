@@ -22,9 +22,24 @@ public:
     Host& operator=(const Host&) = delete;
 
     const PatinaHost* c_host() const;
+    /// The Host behind a table made by a Host, or nullptr for a foreign table.
+    static const Host* from_c(const PatinaHost* host);
 
-    /// Errors plugins reported through host->error since the last call (then cleared).
+    const ColorManager& colors() const;
+
+    /// Uplift a working-space RGB (see PatinaHost::rgb_to_spectrum).
+    PatinaRgbSpectrum uplift(const float rgb[3], bool illuminant) const;
+
+    /// Open a texture for plugins (OIIO TextureSystem); `colorspace` is its declared
+    /// colour space. Handles stay valid for the host's lifetime. Throws std::runtime_error
+    /// naming the file when it cannot be opened.
+    const PatinaTexture* open_texture(const std::string& path, const std::string& colorspace) const;
+
+    /// Errors plugins reported through host->error on this thread since the last call
+    /// (then cleared).
     std::vector<std::string> take_errors() const;
+    /// Warnings are printed to stderr as they come; this counts them (for tests).
+    size_t warning_count() const;
 
     struct Impl;
 

@@ -5,7 +5,10 @@
 
 #include <toml++/toml.h>
 
+#include <filesystem>
 #include <memory>
+#include <stdexcept>
+#include <vector>
 #include <string>
 #include <string_view>
 
@@ -35,13 +38,32 @@ private:
     std::string label_;
 };
 
-/// Bind `params` (every key is a parameter name; `ignore_keys` lists keys the caller
-/// handles, e.g. "type" and "name") to the shader's declarations, checking names, types and
-/// ranges, filling defaults, and create the instance. Throws std::runtime_error with a
-/// message "<source>:<line>: shader '<label>' (<type>): parameter '<name>': ..." on any error.
-std::shared_ptr<ShaderInstance> create_shader_instance(
-    const PluginRegistry& registry, std::string_view shader_name, const toml::table& params,
-    std::string_view label, std::string_view source_name,
-    std::initializer_list<std::string_view> ignore_keys = {});
+/// Where a parameter table came from, for messages and relative paths.
+struct ParamSource {
+    std::string file;                        ///< file name shown in messages ("" = none)
+    std::filesystem::path base_dir;          ///< relative texture paths resolve against it
+    std::vector<std::string> ignore_keys;    ///< keys the caller handles ("type", "name", ...)
+};
+
+/// A parameter binding or creation error; what() reads
+/// "<file>:<line>:<column>: shader '<label>' (<type>): parameter '<name>': <problem>".
+class ParamError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+/// Bind `params` to the shader's declarations — every key must name a parameter (unknown
+/// keys are errors, with the closest name suggested), values are checked against the
+/// declared type and range, COLOR values are converted from their colour space to the
+/// working space and uplifted, textures are opened through the host — fill defaults, and
+/// create the instance. The registry's host must be a patina::Host.
+std::shared_ptr<ShaderInstance> create_shader_instance(const PluginRegistry& registry,
+                                                       std::string_view shader_name,
+                                                       const toml::table& params,
+                                                       std::string_view label,
+                                                       const ParamSource& source = {});
+
+/// One line per parameter: "name  type  default  [min, max]  colour space/units  help".
+std::string describe_shader(const PatinaShaderDesc& desc);
 
 }  // namespace patina

@@ -1,0 +1,159 @@
+// Parameter binding from TOML: names, types, ranges, defaults, colour spaces, messages.
+#include "core/host.h"
+#include "core/plugin_registry.h"
+#include "core/shader_instance.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+class ShaderInstanceTest : public ::testing::Test {
+protected:
+    void SetUp() override
+    {
+        registry.load_file(fs::path(PATINA_FIXTURE_PLUGIN_DIR) / "good" / "patina_fixture_good.so");
+    }
+
+    // Binds `toml_text` to the fixture shader and reads the bound values back through eval.
+    std::array<float, PATINA_MAX_WAVELENGTHS> bind(std::string_view toml_text)
+    {
+        const toml::table params = toml::parse(toml_text, "scene.toml");
+        auto inst = patina::create_shader_instance(registry, "fixture_diffuse", params, "probe",
+                                                   {"scene.toml", {}, {"type"}});
+        std::array<float, PATINA_MAX_WAVELENGTHS> f{};
+        PatinaWavelengths wl{8, {400, 450, 500, 550, 600, 650, 700, 750}};
+        inst->bsdf()->eval(inst->get(), nullptr, {0, 0, 1}, {0, 0, 1}, &wl, f.data());
+        return f;
+    }
+
+    std::string error_of(std::string_view toml_text)
+    {
+        try {
+            bind(toml_text);
+        } catch (const patina::ParamError& e) {
+            return e.what();
+        }
+        ADD_FAILURE() << "no ParamError for: " << toml_text;
+        return {};
+    }
+
+    patina::PluginRegistry registry{patina::default_host().c_host()};
+};
+
+}  // namespace
+
+TEST_F(ShaderInstanceTest, DefaultsFillMissingParameters)
+{
+    const auto f = bind("type = 'fixture_diffuse'");
+    EXPECT_FLOAT_EQ(f[0], 0.5f);  // weight default
+    EXPECT_FLOAT_EQ(f[1], 3.0f);  // count default
+    EXPECT_FLOAT_EQ(f[2], 0.0f);  // flag default
+    // Default spectrum is the table (400, 0.25) - (700, 0.75): at 500 nm 0.25 + 0.5/3.
+    EXPECT_NEAR(f[3], 0.25f + 0.5f / 3.0f, 1e-6f);
+    // Default colour is a 0.5 grey: uplifted exactly to the constant 0.5.
+    EXPECT_EQ(f[4], 0.5f);
+    EXPECT_FLOAT_EQ(f[5], 0.0f);
+}
+
+TEST_F(ShaderInstanceTest, ValuesOfEveryTypeBind)
+{
+    const auto f = bind(R"(
+        weight = 0.25
+        count = 7
+        flag = true
+        color = 0.8
+        spectrum = [[400.0, 1.0], [600.0, 3.0]]
+        mode = "slow"
+    )");
+    EXPECT_FLOAT_EQ(f[0], 0.25f);
+    EXPECT_FLOAT_EQ(f[1], 7.0f);
+    EXPECT_FLOAT_EQ(f[2], 1.0f);
+    EXPECT_FLOAT_EQ(f[3], 2.0f);
+    EXPECT_EQ(f[4], 0.8f);  // grey stays a constant spectrum exactly
+    EXPECT_FLOAT_EQ(f[5], 1.0f);
+}
+
+TEST_F(ShaderInstanceTest, IntegerIsAcceptedForAFloatAndConstantSpectrum)
+{
+    const auto f = bind("weight = 1\nspectrum = 2");
+    EXPECT_FLOAT_EQ(f[0], 1.0f);
+    EXPECT_FLOAT_EQ(f[3], 2.0f);
+}
+
+TEST_F(ShaderInstanceTest, UnknownParameterIsAnErrorWithSuggestion)
+{
+    const std::string msg = error_of("weigth = 0.3");
+    EXPECT_NE(msg.find("scene.toml:1:"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("'weigth'"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("unknown parameter"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("did you mean 'weight'"), std::string::npos) << msg;
+}
+
+TEST_F(ShaderInstanceTest, OutOfRangeValueNamesTheParameter)
+{
+    const std::string msg = error_of("\n\nweight = 1.5");
+    EXPECT_NE(msg.find("scene.toml:3:"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("parameter 'weight'"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("outside the range [0, 1]"), std::string::npos) << msg;
+    EXPECT_NE(error_of("count = 0").find("parameter 'count'"), std::string::npos);
+    EXPECT_NE(error_of("color = [0.2, 1.2, 0.3]").find("parameter 'color'"), std::string::npos);
+    EXPECT_NE(error_of("spectrum = [[400.0, -1.0]]").find("parameter 'spectrum'"), std::string::npos);
+}
+
+TEST_F(ShaderInstanceTest, WrongTypesAreErrors)
+{
+    EXPECT_NE(error_of("weight = 'heavy'").find("expected a number, got a string"), std::string::npos);
+    EXPECT_NE(error_of("count = 2.5").find("expected an integer"), std::string::npos);
+    EXPECT_NE(error_of("flag = 1").find("expected true or false"), std::string::npos);
+    EXPECT_NE(error_of("color = [1, 2]").find("3 components"), std::string::npos);
+    EXPECT_NE(error_of("mode = 3").find("expected a string"), std::string::npos);
+    EXPECT_NE(error_of("spectrum = [[500.0, 1.0], [400.0, 1.0]]").find("increase"), std::string::npos);
+    EXPECT_NE(error_of("weight = nan").find("not a finite number"), std::string::npos);
+}
+
+TEST_F(ShaderInstanceTest, UnknownColourSpaceIsNamed)
+{
+    const std::string msg = error_of("color = { rgb = [0.5, 0.2, 0.1], colorspace = 'sRGB-ish' }");
+    EXPECT_NE(msg.find("unknown colour space 'sRGB-ish'"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("parameter 'color'"), std::string::npos) << msg;
+}
+
+TEST_F(ShaderInstanceTest, ColourInAnotherSpaceIsConvertedToTheWorkingSpace)
+{
+    // A grey is grey in every RGB space with the same white: sRGB-encoded 0.5 is linear
+    // 0.21404 (IEC 61966-2-1 transfer function), still a constant spectrum.
+    const auto f = bind("color = { rgb = [0.5, 0.5, 0.5], colorspace = 'srgb_texture' }");
+    EXPECT_NEAR(f[4], 0.214041f, 2e-4f);
+}
+
+TEST_F(ShaderInstanceTest, PluginRefusalIsReportedWithItsMessage)
+{
+    const std::string msg = error_of("mode = 'medium'");
+    EXPECT_NE(msg.find("mode must be 'fast' or 'slow'"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("shader 'probe' (fixture_diffuse)"), std::string::npos) << msg;
+}
+
+TEST_F(ShaderInstanceTest, ShaderThatNoPluginProvides)
+{
+    const toml::table params;
+    try {
+        patina::create_shader_instance(registry, "velvet", params, "cloth", {"scene.toml", {}, {}});
+        FAIL() << "expected an error";
+    } catch (const patina::ParamError& e) {
+        const std::string msg = e.what();
+        EXPECT_NE(msg.find("no plugin provides shader 'velvet'"), std::string::npos) << msg;
+        EXPECT_NE(msg.find("scene.toml"), std::string::npos) << msg;
+    }
+}
+
+TEST_F(ShaderInstanceTest, DescriptionListsEveryParameter)
+{
+    const std::string text = patina::describe_shader(*registry.get("fixture_diffuse").desc);
+    for (const char* name : {"weight", "count", "flag", "color", "spectrum", "mode"})
+        EXPECT_NE(text.find(name), std::string::npos) << name;
+    EXPECT_NE(text.find("[0, 1]"), std::string::npos) << text;
+}
