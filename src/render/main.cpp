@@ -1,1 +1,67 @@
-int main() { return 0; }
+// patina-render: renders a Patina scene through the shading plugins, or lists the shaders.
+#include "render/plugin_setup.h"
+#include "render/renderer.h"
+
+#include "core/host.h"
+
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <exception>
+
+int main(int argc, char** argv)
+{
+    namespace pr = patina::render;
+    CLI::App app{"patina-render: spectral path tracer with Patina shading plugins"};
+    app.set_version_flag("--version", std::string("patina-render ") + PATINA_VERSION_STRING);
+
+    std::string scene_file;
+    bool list = false;
+    pr::PluginSearch search;
+    std::vector<std::string> plugin_paths;
+    bool no_bundled = false;
+    pr::RenderOptions options;
+
+    app.add_option("scene", scene_file, "scene file (TOML)")->check(CLI::ExistingFile);
+    app.add_flag("--list-shaders", list, "print every shader the plugins provide, with parameters");
+    app.add_option("--plugin-path", plugin_paths,
+                   "a folder of plugins to load (repeatable; also $PATINA_PLUGIN_PATH)");
+    app.add_flag("--no-bundled-plugins", no_bundled,
+                 "do not load the plugins shipped next to patina-render");
+    app.add_option("-o,--output", options.output,
+                   "output EXR (a display PNG is written beside it); default from the scene");
+    app.add_option("--spp", options.spp, "samples per pixel (overrides the scene)")
+        ->check(CLI::PositiveNumber);
+    app.add_option("--seed", options.seed, "random seed (overrides the scene)");
+    app.add_option("--threads", options.threads, "worker threads (0 = all cores)")
+        ->check(CLI::NonNegativeNumber);
+    app.add_option("--resolution", options.resolution, "width and height (overrides the scene)")
+        ->expected(2)->check(CLI::PositiveNumber);
+    app.add_flag("--quiet", options.quiet, "no progress on stderr");
+
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        return app.exit(e);
+    }
+    if (!list && scene_file.empty()) {
+        std::fprintf(stderr, "patina-render: error: give a scene file or --list-shaders (see --help)\n");
+        return 2;
+    }
+
+    try {
+        search.bundled = !no_bundled;
+        search.command_line.assign(plugin_paths.begin(), plugin_paths.end());
+        if (list) {
+            patina::PluginRegistry registry(patina::default_host().c_host());
+            pr::load_plugins(registry, search);
+            std::fputs(pr::list_shaders(registry).c_str(), stdout);
+            return 0;
+        }
+        pr::render_scene_file(scene_file, search, options);
+        return 0;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "patina-render: error: %s\n", e.what());
+        return 1;
+    }
+}
