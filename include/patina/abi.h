@@ -247,12 +247,14 @@ struct PatinaHost {
     void (*eval_rgb_spectrum)(const PatinaHost* host, const PatinaRgbSpectrum* spectrum,
                               const PatinaWavelengths* wl, float* out);
 
-    /** Filtered texture lookup at (s, t) with the uv derivatives of `ctx` (OIIO
-        TextureSystem, periodic wrap, mip-mapped). Writes `nchannels` floats starting at
-        `first_channel`, already converted from the texture's declared colour space to the
-        working space. Returns 1 on success, 0 on failure (out filled with zeros). */
+    /** Filtered texture lookup at texture coordinates (u, v) — the mesh convention, v = 0
+        at the bottom row of the image — with the uv derivatives of `ctx` (OIIO
+        TextureSystem, periodic wrap, mip-mapped; ctx may be NULL for a point sample).
+        Writes `nchannels` floats starting at `first_channel`, already converted from the
+        texture's declared colour space to the working space. Returns 1 on success, 0 on
+        failure (out filled with zeros). */
     int (*texture_lookup)(const PatinaHost* host, const PatinaTexture* texture,
-                          const PatinaShadingContext* ctx, float s, float t, int first_channel,
+                          const PatinaShadingContext* ctx, float u, float v, int first_channel,
                           int nchannels, float* out);
 
     /** Look up a named attribute of the shading point: "P", "N", "Ng", "dPdu", "dPdv" (3

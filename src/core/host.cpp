@@ -82,7 +82,7 @@ namespace {
     }
 
     int host_texture_lookup(const PatinaHost* h, const PatinaTexture* tex,
-                            const PatinaShadingContext* ctx, float s, float t, int first_channel,
+                            const PatinaShadingContext* ctx, float u, float v, int first_channel,
                             int nchannels, float* out)
     {
         if (!tex || !tex->handle || nchannels <= 0) {
@@ -90,10 +90,12 @@ namespace {
                 out[i] = 0.0f;
             return 0;
         }
-        const float dsdx = ctx ? ctx->duvdx[0] : 0.0f, dtdx = ctx ? ctx->duvdx[1] : 0.0f;
-        const float dsdy = ctx ? ctx->duvdy[0] : 0.0f, dtdy = ctx ? ctx->duvdy[1] : 0.0f;
-        const bool ok = Host::Impl::of(h).textures.lookup(tex->handle, s, t, dsdx, dtdx, dsdy,
-                                                         dtdy, first_channel, nchannels, out);
+        // Mesh uv has v up; OIIO's t runs down the image: t = 1 - v, and dt = -dv.
+        const float dsdx = ctx ? ctx->duvdx[0] : 0.0f, dtdx = ctx ? -ctx->duvdx[1] : 0.0f;
+        const float dsdy = ctx ? ctx->duvdy[0] : 0.0f, dtdy = ctx ? -ctx->duvdy[1] : 0.0f;
+        const bool ok = Host::Impl::of(h).textures.lookup(tex->handle, u, 1.0f - v, dsdx, dtdx,
+                                                         dsdy, dtdy, first_channel, nchannels,
+                                                         out);
         if (!ok)
             for (int i = 0; i < nchannels; ++i)
                 out[i] = 0.0f;
