@@ -284,8 +284,11 @@ enum {
 /** Result of PatinaBsdfFuncs::sample. */
 typedef struct PatinaBsdfSample {
     PatinaVec3 wi;                      /**< sampled direction, local frame */
-    float f[PATINA_MAX_WAVELENGTHS];    /**< BSDF value f(wo, wi) without cosine */
-    float pdf;                          /**< solid-angle pdf (for specular lobes: the discrete probability) */
+    float f[PATINA_MAX_WAVELENGTHS];    /**< BSDF value f(wo, wi) without cosine. For a specular
+                                             (delta) lobe, the value for which
+                                             f * |wi.z| / pdf is the path weight (pbrt's convention) */
+    float pdf;                          /**< solid-angle pdf; for a specular lobe the discrete
+                                             probability of having chosen it */
     int lobe;                           /**< PATINA_LOBE_* flags of the sampled lobe */
     float eta;                          /**< relative IOR across the boundary for transmission, else 1 */
 } PatinaBsdfSample;
