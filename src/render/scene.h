@@ -1,0 +1,72 @@
+// Scene files (TOML): plugins, shader instances, objects, camera, environment, film and
+// output. The format is described in the README ("Scene files").
+#pragma once
+
+#include "render/camera.h"
+
+#include "core/embree_scene.h"
+#include "core/host.h"
+#include "core/mesh.h"
+#include "core/plugin_registry.h"
+#include "core/shader_instance.h"
+
+#include <toml++/toml.h>
+
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace patina::render {
+
+struct FilmSettings {
+    int width = 320;
+    int height = 240;
+    int spp = 16;
+    uint64_t seed = 0;
+    int max_depth = 8;
+    int wavelengths = 4;  ///< hero-wavelength samples per path
+};
+
+struct OutputSettings {
+    std::filesystem::path exr;  ///< scene-linear EXR in the working space
+    std::string display = "sRGB";
+    std::string view = "ACES 1.0 - SDR Video";
+    bool png = true;            ///< also write <exr stem>.png through display/view
+};
+
+/// A surface: its triangles in Embree, its BSDF and optional emitter.
+struct SceneObject {
+    std::string label;                        ///< for messages: "object 2 (sphere)"
+    std::shared_ptr<ShaderInstance> bsdf;     ///< may be null: a pure emitter / black
+    std::shared_ptr<ShaderInstance> emitter;  ///< may be null
+};
+
+/// The first phase of loading: the parsed file and the plugin folders it names, so the
+/// caller can load plugins before shaders are bound.
+struct SceneFile {
+    std::filesystem::path path;
+    toml::table root;
+    std::vector<std::filesystem::path> plugin_dirs;  ///< absolute
+};
+
+SceneFile parse_scene_file(const std::filesystem::path& path);
+
+struct Scene {
+    FilmSettings film;
+    OutputSettings output;
+    Camera camera;
+    PatinaRgbSpectrum environment{};   ///< uniform environment radiance (illuminant uplift)
+    float environment_intensity = 0.0f;
+    std::map<std::string, std::shared_ptr<ShaderInstance>> shaders;
+    std::vector<SceneObject> objects;
+    std::vector<int> mesh_object;      ///< Embree geometry id -> index into objects
+    std::unique_ptr<EmbreeScene> geometry;
+};
+
+/// Second phase: bind shaders through `registry`, build meshes and the Embree scene.
+Scene build_scene(const SceneFile& file, const PluginRegistry& registry, const Host& host);
+
+}  // namespace patina::render
