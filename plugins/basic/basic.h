@@ -1,0 +1,39 @@
+// Private declarations shared by the sources of the "basic" plugin: one descriptor
+// function per shader (called once from patina_plugin_entry) and small helpers for create.
+#pragma once
+
+#include <patina/abi.h>
+
+#include <cstdio>
+
+namespace patina::basic {
+
+PatinaShaderDesc lambert_shader();
+PatinaShaderDesc conductor_shader();
+PatinaShaderDesc dielectric_shader();
+PatinaShaderDesc emitter_shader();
+
+/// Roughness below which a BSDF becomes a delta lobe (documented in each shader).
+inline constexpr float kSmoothRoughness = 1e-3f;
+
+/// Reports a create-time error through the host, formatted like printf.
+template <typename... Args>
+void report_error(const PatinaHost* host, const char* shader, const char* format, Args... args)
+{
+    if (!host || !host->error) return;
+    char message[512];
+    if constexpr (sizeof...(Args) == 0) {
+        std::snprintf(message, sizeof message, "%s", format);
+    } else {
+        std::snprintf(message, sizeof message, format, args...);
+    }
+    host->error(host, shader, message);
+}
+
+/// The transport mode of a shading point (radiance when the host gave no context).
+inline PatinaTransportMode transport_mode(const PatinaShadingContext* ctx)
+{
+    return ctx ? ctx->mode : PATINA_TRANSPORT_RADIANCE;
+}
+
+}  // namespace patina::basic

@@ -1,0 +1,142 @@
+/*
+ * lambert — Smooth diffuse material (bsdf)
+ * =========================================
+ *
+ *  Parameter     Type    Default          Description
+ *  ------------  ------  ---------------  -----------------------------------------------
+ *  reflectance   color   (0.5, 0.5, 0.5)  Diffuse reflectance R in [0, 1], scene-linear.
+ *
+ * An ideal diffuse (Lambertian) reflector: light is scattered equally into every direction
+ * of the hemisphere it arrived from, f(wo, wi) = R(λ) / π, so the directional albedo is
+ * R(λ) for every viewing direction. R is the host's smooth uplift of the RGB reflectance
+ * (abi.h, PatinaRgbSpectrum); a grey stays exactly constant over wavelength.
+ *
+ * Both sides of the surface reflect alike (wo and wi in the same hemisphere); nothing is
+ * transmitted. Directions are sampled with the cosine-weighted density cos θi / π, which
+ * makes every sample's weight f cos θi / pdf equal R(λ).
+ *
+ * Reference: Lambert 1760, "Photometria"; pbrt-v4 §9.2 (DiffuseBxDF).
+ */
+#include "basic.h"
+
+#include <patina/shading/frame.h>
+#include <patina/shading/sampling.h>
+#include <patina/shading/spectral.h>
+
+#include <new>
+
+namespace patina::basic {
+namespace {
+
+using namespace patina::shading;
+
+constexpr const char* kName = "lambert";
+
+struct Lambert {
+    PatinaRgbSpectrum reflectance;
+};
+
+const PatinaParamDecl kParams[] = {
+    {"reflectance", PATINA_PARAM_COLOR, {0.5f, 0.5f, 0.5f}, nullptr, nullptr, 0.0f, 1.0f,
+     "scene_linear", "Diffuse reflectance (albedo) R in [0, 1]; f = R / pi."},
+};
+
+void* create(const PatinaHost* host, const PatinaParamValue* values)
+{
+    const PatinaParamValue& r = values[0];
+    if (r.type != PATINA_PARAM_COLOR) {
+        report_error(host, kName, "reflectance: expected a colour value");
+        return nullptr;
+    }
+    for (int c = 0; c < 3; ++c) {
+        if (!(r.rgb[c] >= 0.0f && r.rgb[c] <= 1.0f)) {
+            report_error(host, kName, "reflectance (%g, %g, %g) must lie in [0, 1]", r.rgb[0],
+                         r.rgb[1], r.rgb[2]);
+            return nullptr;
+        }
+    }
+    const PatinaRgbSpectrum& s = r.color;
+    if (s.illuminant != 0) {
+        report_error(host, kName, "reflectance was uplifted as an emission colour; a "
+                                  "reflectance spectrum is needed");
+        return nullptr;
+    }
+    if (!is_finite(s.c0) || !is_finite(s.c1) || !is_finite(s.c2) || !is_finite(s.scale)) {
+        report_error(host, kName, "reflectance spectrum has non-finite coefficients");
+        return nullptr;
+    }
+    // An albedo above 1 would create energy; allow only float rounding
+    float lo = 0.0f, hi = 0.0f;
+    rgb_spectrum_range(s, &lo, &hi);
+    if (lo < 0.0f || hi > 1.0f + 1e-5f) {
+        report_error(host, kName,
+                     "reflectance spectrum ranges over [%g, %g] in 360-830 nm; it must stay "
+                     "within [0, 1]", lo, hi);
+        return nullptr;
+    }
+    return new (std::nothrow) Lambert{s};
+}
+
+void destroy(void* instance) { delete static_cast<Lambert*>(instance); }
+
+void eval(const void* instance, const PatinaShadingContext*, PatinaVec3 wo, PatinaVec3 wi,
+          const PatinaWavelengths* wl, float* f)
+{
+    const auto* lambert = static_cast<const Lambert*>(instance);
+    if (!same_hemisphere(wo, wi)) {
+        fill(0.0f, *wl, f);
+        return;
+    }
+    // Lambertian BRDF f = R / π: pbrt-v4 §9.2
+    store(eval_rgb(lambert->reflectance, *wl) * kInvPi, *wl, f);
+}
+
+float pdf(const void*, const PatinaShadingContext*, PatinaVec3 wo, PatinaVec3 wi,
+          const PatinaWavelengths*)
+{
+    if (!same_hemisphere(wo, wi)) return 0.0f;
+    return cosine_hemisphere_pdf(abs_cos_theta(wi));
+}
+
+int sample(const void* instance, const PatinaShadingContext* ctx, PatinaVec3 wo,
+           float /*u_lobe*/, PatinaVec2 u, const PatinaWavelengths* wl, PatinaBsdfSample* out)
+{
+    if (wo.z == 0.0f) return 0;
+    // Cosine-weighted hemisphere on the side of wo
+    Vec3 wi = sample_cosine_hemisphere(u);
+    if (wo.z < 0.0f) wi.z = -wi.z;
+    const float p = cosine_hemisphere_pdf(abs_cos_theta(wi));
+    if (p == 0.0f) return 0;
+    out->wi = wi;
+    eval(instance, ctx, wo, wi, wl, out->f);
+    out->pdf = p;
+    out->lobe = PATINA_LOBE_REFLECTION | PATINA_LOBE_DIFFUSE;
+    out->eta = 1.0f;
+    return 1;
+}
+
+void albedo(const void* instance, const PatinaShadingContext*, PatinaVec3,
+            const PatinaWavelengths* wl, float* a)
+{
+    store(eval_rgb(static_cast<const Lambert*>(instance)->reflectance, *wl), *wl, a);
+}
+
+const PatinaBsdfFuncs kFuncs = {eval, pdf, sample, albedo};
+
+}  // namespace
+
+PatinaShaderDesc lambert_shader()
+{
+    PatinaShaderDesc d{};
+    d.name = kName;
+    d.kind = PATINA_SHADER_BSDF;
+    d.help = "Ideal diffuse (Lambertian) reflection, f = R / pi, on both sides of the surface.";
+    d.param_count = static_cast<int>(sizeof kParams / sizeof kParams[0]);
+    d.params = kParams;
+    d.create = create;
+    d.destroy = destroy;
+    d.bsdf = &kFuncs;
+    return d;
+}
+
+}  // namespace patina::basic
