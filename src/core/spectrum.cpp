@@ -1,0 +1,304 @@
+// CIE tables, colorimetric integration, wavelength sampling and SampledSpectrum.
+#include "core/spectrum.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace patina {
+namespace {
+
+// CIE 1931 2° standard colorimetric observer x̄, ȳ, z̄, 360-830 nm every 5 nm
+// (ISO 11664-1 / CIE S 014-1; numbers as distributed in Debian colord-data).
+constexpr float kCieX[kCieSamples] = {
+    0.0001299f, 0.0002321f, 0.0004149f, 0.0007416f, 0.001368f, 0.002236f, 0.004243f, 0.00765f,
+    0.01431f, 0.02319f, 0.04351f, 0.07763f, 0.13438f, 0.21477f, 0.2839f, 0.3285f,
+    0.34828f, 0.34806f, 0.3362f, 0.3187f, 0.2908f, 0.2511f, 0.19536f, 0.1421f,
+    0.09564f, 0.05795001f, 0.03201f, 0.0147f, 0.0049f, 0.0024f, 0.0093f, 0.0291f,
+    0.06327f, 0.1096f, 0.1655f, 0.2257499f, 0.2904f, 0.3597f, 0.4334499f, 0.5120501f,
+    0.5945f, 0.6784f, 0.7621f, 0.8425f, 0.9163f, 0.9786f, 1.0263f, 1.0567f,
+    1.0622f, 1.0456f, 1.0026f, 0.9384f, 0.8544499f, 0.7514f, 0.6424f, 0.5419f,
+    0.4479f, 0.3608f, 0.2835f, 0.2187f, 0.1649f, 0.1212f, 0.0874f, 0.0636f,
+    0.04677f, 0.0329f, 0.0227f, 0.01584f, 0.01135916f, 0.008110916f, 0.005790346f, 0.004109457f,
+    0.002899327f, 0.00204919f, 0.001439971f, 0.0009999493f, 0.0006900786f, 0.0004760213f, 0.0003323011f, 0.0002348261f,
+    0.0001661505f, 0.000117413f, 0.00008307527f, 0.00005870652f, 0.00004150994f, 0.00002935326f, 0.00002067383f, 0.00001455977f,
+    0.00001025398f, 0.000007221456f, 0.000005085868f, 0.000003581652f, 0.000002522525f, 0.000001776509f, 0.000001251141f,
+};
+constexpr float kCieY[kCieSamples] = {
+    0.000003917f, 0.000006965f, 0.00001239f, 0.00002202f, 0.000039f, 0.000064f, 0.00012f, 0.000217f,
+    0.000396f, 0.00064f, 0.00121f, 0.00218f, 0.004f, 0.0073f, 0.0116f, 0.01684f,
+    0.023f, 0.0298f, 0.038f, 0.048f, 0.06f, 0.0739f, 0.09098f, 0.1126f,
+    0.13902f, 0.1693f, 0.20802f, 0.2586f, 0.323f, 0.4073f, 0.503f, 0.6082f,
+    0.71f, 0.7932f, 0.862f, 0.9148501f, 0.954f, 0.9803f, 0.9949501f, 1.0f,
+    0.995f, 0.9786f, 0.952f, 0.9154f, 0.87f, 0.8163f, 0.757f, 0.6949f,
+    0.631f, 0.5668f, 0.503f, 0.4412f, 0.381f, 0.321f, 0.265f, 0.217f,
+    0.175f, 0.1382f, 0.107f, 0.0816f, 0.061f, 0.04458f, 0.032f, 0.0232f,
+    0.017f, 0.01192f, 0.00821f, 0.005723f, 0.004102f, 0.002929f, 0.002091f, 0.001484f,
+    0.001047f, 0.00074f, 0.00052f, 0.0003611f, 0.0002492f, 0.0001719f, 0.00012f, 0.0000848f,
+    0.00006f, 0.0000424f, 0.00003f, 0.0000212f, 0.00001499f, 0.0000106f, 0.0000074657f, 0.0000052578f,
+    0.0000037029f, 0.0000026078f, 0.0000018366f, 0.0000012934f, 0.00000091093f, 0.00000064153f, 0.00000045181f,
+};
+constexpr float kCieZ[kCieSamples] = {
+    0.0006061f, 0.001086f, 0.001946f, 0.003486f, 0.006450001f, 0.01054999f, 0.02005001f, 0.03621f,
+    0.06785001f, 0.1102f, 0.2074f, 0.3713f, 0.6456f, 1.0390501f, 1.3856f, 1.62296f,
+    1.74706f, 1.7826f, 1.77211f, 1.7441f, 1.6692f, 1.5281f, 1.28764f, 1.0419f,
+    0.8129501f, 0.6162f, 0.46518f, 0.3533f, 0.272f, 0.2123f, 0.1582f, 0.1117f,
+    0.07824999f, 0.05725001f, 0.04216f, 0.02984f, 0.0203f, 0.0134f, 0.008749999f, 0.005749999f,
+    0.0039f, 0.002749999f, 0.0021f, 0.0018f, 0.001650001f, 0.0014f, 0.0011f, 0.001f,
+    0.0008f, 0.0006f, 0.00034f, 0.00024f, 0.00019f, 0.0001f, 0.00004999999f, 0.00003f,
+    0.00002f, 0.00001f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f,
+    0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f,
+    0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f,
+    0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f,
+    0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f,
+};
+// CIE standard illuminant D65, relative SPD, 360-830 nm every 5 nm, 100 at 560 nm
+// (ISO 11664-2 / CIE S 014-2; colord-data stores it divided by 100).
+constexpr float kD65[kCieSamples] = {
+    46.6383f, 49.3637f, 52.0891f, 51.0323f, 49.9755f, 52.3118f, 54.6482f, 68.7015f,
+    82.7549f, 87.1204f, 91.486f, 92.4589f, 93.4318f, 90.057f, 86.6823f, 95.7736f,
+    104.865f, 110.936f, 117.008f, 117.41f, 117.812f, 116.336f, 114.861f, 115.392f,
+    115.923f, 112.367f, 108.811f, 109.082f, 109.354f, 108.578f, 107.802f, 106.296f,
+    104.79f, 106.239f, 107.689f, 106.047f, 104.405f, 104.225f, 104.046f, 102.023f,
+    100.0f, 98.1671f, 96.3342f, 96.0611f, 95.788f, 92.2368f, 88.6856f, 89.3459f,
+    90.0062f, 89.8026f, 89.5991f, 88.6489f, 87.6987f, 85.4936f, 83.2886f, 83.4939f,
+    83.6992f, 81.863f, 80.0268f, 80.1207f, 80.2146f, 81.2462f, 82.2778f, 80.281f,
+    78.2842f, 74.0027f, 69.7213f, 70.6652f, 71.6091f, 72.979f, 74.349f, 67.9765f,
+    61.604f, 65.7448f, 69.8856f, 72.4863f, 75.087f, 69.3398f, 63.5927f, 55.0054f,
+    46.4182f, 56.6118f, 66.8054f, 65.0941f, 63.3828f, 63.8434f, 64.304f, 61.8779f,
+    59.4519f, 55.7054f, 51.959f, 54.6998f, 57.4406f, 58.8765f, 60.3125f,
+};
+
+
+// Linear interpolation in a 5 nm table; 0 outside 360-830 nm.
+float lerp_table(const float* table, float lambda_nm)
+{
+    if (!(lambda_nm >= kLambdaMinNm && lambda_nm <= kLambdaMaxNm)) return 0.0f;
+    float x = (lambda_nm - kLambdaMinNm) / kCieStepNm;
+    int i = std::min(static_cast<int>(x), kCieSamples - 2);
+    float t = x - static_cast<float>(i);
+    return table[i] + t * (table[i + 1] - table[i]);
+}
+
+// Visible-wavelength importance sampling, pbrt-v4 (Pharr, Jakob, Humphreys 2023, §4.6.5):
+// p(λ) = A / cosh²(k (λ − 538)) on [360, 830]; CDF(λ) = (tanh(k (λ − 538)) − T0) / (T1 − T0)
+// with T0 = tanh(k (360 − 538)), T1 = tanh(k (830 − 538)), so A = k / (T1 − T0).
+constexpr double kVisK = 0.0072;
+constexpr double kVisT0 = -0.856910625469828;
+constexpr double kVisT1MinusT0 = 1.8275019724100978;
+constexpr double kVisA = 0.003939804229324407;
+
+// frac(u + i/count): hero-wavelength rotation of one uniform number.
+float rotate_u(float u, int i, int count)
+{
+    float ui = u + static_cast<float>(i) / static_cast<float>(count);
+    if (ui >= 1.0f) ui -= 1.0f;
+    return std::clamp(ui, 0.0f, 0x1.fffffep-1f);
+}
+
+template <class Op>
+SampledSpectrum& apply(SampledSpectrum& a, const SampledSpectrum& b, Op op)
+{
+    assert(a.count == b.count);
+    for (int i = 0; i < a.count; ++i) a.v[i] = op(a.v[i], b.v[i]);
+    return a;
+}
+
+}  // namespace
+
+float cie_x(float lambda_nm) { return lerp_table(kCieX, lambda_nm); }
+float cie_y(float lambda_nm) { return lerp_table(kCieY, lambda_nm); }
+float cie_z(float lambda_nm) { return lerp_table(kCieZ, lambda_nm); }
+float d65(float lambda_nm) { return lerp_table(kD65, lambda_nm); }
+
+float illuminant_a(float lambda_nm)
+{
+    // CIE 15:2004 §3.1: S_A(λ) = 100 (560/λ)^5 (exp(c2/(2848·560)) − 1) / (exp(c2/(2848 λ)) − 1)
+    // with c2 = 1.435e7 nm·K (the value fixed in the definition, not today's CODATA c2).
+    if (!(lambda_nm > 0.0f)) return 0.0f;
+    const double l = lambda_nm;
+    const double c2 = 1.435e7;
+    const double num = std::expm1(c2 / (2848.0 * 560.0));
+    const double den = std::expm1(c2 / (2848.0 * l));
+    return static_cast<float>(100.0 * std::pow(560.0 / l, 5.0) * num / den);
+}
+
+Xyz spectrum_to_xyz(const SpectrumFn& reflectance, const SpectrumFn& illuminant)
+{
+    // Trapezoid rule on a 1 nm grid (the tables are linear between their 5 nm samples).
+    Xyz xyz = {0.0, 0.0, 0.0};
+    double white_y = 0.0;
+    for (int i = 0; i <= 470; ++i) {
+        const float l = kLambdaMinNm + static_cast<float>(i);
+        const double w = (i == 0 || i == 470) ? 0.5 : 1.0;
+        const double e = w * illuminant(l);
+        const double r = reflectance(l);
+        xyz[0] += e * r * cie_x(l);
+        xyz[1] += e * r * cie_y(l);
+        xyz[2] += e * r * cie_z(l);
+        white_y += e * cie_y(l);
+    }
+    if (white_y <= 0.0) return {0.0, 0.0, 0.0};
+    for (double& c : xyz) c /= white_y;
+    return xyz;
+}
+
+Xyz emission_to_xyz(const SpectrumFn& radiance)
+{
+    Xyz xyz = {0.0, 0.0, 0.0};
+    for (int i = 0; i <= 470; ++i) {
+        const float l = kLambdaMinNm + static_cast<float>(i);
+        const double e = ((i == 0 || i == 470) ? 0.5 : 1.0) * radiance(l);
+        xyz[0] += e * cie_x(l);
+        xyz[1] += e * cie_y(l);
+        xyz[2] += e * cie_z(l);
+    }
+    for (double& c : xyz) c /= kCieYIntegral;
+    return xyz;
+}
+
+float visible_wavelength_pdf(float lambda_nm)
+{
+    if (!(lambda_nm >= kLambdaMinNm && lambda_nm <= kLambdaMaxNm)) return 0.0f;
+    const double c = std::cosh(kVisK * (lambda_nm - 538.0));
+    return static_cast<float>(kVisA / (c * c));
+}
+
+float sample_visible_wavelength(float u)
+{
+    // Invert the CDF above: λ = 538 + atanh(T0 + u (T1 − T0)) / k.
+    const double t = kVisT0 + static_cast<double>(u) * kVisT1MinusT0;
+    const double l = 538.0 + std::atanh(t) / kVisK;
+    return std::clamp(static_cast<float>(l), kLambdaMinNm, kLambdaMaxNm);
+}
+
+PatinaWavelengths sample_wavelengths_visible(float u, int count)
+{
+    assert(count >= 1 && count <= PATINA_MAX_WAVELENGTHS);
+    PatinaWavelengths wl{};
+    wl.count = count;
+    for (int i = 0; i < count; ++i) wl.lambda_nm[i] = sample_visible_wavelength(rotate_u(u, i, count));
+    return wl;
+}
+
+float uniform_wavelength_pdf(float lambda_nm)
+{
+    if (!(lambda_nm >= kLambdaMinNm && lambda_nm <= kLambdaMaxNm)) return 0.0f;
+    return 1.0f / (kLambdaMaxNm - kLambdaMinNm);
+}
+
+PatinaWavelengths sample_wavelengths_uniform(float u, int count)
+{
+    assert(count >= 1 && count <= PATINA_MAX_WAVELENGTHS);
+    PatinaWavelengths wl{};
+    wl.count = count;
+    for (int i = 0; i < count; ++i) {
+        const float ui = rotate_u(u, i, count);
+        wl.lambda_nm[i] = kLambdaMinNm + ui * (kLambdaMaxNm - kLambdaMinNm);
+    }
+    return wl;
+}
+
+SampledSpectrum SampledSpectrum::from_array(int n, const float* values)
+{
+    SampledSpectrum s(n, 0.0f);
+    for (int i = 0; i < n; ++i) s.v[i] = values[i];
+    return s;
+}
+
+SampledSpectrum& SampledSpectrum::operator+=(const SampledSpectrum& o)
+{
+    return apply(*this, o, [](float a, float b) { return a + b; });
+}
+SampledSpectrum& SampledSpectrum::operator-=(const SampledSpectrum& o)
+{
+    return apply(*this, o, [](float a, float b) { return a - b; });
+}
+SampledSpectrum& SampledSpectrum::operator*=(const SampledSpectrum& o)
+{
+    return apply(*this, o, [](float a, float b) { return a * b; });
+}
+SampledSpectrum& SampledSpectrum::operator/=(const SampledSpectrum& o)
+{
+    return apply(*this, o, [](float a, float b) { return b != 0.0f ? a / b : 0.0f; });
+}
+SampledSpectrum& SampledSpectrum::operator*=(float s)
+{
+    for (int i = 0; i < count; ++i) v[i] *= s;
+    return *this;
+}
+SampledSpectrum& SampledSpectrum::operator/=(float s)
+{
+    for (int i = 0; i < count; ++i) v[i] = s != 0.0f ? v[i] / s : 0.0f;
+    return *this;
+}
+
+float SampledSpectrum::average() const
+{
+    if (count == 0) return 0.0f;
+    float sum = 0.0f;
+    for (int i = 0; i < count; ++i) sum += v[i];
+    return sum / static_cast<float>(count);
+}
+
+float SampledSpectrum::max_value() const
+{
+    if (count == 0) return 0.0f;
+    return *std::max_element(v, v + count);
+}
+
+float SampledSpectrum::min_value() const
+{
+    if (count == 0) return 0.0f;
+    return *std::min_element(v, v + count);
+}
+
+bool SampledSpectrum::is_black() const
+{
+    for (int i = 0; i < count; ++i)
+        if (v[i] != 0.0f) return false;
+    return true;
+}
+
+SampledSpectrum exp(const SampledSpectrum& s)
+{
+    SampledSpectrum r = s;
+    for (int i = 0; i < r.count; ++i) r.v[i] = std::exp(s.v[i]);
+    return r;
+}
+
+SampledSpectrum sqrt(const SampledSpectrum& s)
+{
+    SampledSpectrum r = s;
+    for (int i = 0; i < r.count; ++i) r.v[i] = std::sqrt(std::max(s.v[i], 0.0f));
+    return r;
+}
+
+SampledSpectrum visible_wavelength_pdf(const PatinaWavelengths& wl)
+{
+    return SampledSpectrum::from_function(wl, [](float l) { return visible_wavelength_pdf(l); });
+}
+
+Xyz xyz_from_samples(const SampledSpectrum& L, const PatinaWavelengths& wl,
+                     const SampledSpectrum& pdf)
+{
+    // Monte Carlo estimate of ∫ L x̄ dλ / ∫ ȳ dλ: one sample per wavelength, averaged.
+    Xyz xyz = {0.0, 0.0, 0.0};
+    if (L.count == 0) return xyz;
+    for (int i = 0; i < L.count; ++i) {
+        if (pdf.v[i] == 0.0f) continue;
+        const float l = wl.lambda_nm[i];
+        const double w = static_cast<double>(L.v[i]) / pdf.v[i];
+        xyz[0] += w * cie_x(l);
+        xyz[1] += w * cie_y(l);
+        xyz[2] += w * cie_z(l);
+    }
+    for (double& c : xyz) c /= static_cast<double>(L.count) * kCieYIntegral;
+    return xyz;
+}
+
+Xyz xyz_from_samples(const SampledSpectrum& L, const PatinaWavelengths& wl)
+{
+    return xyz_from_samples(L, wl, visible_wavelength_pdf(wl));
+}
+
+}  // namespace patina

@@ -1,0 +1,140 @@
+// Spectral basics: the CIE 1931 2° observer and standard illuminants as embedded tables,
+// colorimetric integration, hero-wavelength sampling over 360-830 nm, and the small
+// fixed-size SampledSpectrum the renderer carries along a path.
+#pragma once
+
+#include <patina/abi.h>
+
+#include <array>
+#include <cassert>
+#include <functional>
+
+namespace patina {
+
+/// Range of the embedded CIE tables and of wavelength sampling, in nm.
+constexpr float kLambdaMinNm = PATINA_LAMBDA_MIN_NM;
+constexpr float kLambdaMaxNm = PATINA_LAMBDA_MAX_NM;
+/// The CIE tables are sampled every 5 nm from 360 to 830 nm.
+constexpr int kCieSamples = 95;
+constexpr float kCieStepNm = 5.0f;
+
+/// Integral of ȳ(λ) dλ over 360-830 nm of the embedded table (linear interpolation, so the
+/// trapezoid sum on the 5 nm grid). Dividing ∫ L ȳ dλ by it gives the Y of a radiance L in
+/// units where a spectrum constant 1 has Y = 1 (pbrt-v4's CIE_Y_integral convention).
+constexpr double kCieYIntegral = 106.857028330325;
+
+/// CIE 1931 2° colour matching functions, linearly interpolated, 0 outside 360-830 nm.
+float cie_x(float lambda_nm);
+float cie_y(float lambda_nm);
+float cie_z(float lambda_nm);
+
+/// CIE standard illuminant D65, relative SPD (100 at 560 nm, CIE 15 table), linearly
+/// interpolated; 0 outside 360-830 nm.
+float d65(float lambda_nm);
+
+/// CIE standard illuminant A from its defining Planck formula (CIE 15:2004 §3.1),
+/// 100 at 560 nm; defined for any positive wavelength.
+float illuminant_a(float lambda_nm);
+
+/// A spectral function of wavelength in nm.
+using SpectrumFn = std::function<double(double)>;
+using Xyz = std::array<double, 3>;
+
+/// CIE XYZ of a reflectance seen under `illuminant`, normalised so that the illuminant
+/// itself (a perfect white reflector) has Y = 1. Integrated on a 1 nm grid over 360-830 nm.
+Xyz spectrum_to_xyz(const SpectrumFn& reflectance, const SpectrumFn& illuminant = d65);
+
+/// CIE XYZ of a radiance spectrum: ∫ L x̄ dλ / kCieYIntegral (a constant 1 has Y = 1).
+Xyz emission_to_xyz(const SpectrumFn& radiance);
+
+// ---------------------------------------------------------------------------------------
+// Wavelength sampling (hero wavelength: one u, `count` wavelengths by rotating u by i/count)
+// ---------------------------------------------------------------------------------------
+
+/// pbrt-v4's visible-wavelength importance density: p(λ) ∝ 1/cosh²(0.0072 (λ − 538)),
+/// normalised over 360-830 nm; 0 outside.
+float visible_wavelength_pdf(float lambda_nm);
+/// Invert the CDF of visible_wavelength_pdf for u in [0, 1).
+float sample_visible_wavelength(float u);
+/// `count` (1..PATINA_MAX_WAVELENGTHS) wavelengths from u_i = frac(u + i/count), each
+/// distributed by visible_wavelength_pdf; lambda_nm[0] is the hero wavelength.
+PatinaWavelengths sample_wavelengths_visible(float u, int count);
+
+/// Uniform density 1/(830 − 360) over 360-830 nm; 0 outside.
+float uniform_wavelength_pdf(float lambda_nm);
+/// As sample_wavelengths_visible, with uniformly distributed wavelengths.
+PatinaWavelengths sample_wavelengths_uniform(float u, int count);
+
+// ---------------------------------------------------------------------------------------
+// SampledSpectrum: values at the wavelengths of one path
+// ---------------------------------------------------------------------------------------
+
+/// `count` values, one per wavelength of a PatinaWavelengths. Binary operations take the
+/// count of the left operand; both operands must have the same count.
+struct SampledSpectrum {
+    int count = 0;
+    float v[PATINA_MAX_WAVELENGTHS] = {};
+
+    SampledSpectrum() = default;
+    SampledSpectrum(int n, float value)
+        : count(n)
+    {
+        assert(n >= 0 && n <= PATINA_MAX_WAVELENGTHS);
+        for (int i = 0; i < n; ++i) v[i] = value;
+    }
+    /// Copy n values (e.g. the float[PATINA_MAX_WAVELENGTHS] output of a plugin).
+    static SampledSpectrum from_array(int n, const float* values);
+    /// Evaluate fn at each wavelength.
+    template <class Fn>
+    static SampledSpectrum from_function(const PatinaWavelengths& wl, Fn&& fn)
+    {
+        SampledSpectrum s(wl.count, 0.0f);
+        for (int i = 0; i < wl.count; ++i) s.v[i] = static_cast<float>(fn(wl.lambda_nm[i]));
+        return s;
+    }
+
+    float& operator[](int i) { return v[i]; }
+    float operator[](int i) const { return v[i]; }
+    float* data() { return v; }
+    const float* data() const { return v; }
+
+    SampledSpectrum& operator+=(const SampledSpectrum& o);
+    SampledSpectrum& operator-=(const SampledSpectrum& o);
+    SampledSpectrum& operator*=(const SampledSpectrum& o);
+    /// Elementwise division; a zero divisor gives 0 (never Inf or NaN).
+    SampledSpectrum& operator/=(const SampledSpectrum& o);
+    SampledSpectrum& operator*=(float s);
+    SampledSpectrum& operator/=(float s);
+
+    float average() const;
+    float max_value() const;
+    float min_value() const;
+    bool is_black() const;
+};
+
+inline SampledSpectrum operator+(SampledSpectrum a, const SampledSpectrum& b) { return a += b; }
+inline SampledSpectrum operator-(SampledSpectrum a, const SampledSpectrum& b) { return a -= b; }
+inline SampledSpectrum operator*(SampledSpectrum a, const SampledSpectrum& b) { return a *= b; }
+inline SampledSpectrum operator/(SampledSpectrum a, const SampledSpectrum& b) { return a /= b; }
+inline SampledSpectrum operator*(SampledSpectrum a, float s) { return a *= s; }
+inline SampledSpectrum operator*(float s, SampledSpectrum a) { return a *= s; }
+inline SampledSpectrum operator/(SampledSpectrum a, float s) { return a /= s; }
+
+/// Elementwise exp(s), e.g. Beer-Lambert transmittance exp(-sigma_t * t).
+SampledSpectrum exp(const SampledSpectrum& s);
+/// Elementwise sqrt of max(s, 0).
+SampledSpectrum sqrt(const SampledSpectrum& s);
+
+/// visible_wavelength_pdf at each wavelength of wl.
+SampledSpectrum visible_wavelength_pdf(const PatinaWavelengths& wl);
+
+/// XYZ estimate of a radiance sample L carried at the wavelengths wl: the average over i of
+/// L_i x̄(λ_i) / pdf_i, divided by kCieYIntegral (a constant radiance 1 gives Y = 1 in
+/// expectation). Wavelengths with pdf_i == 0 (terminated secondary wavelengths) contribute
+/// nothing but still count in the average.
+Xyz xyz_from_samples(const SampledSpectrum& L, const PatinaWavelengths& wl,
+                     const SampledSpectrum& pdf);
+/// As above, for wavelengths drawn by sample_wavelengths_visible.
+Xyz xyz_from_samples(const SampledSpectrum& L, const PatinaWavelengths& wl);
+
+}  // namespace patina
