@@ -1,0 +1,196 @@
+#include "core/image_io.h"
+
+#include <OpenImageIO/imagebufalgo.h>
+#include <OpenImageIO/imageio.h>
+#include <fmt/format.h>
+
+#include <unistd.h>
+
+#include <atomic>
+#include <sstream>
+#include <stdexcept>
+
+namespace patina {
+
+namespace {
+
+    std::string oiio_error(const std::string& from_object)
+    {
+        std::string text = from_object.empty() ? OIIO::geterror() : from_object;
+        while (!text.empty() && (text.back() == '\n' || text.back() == ' '))
+            text.pop_back();
+        return text.empty() ? std::string("unknown OpenImageIO error") : text;
+    }
+
+    /// Removes the temporary file unless disarmed: every early exit (error or exception)
+    /// cleans up.
+    class TemporaryFile {
+    public:
+        explicit TemporaryFile(std::filesystem::path p) : path_(std::move(p)) {}
+        ~TemporaryFile()
+        {
+            std::error_code ec;
+            if (!path_.empty())
+                std::filesystem::remove(path_, ec);
+        }
+        TemporaryFile(const TemporaryFile&) = delete;
+        TemporaryFile& operator=(const TemporaryFile&) = delete;
+        const std::filesystem::path& path() const { return path_; }
+        /// Rename over `target` (atomic within one file system) and forget the temporary.
+        void commit(const std::filesystem::path& target)
+        {
+            std::error_code ec;
+            std::filesystem::rename(path_, target, ec);
+            if (ec)
+                throw std::runtime_error(fmt::format("cannot write image '{}': renaming {} failed: {}",
+                                                     target.string(), path_.string(), ec.message()));
+            path_.clear();
+        }
+
+    private:
+        std::filesystem::path path_;
+    };
+
+    void check_format(const std::filesystem::path& path, OIIO::TypeDesc format)
+    {
+        if (format != OIIO::TypeDesc::HALF && format != OIIO::TypeDesc::FLOAT &&
+            format != OIIO::TypeDesc::UINT8 && format != OIIO::TypeDesc::UINT16)
+            throw std::runtime_error(fmt::format(
+                "cannot write image '{}': pixel format {} is not one of half, float, uint8, uint16",
+                path.string(), format.c_str()));
+    }
+
+    OIIO::ImageSpec make_spec(const std::filesystem::path& path, int width, int height,
+                              int channels, const std::vector<std::string>& channel_names,
+                              OIIO::TypeDesc format)
+    {
+        if (width <= 0 || height <= 0 || channels <= 0)
+            throw std::runtime_error(fmt::format("cannot write image '{}': invalid size {}x{} with {} channels",
+                                                 path.string(), width, height, channels));
+        if (!channel_names.empty() && static_cast<int>(channel_names.size()) != channels)
+            throw std::runtime_error(fmt::format("cannot write image '{}': {} channel names for {} channels",
+                                                 path.string(), channel_names.size(), channels));
+        OIIO::ImageSpec spec(width, height, channels, format);
+        if (!channel_names.empty())
+            spec.channelnames = channel_names;
+        return spec;
+    }
+
+    void add_metadata(OIIO::ImageSpec& spec, const Metadata& metadata)
+    {
+        for (const auto& [key, value] : metadata)
+            std::visit([&, &k = key](const auto& v) { spec.attribute(k, v); }, value);
+    }
+
+}  // namespace
+
+std::filesystem::path temporary_path_for(const std::filesystem::path& path)
+{
+    static std::atomic<unsigned> counter{0};
+    return fmt::format("{}.tmp-{}-{}", path.string(), static_cast<long>(::getpid()), counter++);
+}
+
+void write_image_atomic(const std::filesystem::path& path, const float* pixels, int width,
+                        int height, int channels,
+                        const std::vector<std::string>& channel_names,
+                        OIIO::TypeDesc format, const Metadata& metadata)
+{
+    check_format(path, format);
+    if (!pixels)
+        throw std::runtime_error(fmt::format("cannot write image '{}': no pixels", path.string()));
+    OIIO::ImageSpec spec = make_spec(path, width, height, channels, channel_names, format);
+    add_metadata(spec, metadata);
+    if (channels == 4 && channel_names.empty())
+        spec.alpha_channel = 3;
+
+    // The writer is chosen from the final name: the temporary name has no image extension.
+    auto out = OIIO::ImageOutput::create(path.string());
+    if (!out)
+        throw std::runtime_error(fmt::format("cannot write image '{}': {}", path.string(), oiio_error("")));
+    TemporaryFile tmp(temporary_path_for(path));
+    bool ok = out->open(tmp.path().string(), spec) &&
+              out->write_image(OIIO::TypeDesc::FLOAT, pixels);
+    ok = out->close() && ok;
+    if (!ok)
+        throw std::runtime_error(fmt::format("cannot write image '{}': {}", path.string(),
+                                             oiio_error(out->geterror())));
+    out.reset();
+    tmp.commit(path);
+}
+
+void make_texture_atomic(const std::filesystem::path& path, const OIIO::ImageBuf& image,
+                         const TextureOptions& options)
+{
+    if (options.format != OIIO::TypeDesc::HALF && options.format != OIIO::TypeDesc::FLOAT)
+        throw std::runtime_error(fmt::format("cannot make texture '{}': format must be half or float, not {}",
+                                             path.string(), options.format.c_str()));
+    if (options.tile_size <= 0)
+        throw std::runtime_error(fmt::format("cannot make texture '{}': tile size {} must be positive",
+                                             path.string(), options.tile_size));
+    if (image.has_error() || image.spec().width <= 0)
+        throw std::runtime_error(fmt::format("cannot make texture '{}': invalid input image: {}",
+                                             path.string(), image.geterror()));
+
+    OIIO::ImageSpec config;
+    config.format = options.format;
+    config.tile_width = config.tile_height = options.tile_size;
+    config.tile_depth = 1;
+    config.attribute("compression", options.compression);
+    config.attribute("wrapmodes", options.wrap + "," + options.wrap);
+    // The temporary name has no .exr extension: name the format explicitly.
+    config.attribute("maketx:fileformatname", "openexr");
+    if (!options.mip_filter.empty())
+        config.attribute("maketx:filtername", options.mip_filter);
+    add_metadata(config, options.metadata);
+
+    TemporaryFile tmp(temporary_path_for(path));
+    std::ostringstream log;
+    if (!OIIO::ImageBufAlgo::make_texture(OIIO::ImageBufAlgo::MakeTxTexture, image,
+                                          tmp.path().string(), config, &log)) {
+        std::string text = oiio_error("");
+        if (text == "unknown OpenImageIO error" && !log.str().empty())
+            text = log.str();
+        throw std::runtime_error(fmt::format("cannot make texture '{}': {}", path.string(), text));
+    }
+    tmp.commit(path);
+}
+
+void make_texture_atomic(const std::filesystem::path& path, const float* pixels, int width,
+                         int height, int channels,
+                         const std::vector<std::string>& channel_names,
+                         const TextureOptions& options)
+{
+    if (!pixels)
+        throw std::runtime_error(fmt::format("cannot make texture '{}': no pixels", path.string()));
+    const OIIO::ImageSpec spec =
+        make_spec(path, width, height, channels, channel_names, OIIO::TypeDesc::FLOAT);
+    OIIO::ImageBuf buf(spec);
+    if (!buf.set_pixels(buf.roi(), OIIO::TypeDesc::FLOAT, pixels))
+        throw std::runtime_error(fmt::format("cannot make texture '{}': {}", path.string(), buf.geterror()));
+    make_texture_atomic(path, buf, options);
+}
+
+ImageData read_image(const std::filesystem::path& path)
+{
+    std::error_code ec;
+    if (!std::filesystem::exists(path, ec))
+        throw std::runtime_error(fmt::format("cannot read image '{}': file not found", path.string()));
+    auto in = OIIO::ImageInput::open(path.string());
+    if (!in)
+        throw std::runtime_error(fmt::format("cannot read image '{}': {}", path.string(), oiio_error("")));
+    const OIIO::ImageSpec& spec = in->spec();
+    ImageData image;
+    image.width = spec.width;
+    image.height = spec.height;
+    image.channels = spec.nchannels;
+    image.channel_names = spec.channelnames;
+    for (const OIIO::ParamValue& p : spec.extra_attribs)
+        image.metadata.emplace_back(p.name().string(), p.get_string());
+    image.pixels.resize(static_cast<size_t>(spec.width) * spec.height * spec.nchannels);
+    if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, image.pixels.data()))
+        throw std::runtime_error(fmt::format("cannot read image '{}': {}", path.string(),
+                                             oiio_error(in->geterror())));
+    return image;
+}
+
+}  // namespace patina

@@ -1,0 +1,91 @@
+// Image files through OpenImageIO only: atomic writes (temporary name + rename, so a failed
+// or cancelled write never leaves a half-written file nor replaces a good one), tiled
+// mip-mapped textures (ImageBufAlgo::make_texture) with the same rule, and plain reads.
+#pragma once
+
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/typedesc.h>
+
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <variant>
+#include <vector>
+
+namespace patina {
+
+/// One header attribute, e.g. {"patina:bake", "accessibility"} or {"patina:samples", 256}.
+using MetadataValue = std::variant<int, float, std::string>;
+using Metadata = std::vector<std::pair<std::string, MetadataValue>>;
+
+/// Pixels as floats, scanline order from the top-left corner, channels interleaved.
+/// OpenEXR stores channels sorted by name (OIIO restores R, G, B, A order only), so a map
+/// written as (thickness, exposure) reads back as (exposure, thickness): use `channel()`.
+struct ImageData {
+    int width = 0;
+    int height = 0;
+    int channels = 0;
+    std::vector<float> pixels;
+    std::vector<std::string> channel_names;
+    /// Every header attribute, as OIIO prints it (`key`, value as text).
+    std::vector<std::pair<std::string, std::string>> metadata;
+
+    /// Index of the channel called `name`, or -1.
+    int channel(std::string_view name) const
+    {
+        for (size_t i = 0; i < channel_names.size(); ++i)
+            if (channel_names[i] == name)
+                return static_cast<int>(i);
+        return -1;
+    }
+    float at(int x, int y, int c) const
+    {
+        return pixels[(static_cast<size_t>(y) * width + x) * channels + c];
+    }
+};
+
+/// The temporary name a write goes to before the rename: `<path>.tmp-<pid>-<n>`, in the
+/// same folder (so the rename is atomic), `n` unique within the process.
+std::filesystem::path temporary_path_for(const std::filesystem::path& path);
+
+/// Write `width` x `height` pixels of `channels` interleaved floats to `path`. The file
+/// format follows the extension (.exr, .png, .tif, ...); `format` is the pixel type in the
+/// file: TypeDesc::HALF, FLOAT or UINT8 (UINT8 maps [0,1] to [0,255], clamped).
+/// `channel_names` may be empty (R, G, B, A, then channelN) or name every channel (an
+/// OpenEXR file keeps them sorted by name; readers must look channels up by name).
+/// Writes `<path>.tmp-<pid>-<n>` and renames it over `path` only when complete; on any
+/// failure the temporary file is removed, `path` is untouched, and std::runtime_error names
+/// the file with OIIO's error text.
+void write_image_atomic(const std::filesystem::path& path, const float* pixels, int width,
+                        int height, int channels,
+                        const std::vector<std::string>& channel_names,
+                        OIIO::TypeDesc format, const Metadata& metadata = {});
+
+/// How make_texture_atomic builds a texture.
+struct TextureOptions {
+    OIIO::TypeDesc format = OIIO::TypeDesc::HALF; ///< HALF or FLOAT (linear data)
+    int tile_size = 64;
+    std::string wrap = "periodic";     ///< OIIO wrap mode name, both directions
+    std::string compression = "zip";
+    /// Mip-level filter ("" = OIIO's default box/bilinear; "lanczos3" sharper, rings).
+    std::string mip_filter;
+    Metadata metadata;                 ///< written into the header (bake parameters)
+};
+
+/// Turn `image` into a tiled, mip-mapped OpenEXR texture at `path`
+/// (ImageBufAlgo::make_texture), with the same temporary-name + rename rule and errors as
+/// write_image_atomic.
+void make_texture_atomic(const std::filesystem::path& path, const OIIO::ImageBuf& image,
+                         const TextureOptions& options = {});
+/// The same from interleaved float pixels.
+void make_texture_atomic(const std::filesystem::path& path, const float* pixels, int width,
+                         int height, int channels,
+                         const std::vector<std::string>& channel_names,
+                         const TextureOptions& options = {});
+
+/// Read the first subimage (top mip level) of any OIIO-readable file as floats. Throws
+/// std::runtime_error naming the file when it is missing or unreadable.
+ImageData read_image(const std::filesystem::path& path);
+
+}  // namespace patina
