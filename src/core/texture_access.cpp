@@ -1,0 +1,120 @@
+#include "core/texture_access.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace patina {
+
+TextureAccess::TextureAccess(const ColorManager& colors, const Options& options)
+    : colors_(&colors), options_(options)
+{
+    // shared=false: a private TextureSystem and ImageCache per TextureAccess.
+    ts_ = OIIO::TextureSystem::create(false);
+    if (!ts_)
+        throw std::runtime_error("cannot create an OpenImageIO TextureSystem: " + OIIO::geterror());
+    ts_->attribute("automip", 1);
+    ts_->attribute("autotile", options_.autotile);
+    ts_->attribute("max_memory_MB", options_.max_memory_mb);
+    ts_->attribute("max_open_files", options_.max_open_files);
+}
+
+TextureAccess::~TextureAccess() { OIIO::TextureSystem::destroy(ts_); }
+
+TextureAccess::Handle* TextureAccess::open(const std::filesystem::path& filename,
+                                           std::string_view colorspace)
+{
+    auto key = std::make_pair(filename.string(), std::string(colorspace));
+    std::lock_guard lock(mutex_);
+    if (auto it = handles_.find(key); it != handles_.end())
+        return it->second.get();
+
+    const auto fail = [&](const std::string& why) {
+        return std::runtime_error(fmt::format("texture '{}': {}", filename.string(), why));
+    };
+    std::error_code ec;
+    if (!std::filesystem::exists(filename, ec))
+        throw fail("file not found");
+    if (!std::filesystem::is_regular_file(filename, ec))
+        throw fail("not a regular file");
+
+    auto handle = std::make_unique<Handle>();
+    handle->filename = filename;
+    handle->colorspace = std::string(colorspace);
+    try {
+        handle->is_data = colors_->is_data(colorspace);
+        if (!handle->is_data)
+            handle->to_working = colors_->conversion(colorspace, colors_->working_space());
+    } catch (const std::exception& e) {
+        throw fail(e.what());
+    }
+
+    // Resolve the handle and read the header now, so a bad file fails at open, not
+    // silently (black) at the first lookup.
+    OIIO::TextureSystem::Perthread* thread = ts_->get_perthread_info();
+    handle->oiio = ts_->get_texture_handle(OIIO::ustring(filename.string()), thread);
+    OIIO::ImageSpec spec;
+    if (!handle->oiio || !ts_->get_imagespec(handle->oiio, thread, 0, spec) ||
+        !ts_->good(handle->oiio)) {
+        std::string why = ts_->geterror();
+        throw fail(why.empty() ? std::string("OpenImageIO cannot read it") : why);
+    }
+    handle->channels = spec.nchannels;
+    handle->width = spec.width;
+    handle->height = spec.height;
+    return handles_.emplace(std::move(key), std::move(handle)).first->second.get();
+}
+
+bool TextureAccess::lookup(const Handle* handle, float s, float t, float dsdx, float dtdx,
+                           float dsdy, float dtdy, int first_channel, int nchannels,
+                           float* out) const
+{
+    if (!out || nchannels <= 0)
+        return false;
+    const auto fail = [&] {
+        std::fill(out, out + nchannels, 0.0f);
+        return false;
+    };
+    if (!handle || !handle->oiio || first_channel < 0)
+        return fail();
+
+    OIIO::TextureOpt opt; // one per call: TextureOpt is per-lookup state
+    opt.swrap = opt.twrap = options_.wrap;
+    OIIO::TextureSystem::Perthread* thread = ts_->get_perthread_info();
+
+    // Only channels 0-2 (or a grey channel 0) carry colour; others pass through.
+    const bool convert = !handle->to_working.is_identity() && first_channel < 3 &&
+                         first_channel < handle->channels;
+    if (!convert) {
+        opt.firstchannel = first_channel;
+        return ts_->texture(handle->oiio, thread, opt, s, t, dsdx, dtdx, dsdy, dtdy, nchannels,
+                            out)
+                   ? true
+                   : fail();
+    }
+
+    // Converting needs the whole RGB triple: look up from channel 0, convert, then copy out
+    // the requested range.
+    const int end = first_channel + nchannels;
+    const int span = std::max(end, std::min(3, handle->channels));
+    if (span > kMaxConvertedChannels)
+        return fail();
+    float values[kMaxConvertedChannels];
+    opt.firstchannel = 0;
+    if (!ts_->texture(handle->oiio, thread, opt, s, t, dsdx, dtdx, dsdy, dtdy, span, values))
+        return fail();
+    if (handle->channels >= 3) {
+        handle->to_working.apply(values, 1);
+    } else {
+        float grey[3] = {values[0], values[0], values[0]};
+        handle->to_working.apply(grey, 1);
+        values[0] = (grey[0] + grey[1] + grey[2]) / 3.0f;
+    }
+    std::copy(values + first_channel, values + end, out);
+    return true;
+}
+
+std::string TextureAccess::last_error() const { return ts_->geterror(); }
+
+}  // namespace patina
