@@ -19,8 +19,9 @@
 //     lambda(w)            Smith's auxiliary function Λ(w); +infinity at the horizon
 //     g1(w)                Smith masking G1(w) = 1 / (1 + Λ(w))
 //     g(wo, wi)            height-correlated masking-shadowing G2 = 1 / (1 + Λ(wo) + Λ(wi))
-//     d_visible(w, wm)     distribution of normals visible from w:
-//                          D_w(wm) = G1(w) |w·wm| D(wm) / |cos θ(w)|; integrates to 1
+//     d_visible(w, wm)     distribution of normals visible from w (flipped above the
+//                          surface if w.z < 0, as w' = −w):
+//                          D_w(wm) = G1(w) max(0, w'·wm) D(wm) / |cos θ(w)|; integrates to 1
 //     sample_wm(w, u)      a normal wm distributed by D_w' (w' = w flipped above the surface)
 //     pdf(w, wm)           density of sample_wm in solid angle of wm: exactly d_visible(w, wm)
 //
@@ -107,6 +108,18 @@ inline Vec3 slope_to_normal(double sx, double sy)
                 static_cast<float>(inv));
 }
 
+/// D_w(wm) of any distribution with d() and g1(); w is flipped above the surface first, so
+/// only normals facing it (w'·wm > 0) are visible.
+template <typename Distribution>
+float d_visible(const Distribution& distribution, Vec3 w, Vec3 wm)
+{
+    const float cos_w = std::abs(w.z);
+    if (cos_w == 0.0f) return 0.0f;
+    const float w_dot_wm = w.z < 0.0f ? -dot(w, wm) : dot(w, wm);
+    if (w_dot_wm <= 0.0f) return 0.0f;
+    return distribution.g1(w) / cos_w * distribution.d(wm) * w_dot_wm;
+}
+
 }  // namespace detail
 
 // ---------------------------------------------------------------------------------------
@@ -158,13 +171,9 @@ public:
     /// Height-correlated masking-shadowing 1 / (1 + Λ(wo) + Λ(wi)): Heitz 2014 (height-correlated form)
     float g(Vec3 wo, Vec3 wi) const { return 1.0f / (1.0f + lambda(wo) + lambda(wi)); }
 
-    /// Visible normal density D_w(wm) = G1(w) |w·wm| D(wm) / |cos θ(w)|: Heitz 2014 (distribution of visible normals)
-    float d_visible(Vec3 w, Vec3 wm) const
-    {
-        const float cos_w = std::abs(w.z);
-        if (cos_w == 0.0f) return 0.0f;
-        return g1(w) / cos_w * d(wm) * abs_dot(w, wm);
-    }
+    /// Visible normal density D_w(wm) = G1(w) max(0, w·wm) D(wm) / cos θ(w), with w
+    /// flipped above the surface: Heitz 2014 (distribution of visible normals)
+    float d_visible(Vec3 w, Vec3 wm) const { return detail::d_visible(*this, w, wm); }
 
     /// Solid-angle density of sample_wm(w, ·) at wm.
     float pdf(Vec3 w, Vec3 wm) const { return d_visible(w, wm); }
@@ -250,13 +259,9 @@ public:
     /// Height-correlated masking-shadowing 1 / (1 + Λ(wo) + Λ(wi)): Heitz 2014 (height-correlated form)
     float g(Vec3 wo, Vec3 wi) const { return 1.0f / (1.0f + lambda(wo) + lambda(wi)); }
 
-    /// Visible normal density D_w(wm) = G1(w) |w·wm| D(wm) / |cos θ(w)|: Heitz 2014 (distribution of visible normals)
-    float d_visible(Vec3 w, Vec3 wm) const
-    {
-        const float cos_w = std::abs(w.z);
-        if (cos_w == 0.0f) return 0.0f;
-        return g1(w) / cos_w * d(wm) * abs_dot(w, wm);
-    }
+    /// Visible normal density D_w(wm) = G1(w) max(0, w·wm) D(wm) / cos θ(w), with w
+    /// flipped above the surface: Heitz 2014 (distribution of visible normals)
+    float d_visible(Vec3 w, Vec3 wm) const { return detail::d_visible(*this, w, wm); }
 
     /// Solid-angle density of sample_wm(w, ·) at wm.
     float pdf(Vec3 w, Vec3 wm) const { return d_visible(w, wm); }
@@ -267,7 +272,8 @@ public:
     {
         // Stretch w to the unit-roughness configuration: Heitz & d'Eon 2014, "Importance
         // Sampling Microfacet-Based BSDFs using the Distribution of Visible Normals", EGSR (stretch-sample-rotate-unstretch)
-        Vec3 ws = normalize(Vec3(alpha_x_ * w.x, alpha_y_ * w.y, std::abs(w.z)));
+        const Vec3 wf = w.z < 0.0f ? -w : w;
+        Vec3 ws = normalize(Vec3(alpha_x_ * wf.x, alpha_y_ * wf.y, wf.z));
         if (length_squared(ws) == 0.0f) ws = Vec3(0.0f, 0.0f, 1.0f);
         const double sin_theta = std::sqrt(sqr(static_cast<double>(ws.x)) + sqr(static_cast<double>(ws.y)));
         const double cos_phi = sin_theta > 0.0 ? ws.x / sin_theta : 1.0;
