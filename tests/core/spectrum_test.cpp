@@ -153,7 +153,9 @@ TEST(SpectrumTest, MatchesCvrlOneNanometreTable)
         ++rows;
         const double err = std::max({std::abs(cie_x(l) - x), std::abs(cie_y(l) - y),
                                      std::abs(cie_z(l) - z)});
-        if (static_cast<int>(l) % 5 == 0) EXPECT_LT(err, 1e-6) << l;
+        if (static_cast<int>(l) % 5 == 0) {
+            EXPECT_LT(err, 1e-6) << l;
+        }
         ref[0] += x, ref[1] += y, ref[2] += z;
         ours[0] += cie_x(l), ours[1] += cie_y(l), ours[2] += cie_z(l);
     }
