@@ -79,7 +79,8 @@ float lerp_table(const float* table, float lambda_nm)
     return table[i] + t * (table[i + 1] - table[i]);
 }
 
-// Visible-wavelength importance sampling, pbrt-v4 (Pharr, Jakob, Humphreys 2023, §4.6.5):
+// Visible-wavelength importance sampling, pbrt-v4 (Pharr, Jakob, Humphreys 2023,
+// SampleVisibleWavelengths):
 // p(λ) = A / cosh²(k (λ − 538)) on [360, 830]; CDF(λ) = (tanh(k (λ − 538)) − T0) / (T1 − T0)
 // with T0 = tanh(k (360 − 538)), T1 = tanh(k (830 − 538)), so A = k / (T1 − T0).
 constexpr double kVisK = 0.0072;
@@ -112,7 +113,7 @@ float d65(float lambda_nm) { return lerp_table(kD65, lambda_nm); }
 
 float illuminant_a(float lambda_nm)
 {
-    // CIE 15:2004 §3.1: S_A(λ) = 100 (560/λ)^5 (exp(c2/(2848·560)) − 1) / (exp(c2/(2848 λ)) − 1)
+    // CIE 15:2004, definition of illuminant A: S_A(λ) = 100 (560/λ)^5 (exp(c2/(2848·560)) − 1) / (exp(c2/(2848 λ)) − 1)
     // with c2 = 1.435e7 nm·K (the value fixed in the definition, not today's CODATA c2).
     if (!(lambda_nm > 0.0f)) return 0.0f;
     const double l = lambda_nm;

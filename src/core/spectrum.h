@@ -28,11 +28,11 @@ float cie_x(float lambda_nm);
 float cie_y(float lambda_nm);
 float cie_z(float lambda_nm);
 
-/// CIE standard illuminant D65, relative SPD (100 at 560 nm, CIE 15 table), linearly
+/// CIE standard illuminant D65, relative SPD (100 at 560 nm, CIE 15:2004 table), linearly
 /// interpolated; 0 outside 360-830 nm.
 float d65(float lambda_nm);
 
-/// CIE standard illuminant A from its defining Planck formula (CIE 15:2004 §3.1),
+/// CIE standard illuminant A from its defining Planck formula (CIE 15:2004),
 /// 100 at 560 nm; defined for any positive wavelength.
 float illuminant_a(float lambda_nm);
 

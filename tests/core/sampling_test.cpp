@@ -168,7 +168,7 @@ TEST(SamplingTest, Distribution2DSampleAndPdfAgree)
 
 TEST(SamplingTest, MisHeuristics)
 {
-    // Veach 1997 §9.2: w_f + w_g = 1; power heuristic (1·2)² / ((1·2)² + (1·1)²) = 0.8.
+    // Veach 1997, ch. 9: w_f + w_g = 1; power heuristic (1·2)² / ((1·2)² + (1·1)²) = 0.8.
     EXPECT_FLOAT_EQ(power_heuristic(1, 2.0f, 1, 1.0f), 0.8f);
     EXPECT_FLOAT_EQ(power_heuristic(1, 2.0f, 1, 1.0f) + power_heuristic(1, 1.0f, 1, 2.0f), 1.0f);
     EXPECT_FLOAT_EQ(balance_heuristic(1, 3.0f, 1, 1.0f), 0.75f);

@@ -27,7 +27,7 @@ TEST(SpectrumTest, TableSpotValues)
     EXPECT_FLOAT_EQ(cie_y(555.0f), 1.0f);
     EXPECT_FLOAT_EQ(cie_x(600.0f), 1.0622f);
     EXPECT_FLOAT_EQ(cie_z(450.0f), 1.77211f);
-    // D65 is 100 at 560 nm by definition; 117.812 at 460 nm (CIE 15 Table T.1).
+    // D65 is 100 at 560 nm by definition; 117.812 at 460 nm (CIE 15:2004 table of D65).
     EXPECT_FLOAT_EQ(d65(560.0f), 100.0f);
     EXPECT_FLOAT_EQ(d65(460.0f), 117.812f);
     // Linear interpolation between 5 nm samples, zero outside 360-830 nm.
@@ -50,8 +50,8 @@ TEST(SpectrumTest, CieYIntegralMatchesTable)
 
 TEST(SpectrumTest, D65WhitePoint)
 {
-    // D65 x CIE 1931 2°: xy = (0.31271, 0.32902) (CIE 15:2004 Table T.3; 0.31272, 0.32903
-    // from the 1 nm tables), so (0.31271, 0.32901) ± 1e-4 as the brief asks.
+    // D65 x CIE 1931 2° white point: xy = (0.31271, 0.32902) from the 5 nm tables
+    // (CIE 15:2004 gives 0.31272, 0.32903 from the 1 nm tables); checked to 1e-4.
     const Xyz w = spectrum_to_xyz([](double) { return 1.0; }, d65);
     EXPECT_NEAR(w[1], 1.0, 1e-12);  // normalised so the illuminant has Y = 1
     const auto xy = chromaticity(w);
@@ -61,8 +61,8 @@ TEST(SpectrumTest, D65WhitePoint)
 
 TEST(SpectrumTest, IlluminantA)
 {
-    // CIE 15:2004 Table T.1: S_A(560) = 100, S_A(400) = 14.708, S_A(700) = 198.261;
-    // white point xy = (0.44757, 0.40745) (Table T.3).
+    // CIE 15:2004 table of illuminant A: S_A(560) = 100, S_A(400) = 14.708, S_A(700) = 198.261;
+    // white point xy = (0.44757, 0.40745) (CIE 15:2004).
     EXPECT_NEAR(illuminant_a(560.0f), 100.0, 1e-4);
     EXPECT_NEAR(illuminant_a(400.0f), 14.708, 1e-3);
     EXPECT_NEAR(illuminant_a(700.0f), 198.261, 1e-3);
@@ -76,7 +76,7 @@ TEST(SpectrumTest, EmissionToXyzOfConstantIsOne)
     // Closed form: a constant radiance 1 has Y = ∫ȳ / kCieYIntegral = 1.
     const Xyz xyz = emission_to_xyz([](double) { return 1.0; });
     EXPECT_NEAR(xyz[1], 1.0, 1e-6);
-    // Equal-energy white E is at xy = (1/3, 1/3) (CIE 15:2004 §3.1) to table precision.
+    // Equal-energy white E is at xy = (1/3, 1/3) (the three functions have equal areas) to table precision.
     EXPECT_NEAR(chromaticity(xyz)[0], 1.0 / 3.0, 2e-4);
     EXPECT_NEAR(chromaticity(xyz)[1], 1.0 / 3.0, 2e-4);
 }
