@@ -106,7 +106,7 @@ SampledSpectrum trace_path(const Scene& scene, Ray ray, const PatinaWavelengths&
         }
 
         const Imath::V3f wi_world = frame.to_world(from_abi(bs.wi)).normalized();
-        ray.origin = offset_ray_origin(sp.P, sp.Ng, wi_world);
+        ray.origin = offset_ray_origin(sp, wi_world);
         ray.dir = wi_world;
     }
     return L;

@@ -29,7 +29,8 @@ namespace {
     Pcg32 pixel_rng(uint64_t seed, int x, int y, int width, int sample)
     {
         const uint64_t pixel = static_cast<uint64_t>(y) * static_cast<uint64_t>(width) + static_cast<uint64_t>(x);
-        return Pcg32(mix_bits(seed * 0x9E3779B97F4A7C15ULL + pixel), static_cast<uint64_t>(sample));
+        return Pcg32(mix_bits(seed * 0x9E3779B97F4A7C15ULL + pixel),
+                     mix_bits((seed << 32) ^ static_cast<uint64_t>(sample)));
     }
 
     class Progress {
