@@ -5,6 +5,7 @@
 
 #include "test_host.h"
 
+#include <patina/shading/frame.h>
 #include <patina/shading/vec.h>
 
 #include <gtest/gtest.h>
@@ -291,9 +292,13 @@ private:
 };
 
 /// Directional albedo ∫ f(wo, wi) |cos θi| dωi at the first wavelength, by the midpoint
-/// rule on an (θ, φ) grid over the whole sphere (independent of the BSDF's sampling).
-inline double albedo_by_quadrature(const Bsdf& bsdf, Vec3 wo, int theta_res = 512)
+/// rule on an (θ, φ) grid over the whole sphere (independent of the BSDF's sampling). The
+/// grid's pole lies along `pole` (default +y, away from lobes of wo in the x-z plane), since
+/// the midpoint rule resolves a narrow lobe poorly at a pole, where cells degenerate.
+inline double albedo_by_quadrature(const Bsdf& bsdf, Vec3 wo, int theta_res = 512,
+                                   Vec3 pole = Vec3(0.0f, 1.0f, 0.0f))
 {
+    const shading::Frame frame = shading::Frame::from_z(pole);
     const int phi_res = 2 * theta_res;
     const double dtheta = M_PI / theta_res, dphi = 2.0 * M_PI / phi_res;
     double sum = 0.0;
@@ -302,9 +307,10 @@ inline double albedo_by_quadrature(const Bsdf& bsdf, Vec3 wo, int theta_res = 51
         const double st = std::sin(theta), ct = std::cos(theta);
         for (int j = 0; j < phi_res; ++j) {
             const double phi = (j + 0.5) * dphi;
-            const Vec3 wi(static_cast<float>(st * std::cos(phi)), static_cast<float>(st * std::sin(phi)),
-                          static_cast<float>(ct));
-            sum += static_cast<double>(bsdf.f0(wo, wi)) * std::abs(ct) * st;
+            const Vec3 wi = shading::normalize(frame.from_local(
+                Vec3(static_cast<float>(st * std::cos(phi)), static_cast<float>(st * std::sin(phi)),
+                     static_cast<float>(ct))));
+            sum += static_cast<double>(bsdf.f0(wo, wi)) * std::abs(wi.z) * st;
         }
     }
     return sum * dtheta * dphi;
