@@ -1,0 +1,333 @@
+#include "core/mesh.h"
+
+#include <assimp/Importer.hpp>
+#include <assimp/config.h>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+#include <fmt/format.h>
+
+#include <cmath>
+#include <fstream>
+#include <numbers>
+#include <stdexcept>
+#include <string_view>
+
+namespace patina {
+
+namespace {
+
+    bool finite(const Imath::V3f& v)
+    {
+        return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+    }
+
+    /// Assimp matrices act on column vectors; Imath's on row vectors: transpose.
+    Imath::M44f to_imath(const aiMatrix4x4& m)
+    {
+        return Imath::M44f(m.a1, m.b1, m.c1, m.d1, m.a2, m.b2, m.c2, m.d2, m.a3, m.b3, m.c3,
+                           m.d3, m.a4, m.b4, m.c4, m.d4);
+    }
+
+    float determinant3(const Imath::M44f& m)
+    {
+        return m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -
+               m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
+               m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+    }
+
+    struct Loader {
+        const std::filesystem::path& path;
+        const aiScene& scene;
+        std::vector<TriangleMesh> meshes;
+
+        std::string where() const { return fmt::format("mesh file '{}'", path.string()); }
+
+        void convert(const aiMesh& in, const std::string& node_name, const Imath::M44f& to_world)
+        {
+            const float det = determinant3(to_world);
+            if (!std::isfinite(det) || std::abs(det) < 1e-30f)
+                throw std::runtime_error(fmt::format("{}: node '{}' has a singular or non-finite transform",
+                                                     where(), node_name));
+            const Imath::M44f normal_matrix = to_world.inverse().transposed();
+
+            TriangleMesh m;
+            m.name = in.mName.length ? in.mName.C_Str() : node_name;
+            if (in.mMaterialIndex < scene.mNumMaterials)
+                m.material_name = scene.mMaterials[in.mMaterialIndex]->GetName().C_Str();
+            const std::string what = fmt::format("{}: mesh '{}'", where(), m.name);
+
+            m.positions.resize(in.mNumVertices);
+            for (unsigned i = 0; i < in.mNumVertices; ++i) {
+                const Imath::V3f p(in.mVertices[i].x, in.mVertices[i].y, in.mVertices[i].z);
+                if (!finite(p))
+                    throw std::runtime_error(fmt::format("{}: vertex {} has a non-finite position ({}, {}, {})",
+                                                         what, i, p.x, p.y, p.z));
+                to_world.multVecMatrix(p, m.positions[i]);
+            }
+            bool normals_ok = in.HasNormals();
+            if (normals_ok) {
+                m.normals.resize(in.mNumVertices);
+                for (unsigned i = 0; i < in.mNumVertices && normals_ok; ++i) {
+                    Imath::V3f n;
+                    normal_matrix.multDirMatrix(
+                        Imath::V3f(in.mNormals[i].x, in.mNormals[i].y, in.mNormals[i].z), n);
+                    normals_ok = finite(n) && n.length2() > 0.0f;
+                    m.normals[i] = normals_ok ? n.normalized() : n;
+                }
+            }
+            if (in.HasTextureCoords(0)) {
+                m.uvs.resize(in.mNumVertices);
+                for (unsigned i = 0; i < in.mNumVertices; ++i) {
+                    m.uvs[i] = Imath::V2f(in.mTextureCoords[0][i].x, in.mTextureCoords[0][i].y);
+                    if (!std::isfinite(m.uvs[i].x) || !std::isfinite(m.uvs[i].y))
+                        throw std::runtime_error(fmt::format("{}: vertex {} has a non-finite uv", what, i));
+                }
+            }
+
+            // A mirroring transform reverses the winding; swap two indices to keep it
+            // consistent with the (correctly transformed) normals.
+            const bool flip = det < 0.0f;
+            m.indices.reserve(static_cast<size_t>(in.mNumFaces) * 3);
+            for (unsigned f = 0; f < in.mNumFaces; ++f) {
+                const aiFace& face = in.mFaces[f];
+                if (face.mNumIndices != 3)
+                    continue; // points and lines
+                for (int k = 0; k < 3; ++k)
+                    if (face.mIndices[k] >= in.mNumVertices)
+                        throw std::runtime_error(fmt::format("{}: triangle {} uses vertex {} of {}",
+                                                             what, f, face.mIndices[k], in.mNumVertices));
+                m.indices.insert(m.indices.end(), {face.mIndices[0], face.mIndices[flip ? 2 : 1],
+                                                   face.mIndices[flip ? 1 : 2]});
+            }
+            if (m.indices.empty())
+                return;
+            if (!normals_ok && in.HasNormals())
+                compute_vertex_normals(m); // the file's normals were zero or NaN
+            meshes.push_back(std::move(m));
+        }
+
+        void visit(const aiNode& node, const Imath::M44f& parent)
+        {
+            // Row vectors: the node's local transform applies before its parent's.
+            const Imath::M44f world = to_imath(node.mTransformation) * parent;
+            for (unsigned i = 0; i < node.mNumMeshes; ++i)
+                convert(*scene.mMeshes[node.mMeshes[i]], node.mName.C_Str(), world);
+            for (unsigned i = 0; i < node.mNumChildren; ++i)
+                visit(*node.mChildren[i], world);
+        }
+    };
+
+    /// Assimp 5.2's PLY parser loops forever on a header without `end_header`: refuse such
+    /// files before handing them over.
+    void check_ply_header(const std::filesystem::path& path)
+    {
+        std::ifstream in(path, std::ios::binary);
+        char magic[4] = {};
+        in.read(magic, 4);
+        if (std::string_view(magic, 3) != "ply" || (magic[3] != '\n' && magic[3] != '\r'))
+            return;
+        std::string line;
+        for (int lines = 0; lines < 100000 && std::getline(in, line); ++lines)
+            if (line.rfind("end_header", 0) == 0)
+                return;
+        throw std::runtime_error(fmt::format("mesh file '{}': malformed PLY header (no end_header line)",
+                                             path.string()));
+    }
+
+    void check_raw_scene(const std::filesystem::path& path, const aiScene& scene)
+    {
+        size_t polygons = 0;
+        for (unsigned m = 0; m < scene.mNumMeshes; ++m) {
+            const aiMesh& mesh = *scene.mMeshes[m];
+            for (unsigned i = 0; i < mesh.mNumVertices; ++i) {
+                const aiVector3D& p = mesh.mVertices[i];
+                if (!finite(Imath::V3f(p.x, p.y, p.z)))
+                    throw std::runtime_error(fmt::format(
+                        "mesh file '{}': mesh '{}': vertex {} has a non-finite position ({}, {}, {})",
+                        path.string(), mesh.mName.C_Str(), i, p.x, p.y, p.z));
+            }
+            for (unsigned f = 0; f < mesh.mNumFaces; ++f)
+                polygons += mesh.mFaces[f].mNumIndices >= 3;
+        }
+        if (polygons == 0)
+            throw std::runtime_error(fmt::format("mesh file '{}' contains no triangles", path.string()));
+    }
+
+}  // namespace
+
+std::vector<TriangleMesh> load_meshes(const std::filesystem::path& path, const Imath::M44f& transform)
+{
+    std::error_code ec;
+    if (!std::filesystem::exists(path, ec))
+        throw std::runtime_error(fmt::format("mesh file '{}': file not found", path.string()));
+    if (!std::filesystem::is_regular_file(path, ec))
+        throw std::runtime_error(fmt::format("mesh file '{}': not a regular file", path.string()));
+
+    check_ply_header(path);
+    Assimp::Importer importer;
+    importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
+    const aiScene* scene = importer.ReadFile(path.string(), aiProcess_ValidateDataStructure);
+    if (!scene || !scene->mRootNode)
+        throw std::runtime_error(fmt::format("mesh file '{}': {}", path.string(),
+                                             importer.GetErrorString()));
+    // Check the raw data before post-processing: JoinIdenticalVertices merges NaN
+    // vertices into others, which would hide them.
+    check_raw_scene(path, *scene);
+    scene = importer.ApplyPostProcessing(aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
+                                         aiProcess_SortByPType | aiProcess_ValidateDataStructure);
+    if (!scene || !scene->mRootNode)
+        throw std::runtime_error(fmt::format("mesh file '{}': {}", path.string(),
+                                             importer.GetErrorString()));
+    Loader loader{path, *scene, {}};
+    loader.visit(*scene->mRootNode, transform);
+    if (loader.meshes.empty())
+        throw std::runtime_error(fmt::format("mesh file '{}' contains no triangles", path.string()));
+    for (const TriangleMesh& m : loader.meshes)
+        validate_mesh(m, loader.where() + ": mesh '" + m.name + "'");
+    return std::move(loader.meshes);
+}
+
+void validate_mesh(const TriangleMesh& mesh, const std::string& context)
+{
+    const size_t n = mesh.positions.size();
+    if (mesh.indices.size() % 3 != 0)
+        throw std::runtime_error(fmt::format("{}: {} indices is not a multiple of 3", context, mesh.indices.size()));
+    if (!mesh.normals.empty() && mesh.normals.size() != n)
+        throw std::runtime_error(fmt::format("{}: {} normals for {} vertices", context, mesh.normals.size(), n));
+    if (!mesh.uvs.empty() && mesh.uvs.size() != n)
+        throw std::runtime_error(fmt::format("{}: {} uvs for {} vertices", context, mesh.uvs.size(), n));
+    for (size_t i = 0; i < n; ++i)
+        if (!finite(mesh.positions[i]))
+            throw std::runtime_error(fmt::format("{}: vertex {} has a non-finite position", context, i));
+    for (size_t i = 0; i < mesh.indices.size(); ++i)
+        if (mesh.indices[i] >= n)
+            throw std::runtime_error(fmt::format("{}: triangle {} uses vertex {} of {}", context,
+                                                 i / 3, mesh.indices[i], n));
+}
+
+void compute_vertex_normals(TriangleMesh& mesh)
+{
+    mesh.normals.assign(mesh.positions.size(), Imath::V3f(0.0f));
+    for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+        const uint32_t a = mesh.indices[t], b = mesh.indices[t + 1], c = mesh.indices[t + 2];
+        // The unnormalised cross product weighs each face by twice its area.
+        const Imath::V3f n = (mesh.positions[b] - mesh.positions[a]).cross(mesh.positions[c] - mesh.positions[a]);
+        mesh.normals[a] += n;
+        mesh.normals[b] += n;
+        mesh.normals[c] += n;
+    }
+    for (Imath::V3f& n : mesh.normals)
+        n = n.length2() > 0.0f ? n.normalized() : Imath::V3f(0.0f);
+}
+
+double surface_area(const TriangleMesh& mesh)
+{
+    double area = 0.0;
+    for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+        const Imath::V3d a(mesh.positions[mesh.indices[t]]), b(mesh.positions[mesh.indices[t + 1]]),
+            c(mesh.positions[mesh.indices[t + 2]]);
+        area += 0.5 * (b - a).cross(c - a).length();
+    }
+    return area;
+}
+
+TriangleMesh make_uv_sphere(const Imath::V3f& center, float radius, int rings, int segments)
+{
+    if (rings < 2 || segments < 3 || !(radius > 0.0f))
+        throw std::runtime_error(fmt::format("make_uv_sphere: need rings >= 2, segments >= 3 and "
+                                             "radius > 0 (got {}, {}, {})", rings, segments, radius));
+    constexpr float kPi = std::numbers::pi_v<float>;
+    TriangleMesh m;
+    m.name = "sphere";
+    // Row i goes from the north pole (i = 0) to the south pole (i = rings).
+    for (int i = 0; i <= rings; ++i) {
+        const float theta = kPi * static_cast<float>(i) / static_cast<float>(rings);
+        for (int j = 0; j <= segments; ++j) {
+            const float phi = 2.0f * kPi * static_cast<float>(j) / static_cast<float>(segments);
+            Imath::V3f n(std::sin(theta) * std::sin(phi), std::cos(theta), std::sin(theta) * std::cos(phi));
+            if (i == 0 || i == rings)
+                n = Imath::V3f(0.0f, i == 0 ? 1.0f : -1.0f, 0.0f); // exact poles
+            m.positions.push_back(center + radius * n);
+            m.normals.push_back(n);
+            m.uvs.emplace_back(static_cast<float>(j) / static_cast<float>(segments),
+                               1.0f - static_cast<float>(i) / static_cast<float>(rings));
+        }
+    }
+    const auto id = [&](int i, int j) { return static_cast<uint32_t>(i * (segments + 1) + j); };
+    for (int i = 0; i < rings; ++i)
+        for (int j = 0; j < segments; ++j) {
+            // Counter-clockwise in (u, v), hence outward; skip the triangles that collapse
+            // onto a pole.
+            const uint32_t a = id(i, j), b = id(i + 1, j), c = id(i + 1, j + 1), d = id(i, j + 1);
+            if (i != rings - 1)
+                m.indices.insert(m.indices.end(), {b, c, d});
+            if (i != 0)
+                m.indices.insert(m.indices.end(), {b, d, a});
+        }
+    return m;
+}
+
+TriangleMesh make_plane(const Imath::V3f& center, float size, int subdivisions, const Imath::V3f& normal)
+{
+    if (subdivisions < 1 || !(size > 0.0f) || !(normal.length2() > 0.0f))
+        throw std::runtime_error(fmt::format("make_plane: need size > 0, subdivisions >= 1 and a "
+                                             "non-zero normal (got {}, {})", size, subdivisions));
+    const Imath::V3f n = normal.normalized();
+    // Tangent frame with cross(du, dv) = n; du is +x for an up-facing plane.
+    const Imath::V3f helper = std::abs(n.x) < 0.9f ? Imath::V3f(1, 0, 0) : Imath::V3f(0, 0, -1);
+    const Imath::V3f du = (helper - n * n.dot(helper)).normalized();
+    const Imath::V3f dv = n.cross(du);
+    TriangleMesh m;
+    m.name = "plane";
+    const int k = subdivisions;
+    for (int i = 0; i <= k; ++i)
+        for (int j = 0; j <= k; ++j) {
+            const float u = static_cast<float>(j) / static_cast<float>(k);
+            const float v = static_cast<float>(i) / static_cast<float>(k);
+            m.positions.push_back(center + size * ((u - 0.5f) * du + (v - 0.5f) * dv));
+            m.normals.push_back(n);
+            m.uvs.emplace_back(u, v);
+        }
+    for (int i = 0; i < k; ++i)
+        for (int j = 0; j < k; ++j) {
+            const uint32_t a = static_cast<uint32_t>(i * (k + 1) + j), b = a + 1,
+                           c = a + static_cast<uint32_t>(k) + 2, d = c - 1;
+            m.indices.insert(m.indices.end(), {a, b, c, a, c, d});
+        }
+    return m;
+}
+
+TriangleMesh make_quad(const Imath::V3f& center, float size, const Imath::V3f& normal)
+{
+    TriangleMesh m = make_plane(center, size, 1, normal);
+    m.name = "quad";
+    return m;
+}
+
+TriangleMesh make_box(const Imath::V3f& center, const Imath::V3f& size)
+{
+    if (!(size.x > 0.0f && size.y > 0.0f && size.z > 0.0f))
+        throw std::runtime_error(fmt::format("make_box: edge lengths must be positive (got {}, {}, {})",
+                                             size.x, size.y, size.z));
+    TriangleMesh m;
+    m.name = "box";
+    const Imath::V3f half = 0.5f * size;
+    for (int axis = 0; axis < 3; ++axis)
+        for (float sign : {1.0f, -1.0f}) {
+            Imath::V3f n(0.0f), du(0.0f);
+            n[axis] = sign;
+            du[(axis + 1) % 3] = 1.0f;
+            const Imath::V3f dv = n.cross(du); // cross(du, dv) = n: counter-clockwise outside
+            const uint32_t base = static_cast<uint32_t>(m.positions.size());
+            for (const auto& [u, v] : {std::pair{0.0f, 0.0f}, {1.0f, 0.0f}, {1.0f, 1.0f}, {0.0f, 1.0f}}) {
+                const Imath::V3f offset = n + (2.0f * u - 1.0f) * du + (2.0f * v - 1.0f) * dv;
+                m.positions.push_back(center + Imath::V3f(offset.x * half.x, offset.y * half.y, offset.z * half.z));
+                m.normals.push_back(n);
+                m.uvs.emplace_back(u, v);
+            }
+            m.indices.insert(m.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
+        }
+    return m;
+}
+
+}  // namespace patina

@@ -1,0 +1,73 @@
+// Triangle meshes: loading any format Assimp reads (OBJ, PLY, glTF, FBX, ...) with node
+// transforms applied, checks that turn bad input into errors naming the file, and the
+// procedural shapes that samples and tests use.
+#pragma once
+
+#include <Imath/ImathMatrix.h>
+#include <Imath/ImathVec.h>
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace patina {
+
+/// An indexed triangle mesh in world space. `normals` and `uvs` are per vertex and either
+/// empty or as long as `positions`. Triangles wind counter-clockwise seen from the side
+/// the normals point to (the right-hand rule gives the outward geometric normal).
+/// UVs follow the file: (0,0) at the bottom-left of the texture, v up (OpenGL convention).
+struct TriangleMesh {
+    std::string name;
+    std::string material_name;
+    std::vector<Imath::V3f> positions;
+    std::vector<Imath::V3f> normals;
+    std::vector<Imath::V2f> uvs;
+    std::vector<uint32_t> indices; ///< 3 per triangle
+
+    size_t triangle_count() const { return indices.size() / 3; }
+    bool has_normals() const { return !normals.empty(); }
+    bool has_uvs() const { return !uvs.empty(); }
+};
+
+/// Load every mesh of a scene file through Assimp, triangulated, with each node's transform
+/// and then `transform` applied (Imath row-vector convention: p' = p * transform). One
+/// TriangleMesh per mesh instance in the node graph; points and lines are dropped. Missing
+/// normals stay missing (shading uses the geometric normal; call compute_vertex_normals for
+/// smooth shading). Throws std::runtime_error naming the file when it is missing or Assimp
+/// cannot parse it, when it holds no triangles, or when a position is NaN/Inf or an index
+/// is out of range.
+std::vector<TriangleMesh> load_meshes(const std::filesystem::path& path,
+                                      const Imath::M44f& transform = Imath::M44f());
+
+/// Check the invariants above (sizes, index range, finite values); throws
+/// std::runtime_error starting with `context` (e.g. the file name).
+void validate_mesh(const TriangleMesh& mesh, const std::string& context);
+
+/// Replace `mesh.normals` by area-weighted averages of the face normals around each vertex.
+/// A vertex used only by degenerate triangles gets a zero normal (shading then falls back
+/// to the geometric normal).
+void compute_vertex_normals(TriangleMesh& mesh);
+
+/// Sum of the triangle areas.
+double surface_area(const TriangleMesh& mesh);
+
+/// A UV sphere with poles on the y axis: `rings` >= 2 bands of latitude, `segments` >= 3
+/// of longitude. u = longitude / 2 pi (from +z towards +x), v = 0 at the south pole, 1 at
+/// the north; exact unit normals; a seam of duplicated vertices at u = 0/1.
+TriangleMesh make_uv_sphere(const Imath::V3f& center, float radius, int rings, int segments);
+
+/// A square of side `size` centred at `center`, facing `normal` (default +y, "up"),
+/// divided into `subdivisions` x `subdivisions` cells; uv spans [0,1]^2 with dPdu along
+/// +x for an up-facing plane and cross(dPdu, dPdv) along the normal.
+TriangleMesh make_plane(const Imath::V3f& center, float size, int subdivisions = 1,
+                        const Imath::V3f& normal = Imath::V3f(0, 1, 0));
+/// make_plane with one cell (two triangles).
+TriangleMesh make_quad(const Imath::V3f& center, float size,
+                       const Imath::V3f& normal = Imath::V3f(0, 1, 0));
+
+/// An axis-aligned box with edge lengths `size`: 6 faces of 4 vertices each, outward
+/// normals, each face's uv spanning [0,1]^2.
+TriangleMesh make_box(const Imath::V3f& center, const Imath::V3f& size);
+
+}  // namespace patina
