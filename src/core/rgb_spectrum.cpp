@@ -25,6 +25,10 @@ constexpr double kMidNm = 595.0;
 constexpr double kHalfNm = 235.0;
 // Stop fitting when the RGB residual is below this; float coefficients add ~1e-5.
 constexpr double kTolerance = 2e-6;
+// Bound on |A|, |B|, |C|. Rec.709-gamut colours need at most ~80; colours out of reach drive
+// the fit towards a box spectrum with unbounded coefficients, which float evaluation in nm
+// (c0 l^2 + c1 l + c2 with cancelling terms) would turn into noise.
+constexpr double kMaxCoeff = 1000.0;
 
 // Reflectance under D65 -> XYZ as a weighted sum over the 5 nm nodes, normalised so the
 // perfect white has Y = 1.
@@ -187,6 +191,7 @@ struct Fit {
 // stops when the working-space RGB residual is below `tol`.
 Fit fit(const Space& sp, const Vec3& target_rgb, Vec3 c, int max_iter, double tol)
 {
+    for (double& v : c) v = std::clamp(v, -kMaxCoeff, kMaxCoeff);
     const Quadrature& q = quadrature();
     const Vec3 target_xyz = mul(sp.rgb_to_xyz, target_rgb);
     const Vec3 target_lab = xyz_to_lab(target_xyz, q.white, nullptr);
@@ -227,7 +232,8 @@ Fit fit(const Space& sp, const Vec3& target_rgb, Vec3 c, int max_iter, double to
                 const Vec3 cn = {c[0] - step[0], c[1] - step[1], c[2] - step[2]};
                 Vec3 xyzn, rn;
                 Mat3 jacn;
-                const double cost_n = residual(cn, xyzn, rn, &jacn);
+                const bool bounded = std::max({std::abs(cn[0]), std::abs(cn[1]), std::abs(cn[2])}) <= kMaxCoeff;
+                const double cost_n = bounded ? residual(cn, xyzn, rn, &jacn) : cost;
                 if (std::isfinite(cost_n) && cost_n < cost) {
                     c = cn, xyz = xyzn, r = rn, jac = jacn, cost = cost_n;
                     err = rgb_error(xyz);
