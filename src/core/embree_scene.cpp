@@ -1,0 +1,282 @@
+#include "core/embree_scene.h"
+
+#include <embree3/rtcore.h>
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
+#include <cstring>
+#include <stdexcept>
+#include <string>
+
+namespace patina {
+
+namespace {
+
+    // Embree reports errors through a callback on the thread that made the call; keep the
+    // text there and throw from check() after the call returns (never through Embree).
+    thread_local std::string t_embree_error;
+
+    void on_embree_error(void*, RTCError code, const char* text)
+    {
+        if (code != RTC_ERROR_NONE)
+            t_embree_error = text ? text : "unknown error";
+    }
+
+    const char* error_name(RTCError code)
+    {
+        switch (code) {
+        case RTC_ERROR_NONE: return "no error";
+        case RTC_ERROR_INVALID_ARGUMENT: return "invalid argument";
+        case RTC_ERROR_INVALID_OPERATION: return "invalid operation";
+        case RTC_ERROR_OUT_OF_MEMORY: return "out of memory";
+        case RTC_ERROR_UNSUPPORTED_CPU: return "unsupported CPU";
+        case RTC_ERROR_CANCELLED: return "cancelled";
+        default: return "unknown error";
+        }
+    }
+
+    Imath::V3f abs(const Imath::V3f& v) { return {std::abs(v.x), std::abs(v.y), std::abs(v.z)}; }
+
+    /// Any unit vector perpendicular to unit `n`, and the third axis of a right-handed frame.
+    void tangent_frame(const Imath::V3f& n, Imath::V3f& t, Imath::V3f& b)
+    {
+        const Imath::V3f helper = std::abs(n.x) < 0.9f ? Imath::V3f(1, 0, 0) : Imath::V3f(0, 1, 0);
+        t = (helper - n * n.dot(helper)).normalized();
+        b = n.cross(t);
+    }
+
+    float next_float_away(float x, float direction)
+    {
+        return direction > 0 ? std::nextafter(x, INFINITY) : direction < 0 ? std::nextafter(x, -INFINITY) : x;
+    }
+
+    // Bound on the rounding error of P = b0 p0 + b1 p1 + b2 p2 in floats: pbrt-v4's
+    // gamma(7) * sum |bi pi| (§6.8.5), times 8 because Embree computes the barycentrics
+    // with its own (unpublished) error instead of pbrt's exact edge functions.
+    constexpr float kPositionErrorScale = 8.0f * 7.0f * (FLT_EPSILON * 0.5f) /
+                                          (1.0f - 7.0f * (FLT_EPSILON * 0.5f));
+    // Scaled epsilon of the (P, Ng, dir) overload: 2^-16 relative plus an absolute floor.
+    constexpr float kRelativeOffset = 1.0f / 65536.0f;
+    constexpr float kAbsoluteOffset = 1e-6f;
+
+}  // namespace
+
+Imath::V3f offset_ray_origin(const Imath::V3f& P, const Imath::V3f& Ng, const Imath::V3f& dir)
+{
+    const float scale = std::max({std::abs(P.x), std::abs(P.y), std::abs(P.z)});
+    const float d = kRelativeOffset * scale + kAbsoluteOffset;
+    return P + (Ng.dot(dir) < 0.0f ? -d : d) * Ng;
+}
+
+Imath::V3f offset_ray_origin(const SurfacePoint& sp, const Imath::V3f& dir)
+{
+    // Offset along Ng by the error box's extent in that direction (pbrt-v4 OffsetRayOrigin),
+    // then round each component away from P so the rounding of the sum cannot undo it.
+    const float d = abs(sp.Ng).dot(sp.p_error);
+    Imath::V3f offset = d * sp.Ng;
+    if (sp.Ng.dot(dir) < 0.0f)
+        offset = -offset;
+    Imath::V3f po = sp.P + offset;
+    for (int i = 0; i < 3; ++i)
+        po[i] = next_float_away(po[i], offset[i]);
+    return po;
+}
+
+EmbreeScene::EmbreeScene()
+{
+    device_ = rtcNewDevice(nullptr);
+    if (!device_)
+        throw std::runtime_error(fmt::format("Embree: cannot create a device: {}",
+                                             error_name(rtcGetDeviceError(nullptr))));
+    rtcSetDeviceErrorFunction(device_, on_embree_error, nullptr);
+    scene_ = rtcNewScene(device_);
+    check("creating a scene");
+    // Robust mode: no traversal shortcuts that lose hits on edges and vertices.
+    rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
+    rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
+    check("configuring the scene");
+}
+
+EmbreeScene::~EmbreeScene()
+{
+    if (scene_)
+        rtcReleaseScene(scene_);
+    if (device_)
+        rtcReleaseDevice(device_);
+}
+
+void EmbreeScene::check(const char* what) const
+{
+    const RTCError code = rtcGetDeviceError(device_);
+    if (code == RTC_ERROR_NONE)
+        return;
+    std::string text = t_embree_error.empty() ? std::string(error_name(code)) : t_embree_error;
+    t_embree_error.clear();
+    throw std::runtime_error(fmt::format("Embree error while {}: {}", what, text));
+}
+
+int EmbreeScene::add_mesh(const TriangleMesh& mesh)
+{
+    const std::string context = fmt::format("mesh '{}'", mesh.name);
+    validate_mesh(mesh, context);
+    if (mesh.triangle_count() == 0)
+        throw std::runtime_error(context + ": no triangles");
+
+    RTCGeometry geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
+    check("creating a triangle geometry");
+    // Embree-allocated buffers come with the padding its SIMD loads need.
+    auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
+        geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), mesh.positions.size()));
+    auto* indices = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(
+        geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(uint32_t), mesh.triangle_count()));
+    if (!vertices || !indices) {
+        rtcReleaseGeometry(geom);
+        check(("allocating buffers for " + context).c_str());
+        throw std::runtime_error("Embree: cannot allocate buffers for " + context);
+    }
+    for (size_t i = 0; i < mesh.positions.size(); ++i)
+        std::memcpy(vertices + 3 * i, &mesh.positions[i].x, 3 * sizeof(float));
+    std::memcpy(indices, mesh.indices.data(), mesh.indices.size() * sizeof(uint32_t));
+    rtcCommitGeometry(geom);
+    const int id = static_cast<int>(meshes_.size());
+    rtcAttachGeometryByID(scene_, geom, static_cast<unsigned>(id));
+    rtcReleaseGeometry(geom); // the scene holds its own reference
+    check(("adding " + context).c_str());
+    meshes_.push_back(mesh);
+    committed_ = false;
+    return id;
+}
+
+void EmbreeScene::commit()
+{
+    rtcCommitScene(scene_);
+    check("building the scene");
+    committed_ = true;
+}
+
+std::optional<Hit> EmbreeScene::intersect(const Imath::V3f& origin, const Imath::V3f& dir,
+                                          float tmin, float tmax) const
+{
+    if (!committed_)
+        throw std::runtime_error("EmbreeScene::intersect called before commit()");
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRayHit rh{};
+    rh.ray.org_x = origin.x;
+    rh.ray.org_y = origin.y;
+    rh.ray.org_z = origin.z;
+    rh.ray.dir_x = dir.x;
+    rh.ray.dir_y = dir.y;
+    rh.ray.dir_z = dir.z;
+    rh.ray.tnear = tmin;
+    rh.ray.tfar = tmax;
+    rh.ray.mask = 0xFFFFFFFFu;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(scene_, &context, &rh);
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID)
+        return std::nullopt;
+    return Hit{rh.ray.tfar, static_cast<int>(rh.hit.geomID), static_cast<int>(rh.hit.primID),
+               rh.hit.u, rh.hit.v};
+}
+
+bool EmbreeScene::occluded(const Imath::V3f& origin, const Imath::V3f& dir, float tmin,
+                           float tmax) const
+{
+    if (!committed_)
+        throw std::runtime_error("EmbreeScene::occluded called before commit()");
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRay ray{};
+    ray.org_x = origin.x;
+    ray.org_y = origin.y;
+    ray.org_z = origin.z;
+    ray.dir_x = dir.x;
+    ray.dir_y = dir.y;
+    ray.dir_z = dir.z;
+    ray.tnear = tmin;
+    ray.tfar = tmax;
+    ray.mask = 0xFFFFFFFFu;
+    rtcOccluded1(scene_, &context, &ray);
+    // Embree marks an occluded ray by setting tfar to -inf.
+    return ray.tfar == -INFINITY;
+}
+
+SurfacePoint EmbreeScene::interpolate(const Hit& hit, const Imath::V3f& origin,
+                                      const Imath::V3f& dir) const
+{
+    const TriangleMesh& m = mesh(hit.mesh_id);
+    if (hit.prim_id < 0 || static_cast<size_t>(hit.prim_id) >= m.triangle_count())
+        throw std::runtime_error(fmt::format("EmbreeScene::interpolate: triangle {} out of range for mesh '{}'",
+                                             hit.prim_id, m.name));
+    const size_t t = static_cast<size_t>(hit.prim_id) * 3;
+    const uint32_t i0 = m.indices[t], i1 = m.indices[t + 1], i2 = m.indices[t + 2];
+    const Imath::V3f &p0 = m.positions[i0], &p1 = m.positions[i1], &p2 = m.positions[i2];
+    const float b1 = hit.u, b2 = hit.v, b0 = 1.0f - b1 - b2;
+
+    SurfacePoint sp;
+    sp.mesh_id = hit.mesh_id;
+    sp.prim_id = hit.prim_id;
+    sp.P = b0 * p0 + b1 * p1 + b2 * p2;
+    sp.p_error = kPositionErrorScale * (abs(b0 * p0) + abs(b1 * p1) + abs(b2 * p2));
+    const Imath::V3f back = origin - sp.P;
+    sp.wo = back.length2() > 0.0f ? back.normalized() : -dir.normalized();
+
+    // Geometric normal from the winding; a degenerate triangle (never hit in practice)
+    // falls back to facing the ray.
+    Imath::V3f ng = (p1 - p0).cross(p2 - p0);
+    sp.Ng = ng.length2() > 0.0f ? ng.normalized() : -dir.normalized();
+
+    // Shading normal: interpolated; the file's normals decide which side is outside.
+    sp.N = sp.Ng;
+    if (m.has_normals()) {
+        const Imath::V3f n = b0 * m.normals[i0] + b1 * m.normals[i1] + b2 * m.normals[i2];
+        if (n.length2() > 1e-20f && std::isfinite(n.length2())) {
+            sp.N = n.normalized();
+            if (sp.N.dot(sp.Ng) < 0.0f)
+                sp.Ng = -sp.Ng;
+        }
+    }
+
+    // uv and the tangents dP/du, dP/dv (pbrt-v4 Triangle::InteractionFromIntersection).
+    bool frame_ok = false;
+    if (m.has_uvs()) {
+        const Imath::V2f &uv0 = m.uvs[i0], &uv1 = m.uvs[i1], &uv2 = m.uvs[i2];
+        sp.uv = b0 * uv0 + b1 * uv1 + b2 * uv2;
+        const Imath::V2f duv02 = uv0 - uv2, duv12 = uv1 - uv2;
+        const Imath::V3f dp02 = p0 - p2, dp12 = p1 - p2;
+        const float det = duv02.x * duv12.y - duv02.y * duv12.x;
+        if (std::abs(det) > 1e-12f) {
+            const float inv = 1.0f / det;
+            sp.dPdu = (duv12.y * dp02 - duv02.y * dp12) * inv;
+            sp.dPdv = (duv02.x * dp12 - duv12.x * dp02) * inv;
+            frame_ok = sp.dPdu.cross(sp.dPdv).length2() > 0.0f;
+        }
+    } else {
+        sp.uv = Imath::V2f(hit.u, hit.v);
+    }
+    if (!frame_ok)
+        tangent_frame(sp.N, sp.dPdu, sp.dPdv);
+    return sp;
+}
+
+const TriangleMesh& EmbreeScene::mesh(int mesh_id) const
+{
+    if (mesh_id < 0 || mesh_id >= mesh_count())
+        throw std::runtime_error(fmt::format("EmbreeScene: no mesh with id {} ({} meshes)", mesh_id, mesh_count()));
+    return meshes_[static_cast<size_t>(mesh_id)];
+}
+
+Imath::Box3f EmbreeScene::bounds() const
+{
+    if (!committed_ || meshes_.empty())
+        return Imath::Box3f();
+    RTCBounds b;
+    rtcGetSceneBounds(scene_, &b);
+    return Imath::Box3f(Imath::V3f(b.lower_x, b.lower_y, b.lower_z),
+                        Imath::V3f(b.upper_x, b.upper_y, b.upper_z));
+}
+
+}  // namespace patina

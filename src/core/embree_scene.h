@@ -1,0 +1,95 @@
+// Every ray query goes through Embree 3: an RAII device + scene of triangle meshes, closest
+// hit and occlusion queries, and the surface point (position, normals, uv, tangents) at a
+// hit interpolated from the mesh data.
+#pragma once
+
+#include "core/mesh.h"
+
+#include <Imath/ImathBox.h>
+#include <Imath/ImathVec.h>
+
+#include <limits>
+#include <optional>
+#include <vector>
+
+// Embree's opaque handles, declared here so users need not include <embree3/rtcore.h>.
+typedef struct RTCDeviceTy* RTCDevice;
+typedef struct RTCSceneTy* RTCScene;
+
+namespace patina {
+
+/// A ray's closest hit: distance t along the ray (in units of |dir|), which mesh (the id
+/// add_mesh returned) and triangle, and Embree's barycentrics: the hit point is
+/// (1 - u - v) * p0 + u * p1 + v * p2 of the triangle's vertices.
+struct Hit {
+    float t = 0.0f;
+    int mesh_id = -1;
+    int prim_id = -1;
+    float u = 0.0f, v = 0.0f;
+};
+
+/// The geometry at a hit, world space.
+struct SurfacePoint {
+    Imath::V3f P;        ///< position, from the barycentrics (more accurate than o + t d)
+    Imath::V3f p_error;  ///< conservative bound on |P - exact| per component (pbrt-v4 §6.8)
+    Imath::V3f Ng;       ///< unit geometric normal of the triangle (see below)
+    Imath::V3f N;        ///< unit shading normal, on Ng's side
+    Imath::V2f uv;       ///< interpolated uv, or the barycentrics (u, v) if the mesh has none
+    Imath::V3f dPdu, dPdv; ///< from the uv parametrisation, else an arbitrary tangent frame
+    Imath::V3f wo;       ///< unit direction back towards the ray origin
+    int mesh_id = -1;
+    int prim_id = -1;
+};
+
+/// Move a ray origin off a surface so the new ray cannot hit it again: offset P along Ng,
+/// onto the side `dir` leaves by, by a scaled epsilon (2^-16 of P's largest coordinate
+/// plus 1e-6 scene units). Meant for meshes whose triangles are small next to their
+/// distance from the origin; the SurfacePoint overload uses the hit's error bound instead.
+Imath::V3f offset_ray_origin(const Imath::V3f& P, const Imath::V3f& Ng, const Imath::V3f& dir);
+/// pbrt-v4 style: offset by the error bound of the interpolated position, rounded away.
+Imath::V3f offset_ray_origin(const SurfacePoint& sp, const Imath::V3f& dir);
+
+/// Triangle meshes in one Embree scene. Build (add_mesh, commit) from one thread; after
+/// commit, intersect/occluded/interpolate are thread-safe. Embree errors become
+/// std::runtime_error with Embree's text.
+class EmbreeScene {
+public:
+    EmbreeScene();
+    ~EmbreeScene();
+    EmbreeScene(const EmbreeScene&) = delete;
+    EmbreeScene& operator=(const EmbreeScene&) = delete;
+
+    /// Add a copy of `mesh` (kept for interpolation); returns its id, 0, 1, 2, ... in order.
+    /// Throws std::runtime_error naming the mesh if it is invalid or has no triangles.
+    int add_mesh(const TriangleMesh& mesh);
+    /// Build the acceleration structure; needed after the last add_mesh, before queries.
+    void commit();
+
+    /// Closest hit with t in [tmin, tmax], or nothing. `dir` need not be unit length.
+    std::optional<Hit> intersect(const Imath::V3f& origin, const Imath::V3f& dir, float tmin = 0.0f,
+                                 float tmax = std::numeric_limits<float>::infinity()) const;
+    /// True if anything lies along the ray with t in [tmin, tmax] (shadow rays).
+    bool occluded(const Imath::V3f& origin, const Imath::V3f& dir, float tmin = 0.0f,
+                  float tmax = std::numeric_limits<float>::infinity()) const;
+
+    /// The surface point of a hit of the ray (origin, dir). Ng follows the winding
+    /// (cross(p1 - p0, p2 - p0)) unless the mesh has normals, in which case Ng is flipped to
+    /// the side of the interpolated normal (pbrt's rule: the file's normals say which side
+    /// is outside); N is the interpolated normal, or Ng without normals.
+    SurfacePoint interpolate(const Hit& hit, const Imath::V3f& origin, const Imath::V3f& dir) const;
+
+    const TriangleMesh& mesh(int mesh_id) const;
+    int mesh_count() const { return static_cast<int>(meshes_.size()); }
+    /// World bounds of everything added (valid after commit).
+    Imath::Box3f bounds() const;
+
+private:
+    void check(const char* what) const;
+
+    RTCDevice device_ = nullptr;
+    RTCScene scene_ = nullptr;
+    bool committed_ = false;
+    std::vector<TriangleMesh> meshes_;
+};
+
+}  // namespace patina
