@@ -61,7 +61,8 @@ KmLayer km_composite_stack(std::span<const KmLayer> top_to_bottom)
 {
     // D&H 1996 §4.2: repeated pairwise compositing; bottom-up so every `top` is homogeneous.
     KmLayer acc;  // R = 0, T = 1: the empty stack
-    for (auto it = top_to_bottom.rbegin(); it != top_to_bottom.rend(); ++it) acc = km_composite(*it, acc);
+    for (auto it = top_to_bottom.rbegin(); it != top_to_bottom.rend(); ++it)
+        acc = km_composite(*it, acc);
     return acc;
 }
 
@@ -69,7 +70,8 @@ float km_reflectance_over(std::span<const KmLayer> top_to_bottom, float base_R)
 {
     // D&H 1996 §4.2: the opaque base is one more layer, with T = 0.
     KmLayer acc{base_R, 0.0f};
-    for (auto it = top_to_bottom.rbegin(); it != top_to_bottom.rend(); ++it) acc = km_composite(*it, acc);
+    for (auto it = top_to_bottom.rbegin(); it != top_to_bottom.rend(); ++it)
+        acc = km_composite(*it, acc);
     return acc.R;
 }
 
@@ -107,7 +109,8 @@ KmLayerSpectrum km_composite_stack(std::span<const KmLayerSpectrum> top_to_botto
     if (top_to_bottom.empty()) return {};
     const int n = top_to_bottom.front().R.count;
     KmLayerSpectrum acc{SampledSpectrum(n, 0.0f), SampledSpectrum(n, 1.0f)};
-    for (auto it = top_to_bottom.rbegin(); it != top_to_bottom.rend(); ++it) acc = km_composite(*it, acc);
+    for (auto it = top_to_bottom.rbegin(); it != top_to_bottom.rend(); ++it)
+        acc = km_composite(*it, acc);
     return acc;
 }
 
@@ -115,7 +118,8 @@ SampledSpectrum km_reflectance_over(std::span<const KmLayerSpectrum> top_to_bott
                                     const SampledSpectrum& base_R)
 {
     KmLayerSpectrum acc{base_R, SampledSpectrum(base_R.count, 0.0f)};
-    for (auto it = top_to_bottom.rbegin(); it != top_to_bottom.rend(); ++it) acc = km_composite(*it, acc);
+    for (auto it = top_to_bottom.rbegin(); it != top_to_bottom.rend(); ++it)
+        acc = km_composite(*it, acc);
     return acc.R;
 }
 

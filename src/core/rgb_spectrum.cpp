@@ -172,8 +172,9 @@ Vec3 xyz_to_lab(const Vec3& xyz, const Vec3& white, Mat3* jac)
         f[k] = lab_f(xyz[k] / white[k]);
         df[k] = lab_df(xyz[k] / white[k]) / white[k];
     }
-    if (jac) *jac = {0.0, 116.0 * df[1], 0.0, 500.0 * df[0], -500.0 * df[1], 0.0,
-                     0.0, 200.0 * df[1], -200.0 * df[2]};
+    if (jac)
+        *jac = {0.0, 116.0 * df[1], 0.0,           500.0 * df[0], -500.0 * df[1],
+                0.0, 0.0,           200.0 * df[1], -200.0 * df[2]};
     return {116.0 * f[1] - 16.0, 500.0 * (f[0] - f[1]), 200.0 * (f[1] - f[2])};
 }
 
@@ -232,7 +233,8 @@ Fit fit(const Space& sp, const Vec3& target_rgb, Vec3 c, int max_iter, double to
                 const Vec3 cn = {c[0] - step[0], c[1] - step[1], c[2] - step[2]};
                 Vec3 xyzn, rn;
                 Mat3 jacn;
-                const bool bounded = std::max({std::abs(cn[0]), std::abs(cn[1]), std::abs(cn[2])}) <= kMaxCoeff;
+                const bool bounded =
+                    std::max({std::abs(cn[0]), std::abs(cn[1]), std::abs(cn[2])}) <= kMaxCoeff;
                 const double cost_n = bounded ? residual(cn, xyzn, rn, &jacn) : cost;
                 if (std::isfinite(cost_n) && cost_n < cost) {
                     c = cn, xyz = xyzn, r = rn, jac = jacn, cost = cost_n;
@@ -344,8 +346,8 @@ struct RgbToSpectrum::Table {
         const double z = rgb[l];
         const double x = std::clamp(rgb[(l + 1) % 3] / z, 0.0, 1.0) * (kRes - 1);
         const double y = std::clamp(rgb[(l + 2) % 3] / z, 0.0, 1.0) * (kRes - 1);
-        const int k = std::clamp(int(std::upper_bound(z_grid, z_grid + kRes, z) - z_grid) - 1, 0,
-                                 kRes - 2);
+        const int k =
+            std::clamp(int(std::upper_bound(z_grid, z_grid + kRes, z) - z_grid) - 1, 0, kRes - 2);
         const double tz = std::clamp((z - z_grid[k]) / (z_grid[k + 1] - z_grid[k]), 0.0, 1.0);
         const int i = std::min(int(x), kRes - 2), j = std::min(int(y), kRes - 2);
         const double tx = x - i, ty = y - j;
@@ -375,7 +377,8 @@ RgbToSpectrum::RgbToSpectrum(const Matrix3& rgb_to_xyz)
     const Vec3 white = quadrature().white;
     Space& sp = table_->space;
     for (int i = 0; i < 3; ++i) {
-        const double row = double(rgb_to_xyz[3 * i]) + rgb_to_xyz[3 * i + 1] + rgb_to_xyz[3 * i + 2];
+        const double row =
+            double(rgb_to_xyz[3 * i]) + rgb_to_xyz[3 * i + 1] + rgb_to_xyz[3 * i + 2];
         for (int j = 0; j < 3; ++j)
             sp.rgb_to_xyz[3 * i + j] = rgb_to_xyz[3 * i + j] * (row != 0.0 ? white[i] / row : 1.0);
     }

@@ -100,7 +100,8 @@ uint64_t hash_values(std::span<const uint64_t> values)
     // Fold each value into the running hash through the bijective mixer; the position
     // enters through the golden-ratio increment, so (a, b) and (b, a) differ.
     uint64_t h = 0x9e3779b97f4a7c15ULL * (values.size() + 1);
-    for (uint64_t v : values) h = mix_bits(h ^ mix_bits(v + 0x9e3779b97f4a7c15ULL)) + 0x632be59bd9b4e019ULL;
+    for (uint64_t v : values)
+        h = mix_bits(h ^ mix_bits(v + 0x9e3779b97f4a7c15ULL)) + 0x632be59bd9b4e019ULL;
     return mix_bits(h);
 }
 
@@ -162,7 +163,8 @@ int Distribution1D::sample_discrete(float u, float* pmf, float* u_remapped) cons
     const double p = cdf_[o + 1] - cdf_[o];
     if (pmf) *pmf = static_cast<float>(p);
     if (u_remapped)
-        *u_remapped = p > 0.0 ? std::min(kOneMinusEpsilon, static_cast<float>((u - cdf_[o]) / p)) : 0.0f;
+        *u_remapped =
+            p > 0.0 ? std::min(kOneMinusEpsilon, static_cast<float>((u - cdf_[o]) / p)) : 0.0f;
     return o;
 }
 

@@ -85,8 +85,7 @@ struct SampledSpectrum {
     /// Copy n values (e.g. the float[PATINA_MAX_WAVELENGTHS] output of a plugin).
     static SampledSpectrum from_array(int n, const float* values);
     /// Evaluate fn at each wavelength.
-    template <class Fn>
-    static SampledSpectrum from_function(const PatinaWavelengths& wl, Fn&& fn)
+    template <class Fn> static SampledSpectrum from_function(const PatinaWavelengths& wl, Fn&& fn)
     {
         SampledSpectrum s(wl.count, 0.0f);
         for (int i = 0; i < wl.count; ++i) s.v[i] = static_cast<float>(fn(wl.lambda_nm[i]));

@@ -103,8 +103,8 @@ TEST(KubelkaMunkTest, HalfLayersCompositeToWholeLayer)
                 const KmLayer c = km_composite(half, half);
                 EXPECT_NEAR(c.R, whole.R, 2e-6);
                 EXPECT_NEAR(c.T, whole.T, 2e-6);
-                const std::vector<KmLayer> parts = {km_layer(K, S, 0.2f * d), km_layer(K, S, 0.5f * d),
-                                                    km_layer(K, S, 0.3f * d)};
+                const std::vector<KmLayer> parts = {
+                    km_layer(K, S, 0.2f * d), km_layer(K, S, 0.5f * d), km_layer(K, S, 0.3f * d)};
                 const KmLayer s = km_composite_stack(parts);
                 EXPECT_NEAR(s.R, whole.R, 3e-6);
                 EXPECT_NEAR(s.T, whole.T, 3e-6);
@@ -164,7 +164,8 @@ TEST(KubelkaMunkTest, SpectralVersionsMatchScalar)
     const SampledSpectrum r = km_reflectance_over(stack, base);
     const SampledSpectrum rinf = km_r_infinity(K / S);
     for (int i = 0; i < 4; ++i) {
-        const std::vector<KmLayer> scalar = {km_layer(K[i], S[i], 0.8f), km_layer(S[i], K[i], 0.3f)};
+        const std::vector<KmLayer> scalar = {km_layer(K[i], S[i], 0.8f),
+                                             km_layer(S[i], K[i], 0.3f)};
         EXPECT_FLOAT_EQ(r[i], km_reflectance_over(scalar, base[i]));
         EXPECT_FLOAT_EQ(km_composite_stack(stack).T[i], km_composite_stack(scalar).T);
         EXPECT_FLOAT_EQ(rinf[i], km_r_infinity(K[i] / S[i]));

@@ -52,7 +52,8 @@ Matrix3 mul(const Matrix3& a, const Matrix3& b)
 
 struct Spaces {
     Matrix3 acescg_to_xyz = matrix_of(builtin("UTILITY - ACES-AP1_to_CIE-XYZ-D65_BFD", false));
-    OCIO::ConstCPUProcessorRcPtr rec709_to_acescg = builtin("UTILITY - ACES-AP1_to_LINEAR-REC709_BFD", true);
+    OCIO::ConstCPUProcessorRcPtr rec709_to_acescg =
+        builtin("UTILITY - ACES-AP1_to_LINEAR-REC709_BFD", true);
     Matrix3 rec709_to_xyz = mul(acescg_to_xyz, matrix_of(rec709_to_acescg));
 };
 
@@ -137,30 +138,36 @@ void check_round_trip(const Matrix3& rgb_to_xyz, bool in_acescg, const char* wha
         // Integrated independently (1 nm trapezoid of core/spectrum.h) the colour still
         // matches: the fit's quadrature does not hide a colour error. 1e-3 allows for the
         // ~3e-4 between OCIO's D65 white and the CIE table's.
-        const Xyz xyz = spectrum_to_xyz([&](double l) { return patina_rgb_spectrum_eval(&s, float(l)); });
+        const Xyz xyz =
+            spectrum_to_xyz([&](double l) { return patina_rgb_spectrum_eval(&s, float(l)); });
         Matrix3 inv;
         {
             const Matrix3& m = rgb_to_xyz;
-            const double det = m[0] * (m[4] * m[8] - m[5] * m[7]) - m[1] * (m[3] * m[8] - m[5] * m[6]) +
+            const double det = m[0] * (m[4] * m[8] - m[5] * m[7]) -
+                               m[1] * (m[3] * m[8] - m[5] * m[6]) +
                                m[2] * (m[3] * m[7] - m[4] * m[6]);
-            inv = {float((m[4] * m[8] - m[5] * m[7]) / det), float((m[2] * m[7] - m[1] * m[8]) / det),
-                   float((m[1] * m[5] - m[2] * m[4]) / det), float((m[5] * m[6] - m[3] * m[8]) / det),
-                   float((m[0] * m[8] - m[2] * m[6]) / det), float((m[2] * m[3] - m[0] * m[5]) / det),
-                   float((m[3] * m[7] - m[4] * m[6]) / det), float((m[1] * m[6] - m[0] * m[7]) / det),
-                   float((m[0] * m[4] - m[1] * m[3]) / det)};
+            inv = {
+                float((m[4] * m[8] - m[5] * m[7]) / det), float((m[2] * m[7] - m[1] * m[8]) / det),
+                float((m[1] * m[5] - m[2] * m[4]) / det), float((m[5] * m[6] - m[3] * m[8]) / det),
+                float((m[0] * m[8] - m[2] * m[6]) / det), float((m[2] * m[3] - m[0] * m[5]) / det),
+                float((m[3] * m[7] - m[4] * m[6]) / det), float((m[1] * m[6] - m[0] * m[7]) / det),
+                float((m[0] * m[4] - m[1] * m[3]) / det)};
         }
         std::array<float, 3> continuous{};
         for (int i = 0; i < 3; ++i)
-            continuous[i] = float(inv[3 * i] * xyz[0] + inv[3 * i + 1] * xyz[1] + inv[3 * i + 2] * xyz[2]);
+            continuous[i] =
+                float(inv[3 * i] * xyz[0] + inv[3 * i + 1] * xyz[1] + inv[3 * i + 2] * xyz[2]);
         worst_continuous = std::max(worst_continuous, max_abs_diff(continuous, rgb));
     }
     // The brief's bound: max |rgb_of(uplift(rgb)) - rgb| < 1e-3 over the gamut.
-    EXPECT_LT(worst, 1e-3f) << what << " at " << worst_rgb[0] << " " << worst_rgb[1] << " " << worst_rgb[2];
+    EXPECT_LT(worst, 1e-3f) << what << " at " << worst_rgb[0] << " " << worst_rgb[1] << " "
+                            << worst_rgb[2];
     EXPECT_LT(worst_continuous, 1e-3f) << what;
     std::printf("[ %s ] %zu colours: max round-trip error %.2e, vs 1 nm integration %.2e, "
-                "%.2f us per uplift\n", what, grid.size(), worst, worst_continuous,
-                1e6 * seconds / grid.size());
-    ::testing::Test::RecordProperty(std::string(what) + "_max_round_trip_error", std::to_string(worst));
+                "%.2f us per uplift\n",
+                what, grid.size(), worst, worst_continuous, 1e6 * seconds / grid.size());
+    ::testing::Test::RecordProperty(std::string(what) + "_max_round_trip_error",
+                                    std::to_string(worst));
 }
 
 TEST(RgbSpectrumTest, RoundTripRec709GamutInAcescg)
@@ -180,7 +187,8 @@ TEST(RgbSpectrumTest, ReflectanceInputsAreClamped)
     const PatinaRgbSpectrum b = up.uplift({1.0f, 0.0f, 0.5f}, false);
     EXPECT_EQ(std::memcmp(&a, &b, sizeof a), 0);
     const PatinaRgbSpectrum n = up.uplift({NAN, 0.2f, 0.2f}, false);
-    for (float l = 360.0f; l <= 830.0f; l += 10.0f) EXPECT_TRUE(std::isfinite(RgbToSpectrum::eval(n, l)));
+    for (float l = 360.0f; l <= 830.0f; l += 10.0f)
+        EXPECT_TRUE(std::isfinite(RgbToSpectrum::eval(n, l)));
 }
 
 TEST(RgbSpectrumTest, OutOfGamutStaysBoundedAndFinite)
@@ -197,7 +205,8 @@ TEST(RgbSpectrumTest, OutOfGamutStaysBoundedAndFinite)
         }
         // Coefficients stay moderate, so float evaluation in nm (whose terms cancel) is not
         // noise: in-gamut fits have |terms| of a few thousand, unbounded fits reach 1e11.
-        EXPECT_LT(std::abs(s.c0) * 830.0f * 830.0f + std::abs(s.c1) * 830.0f + std::abs(s.c2), 1e5f);
+        EXPECT_LT(std::abs(s.c0) * 830.0f * 830.0f + std::abs(s.c1) * 830.0f + std::abs(s.c2),
+                  1e5f);
         const int hue = int(std::max_element(rgb.begin(), rgb.end()) - rgb.begin());
         EXPECT_EQ(int(std::max_element(back.begin(), back.end()) - back.begin()), hue);
     }
@@ -209,15 +218,16 @@ TEST(RgbSpectrumTest, IlluminantsCarryD65AndRoundTrip)
     // White (1, 1, 1) is D65 normalised to 1 at 560 nm.
     const PatinaRgbSpectrum white = up.uplift({1.0f, 1.0f, 1.0f}, true);
     EXPECT_EQ(white.illuminant, 1);
-    for (float l : {380.0f, 460.0f, 560.0f, 700.0f}) EXPECT_FLOAT_EQ(RgbToSpectrum::eval(white, l), d65(l) / 100.0f);
+    for (float l : {380.0f, 460.0f, 560.0f, 700.0f})
+        EXPECT_FLOAT_EQ(RgbToSpectrum::eval(white, l), d65(l) / 100.0f);
     EXPECT_FLOAT_EQ(RgbToSpectrum::eval(white, 560.0f), 1.0f);
     // Its luminance in kCieYIntegral units is ∫ D65 ȳ / (100 ∫ ȳ) = 0.98892 from the 5 nm
     // CIE tables (sums of the colord-data files), as documented in rgb_spectrum.h.
     const Xyz w = emission_to_xyz([&](double l) { return RgbToSpectrum::eval(white, float(l)); });
     EXPECT_NEAR(w[1], 0.98892, 2e-4);
     // Unbounded colours: scale = 2 max, colour preserved.
-    for (const std::array<float, 3> rgb : {std::array<float, 3>{4.0f, 2.0f, 1.0f}, {0.1f, 0.3f, 0.2f},
-                                           {20.0f, 20.0f, 25.0f}}) {
+    for (const std::array<float, 3> rgb :
+         {std::array<float, 3>{4.0f, 2.0f, 1.0f}, {0.1f, 0.3f, 0.2f}, {20.0f, 20.0f, 25.0f}}) {
         const PatinaRgbSpectrum s = up.uplift(rgb, true);
         EXPECT_EQ(s.scale, 2.0f * std::max({rgb[0], rgb[1], rgb[2]}));
         const auto back = up.rgb_of(s);
@@ -236,7 +246,8 @@ TEST(RgbSpectrumTest, DeterministicAcrossThreadsAndCopies)
 
     // A fresh instance whose lazy table is built by whichever thread gets there first.
     const RgbToSpectrum shared(spaces().acescg_to_xyz);
-    std::vector<std::vector<PatinaRgbSpectrum>> results(4, std::vector<PatinaRgbSpectrum>(grid.size()));
+    std::vector<std::vector<PatinaRgbSpectrum>> results(
+        4, std::vector<PatinaRgbSpectrum>(grid.size()));
     std::vector<std::thread> threads;
     for (int t = 0; t < 4; ++t)
         threads.emplace_back([&, t] {
@@ -248,7 +259,8 @@ TEST(RgbSpectrumTest, DeterministicAcrossThreadsAndCopies)
     for (auto& th : threads) th.join();
     const RgbToSpectrum copy = shared;
     for (size_t k = 0; k < grid.size(); ++k) {
-        for (int t = 0; t < 4; ++t) EXPECT_EQ(std::memcmp(&results[t][k], &expected[k], sizeof expected[k]), 0);
+        for (int t = 0; t < 4; ++t)
+            EXPECT_EQ(std::memcmp(&results[t][k], &expected[k], sizeof expected[k]), 0);
         const PatinaRgbSpectrum c = copy.uplift(grid[k], false);
         EXPECT_EQ(std::memcmp(&c, &expected[k], sizeof c), 0);
     }

@@ -76,7 +76,8 @@ TEST(SpectrumTest, EmissionToXyzOfConstantIsOne)
     // Closed form: a constant radiance 1 has Y = ∫ȳ / kCieYIntegral = 1.
     const Xyz xyz = emission_to_xyz([](double) { return 1.0; });
     EXPECT_NEAR(xyz[1], 1.0, 1e-6);
-    // Equal-energy white E is at xy = (1/3, 1/3) (the three functions have equal areas) to table precision.
+    // Equal-energy white E is at xy = (1/3, 1/3) (the three functions have equal areas) to table
+    // precision.
     EXPECT_NEAR(chromaticity(xyz)[0], 1.0 / 3.0, 2e-4);
     EXPECT_NEAR(chromaticity(xyz)[1], 1.0 / 3.0, 2e-4);
 }
@@ -131,7 +132,8 @@ TEST(SpectrumTest, MatchesColordData)
     ASSERT_EQ(a.size(), 1u);
     ASSERT_EQ(a[0].size(), 531u);
     for (int l = 360; l <= 830; l += 10)
-        EXPECT_NEAR(illuminant_a(float(l)), 100.0 * a[0][l - 300], 1e-4 * illuminant_a(float(l))) << l;
+        EXPECT_NEAR(illuminant_a(float(l)), 100.0 * a[0][l - 300], 1e-4 * illuminant_a(float(l)))
+            << l;
 }
 
 TEST(SpectrumTest, MatchesCvrlOneNanometreTable)
@@ -151,8 +153,8 @@ TEST(SpectrumTest, MatchesCvrlOneNanometreTable)
         float l, x, y, z;
         if (std::sscanf(line.c_str(), "%f,%f,%f,%f", &l, &x, &y, &z) != 4) continue;
         ++rows;
-        const double err = std::max({std::abs(cie_x(l) - x), std::abs(cie_y(l) - y),
-                                     std::abs(cie_z(l) - z)});
+        const double err =
+            std::max({std::abs(cie_x(l) - x), std::abs(cie_y(l) - y), std::abs(cie_z(l) - z)});
         if (static_cast<int>(l) % 5 == 0) {
             EXPECT_LT(err, 1e-6) << l;
         }
@@ -166,7 +168,8 @@ TEST(SpectrumTest, MatchesCvrlOneNanometreTable)
 TEST(SpectrumTest, VisiblePdfIntegratesToOne)
 {
     double sum = 0.0;
-    for (int i = 0; i < 47000; ++i) sum += visible_wavelength_pdf(360.0f + 0.01f * (i + 0.5f)) * 0.01;
+    for (int i = 0; i < 47000; ++i)
+        sum += visible_wavelength_pdf(360.0f + 0.01f * (i + 0.5f)) * 0.01;
     EXPECT_NEAR(sum, 1.0, 1e-5);
     EXPECT_EQ(visible_wavelength_pdf(359.0f), 0.0f);
     EXPECT_EQ(visible_wavelength_pdf(831.0f), 0.0f);
@@ -237,14 +240,16 @@ TEST(SpectrumTest, HeroRotation)
 {
     // lambda_i = sample(frac(u + i/count)): with uniform sampling, evenly spaced by 470/count.
     const PatinaWavelengths wl = sample_wavelengths_uniform(0.1f, 4);
-    for (int i = 0; i < 4; ++i) EXPECT_NEAR(wl.lambda_nm[i], 360.0f + 470.0f * (0.1f + 0.25f * i), 1e-3);
+    for (int i = 0; i < 4; ++i)
+        EXPECT_NEAR(wl.lambda_nm[i], 360.0f + 470.0f * (0.1f + 0.25f * i), 1e-3);
     const PatinaWavelengths w2 = sample_wavelengths_visible(0.8f, 2);
     EXPECT_FLOAT_EQ(w2.lambda_nm[1], sample_visible_wavelength(0.8f + 0.5f - 1.0f));
 }
 
 TEST(SpectrumTest, SampledSpectrumArithmetic)
 {
-    SampledSpectrum a(4, 2.0f), b = SampledSpectrum::from_array(4, std::array<float, 4>{1, 2, 0, 4}.data());
+    SampledSpectrum a(4, 2.0f),
+        b = SampledSpectrum::from_array(4, std::array<float, 4>{1, 2, 0, 4}.data());
     const SampledSpectrum q = a / b;  // division by zero gives 0, never Inf
     EXPECT_EQ(q[0], 2.0f);
     EXPECT_EQ(q[2], 0.0f);
@@ -264,7 +269,8 @@ TEST(SpectrumTest, XyzFromSamplesIsUnbiased)
     const int n = 40000;
     for (int k = 0; k < n; ++k) {
         const PatinaWavelengths wl = sample_wavelengths_visible((k + 0.5f) / n, 4);
-        const SampledSpectrum L = SampledSpectrum::from_function(wl, [](float l) { return d65(l) * 0.01f; });
+        const SampledSpectrum L =
+            SampledSpectrum::from_function(wl, [](float l) { return d65(l) * 0.01f; });
         const Xyz e = xyz_from_samples(L, wl);
         for (int c = 0; c < 3; ++c) sum[c] += e[c] / n;
     }
@@ -273,7 +279,8 @@ TEST(SpectrumTest, XyzFromSamplesIsUnbiased)
     Xyz usum = {0.0, 0.0, 0.0};
     for (int k = 0; k < n; ++k) {
         const PatinaWavelengths wl = sample_wavelengths_uniform((k + 0.5f) / n, 4);
-        const SampledSpectrum L = SampledSpectrum::from_function(wl, [](float l) { return d65(l) * 0.01f; });
+        const SampledSpectrum L =
+            SampledSpectrum::from_function(wl, [](float l) { return d65(l) * 0.01f; });
         const Xyz e = xyz_from_samples(L, wl, SampledSpectrum(4, uniform_wavelength_pdf(500.0f)));
         for (int c = 0; c < 3; ++c) usum[c] += e[c] / n;
     }
