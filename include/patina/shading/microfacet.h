@@ -147,7 +147,8 @@ public:
     {
         if (wm.z <= 0.0f) return 0.0f;
         // Anisotropic GGX, D = 1 / (π αx αy (x²/αx² + y²/αy² + z²)²), the vector form of
-        // Walter et al. 2007 Eq. 33, made anisotropic as in Heitz 2014 ("Anisotropic distributions")
+        // Walter et al. 2007 Eq. 33, made anisotropic as in Heitz 2014
+        // ("Anisotropic distributions")
         const float e = sqr(wm.x / alpha_x_) + sqr(wm.y / alpha_y_) + sqr(wm.z);
         const float denom = kPi * alpha_x_ * alpha_y_ * e * e;
         return denom > 0.0f && is_finite(denom) ? 1.0f / denom : 0.0f;
@@ -168,7 +169,8 @@ public:
     /// Smith masking G1(w) = 1 / (1 + Λ(w)): Heitz 2014 ("The Smith masking function")
     float g1(Vec3 w) const { return 1.0f / (1.0f + lambda(w)); }
 
-    /// Height-correlated masking-shadowing 1 / (1 + Λ(wo) + Λ(wi)): Heitz 2014 (height-correlated form)
+    /// Height-correlated masking-shadowing 1 / (1 + Λ(wo) + Λ(wi)): Heitz 2014
+    /// (height-correlated form)
     float g(Vec3 wo, Vec3 wi) const { return 1.0f / (1.0f + lambda(wo) + lambda(wi)); }
 
     /// Visible normal density D_w(wm) = G1(w) max(0, w·wm) D(wm) / cos θ(w), with w
@@ -229,7 +231,8 @@ public:
     {
         if (wm.z <= 0.0f) return 0.0f;
         // Anisotropic Beckmann, D = exp(−(x²/αx² + y²/αy²)/z²) / (π αx αy z⁴):
-        // Walter et al. 2007 Eq. 25, made anisotropic as in Heitz 2014 ("Anisotropic distributions")
+        // Walter et al. 2007 Eq. 25, made anisotropic as in Heitz 2014
+        // ("Anisotropic distributions")
         const double z2 = static_cast<double>(wm.z) * wm.z;
         const double e = (sqr(static_cast<double>(wm.x) / alpha_x_) +
                           sqr(static_cast<double>(wm.y) / alpha_y_)) / z2;
@@ -256,7 +259,8 @@ public:
     /// Smith masking G1(w) = 1 / (1 + Λ(w)): Heitz 2014 ("The Smith masking function")
     float g1(Vec3 w) const { return 1.0f / (1.0f + lambda(w)); }
 
-    /// Height-correlated masking-shadowing 1 / (1 + Λ(wo) + Λ(wi)): Heitz 2014 (height-correlated form)
+    /// Height-correlated masking-shadowing 1 / (1 + Λ(wo) + Λ(wi)): Heitz 2014
+    /// (height-correlated form)
     float g(Vec3 wo, Vec3 wi) const { return 1.0f / (1.0f + lambda(wo) + lambda(wi)); }
 
     /// Visible normal density D_w(wm) = G1(w) max(0, w·wm) D(wm) / cos θ(w), with w
@@ -271,13 +275,15 @@ public:
     Vec3 sample_wm(Vec3 w, Vec2 u) const
     {
         // Stretch w to the unit-roughness configuration: Heitz & d'Eon 2014, "Importance
-        // Sampling Microfacet-Based BSDFs using the Distribution of Visible Normals", EGSR (stretch-sample-rotate-unstretch)
+        // Sampling Microfacet-Based BSDFs using the Distribution of Visible Normals", EGSR
+        // (stretch, sample slopes, rotate, unstretch)
         const Vec3 wf = w.z < 0.0f ? -w : w;
         Vec3 ws = normalize(Vec3(alpha_x_ * wf.x, alpha_y_ * wf.y, wf.z));
         if (length_squared(ws) == 0.0f) ws = Vec3(0.0f, 0.0f, 1.0f);
-        const double sin_theta = std::sqrt(sqr(static_cast<double>(ws.x)) + sqr(static_cast<double>(ws.y)));
-        const double cos_phi = sin_theta > 0.0 ? ws.x / sin_theta : 1.0;
-        const double sin_phi = sin_theta > 0.0 ? ws.y / sin_theta : 0.0;
+        const double wsx = ws.x, wsy = ws.y;
+        const double sin_theta = std::sqrt(wsx * wsx + wsy * wsy);
+        const double cos_phi = sin_theta > 0.0 ? wsx / sin_theta : 1.0;
+        const double sin_phi = sin_theta > 0.0 ? wsy / sin_theta : 0.0;
         // Sample the slopes of visible normals for unit roughness, incidence along +x
         double sx, sy;
         sample_visible_slopes_11(ws.z, u, &sx, &sy);
@@ -332,8 +338,9 @@ private:
         for (int it = 0; it < 64; ++it) {
             if (!(b >= lo && b <= hi)) b = 0.5 * (lo + hi);
             const double x = detail::erfinv(b);
-            const double value =
-                normalization * (1.0 + b + detail::kInvSqrtPi * tan_theta_i * std::exp(-x * x)) - ux;
+            const double cdf =
+                normalization * (1.0 + b + detail::kInvSqrtPi * tan_theta_i * std::exp(-x * x));
+            const double value = cdf - ux;
             const double derivative = normalization * (1.0 - x * tan_theta_i);
             if (std::abs(value) < 1e-10) break;
             if (value > 0.0) hi = b; else lo = b;

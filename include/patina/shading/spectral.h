@@ -100,7 +100,9 @@ inline void fill(float value, const PatinaWavelengths& wl, float* out)
 inline SpectralArray eval_rgb(const PatinaRgbSpectrum& s, const PatinaWavelengths& wl)
 {
     SpectralArray a;
-    for_each_wavelength(wl, [&](int i, float lambda) { a.v[i] = patina_rgb_spectrum_eval(&s, lambda); });
+    for_each_wavelength(wl, [&](int i, float lambda) {
+        a.v[i] = patina_rgb_spectrum_eval(&s, lambda);
+    });
     return a;
 }
 
@@ -108,7 +110,9 @@ inline SpectralArray eval_rgb(const PatinaRgbSpectrum& s, const PatinaWavelength
 inline SpectralArray eval_tabulated(const PatinaTabulatedSpectrum& s, const PatinaWavelengths& wl)
 {
     SpectralArray a;
-    for_each_wavelength(wl, [&](int i, float lambda) { a.v[i] = patina_tabulated_eval(&s, lambda); });
+    for_each_wavelength(wl, [&](int i, float lambda) {
+        a.v[i] = patina_tabulated_eval(&s, lambda);
+    });
     return a;
 }
 

@@ -135,7 +135,8 @@ inline bool is_finite(Vec3 a) { return is_finite(a.x) && is_finite(a.y) && is_fi
 /// (b1, b2, n), continuous everywhere except across n.z = 0's sign change.
 inline void coordinate_system(Vec3 n, Vec3* b1, Vec3* b2)
 {
-    // Branchless ONB: Duff et al. 2017, "Building an Orthonormal Basis, Revisited", JCGT 6(1), Listing 3
+    // Branchless ONB: Duff et al. 2017, "Building an Orthonormal Basis, Revisited",
+    // JCGT 6(1), Listing 3
     const float sign = std::copysign(1.0f, n.z);
     const float a = -1.0f / (sign + n.z);
     const float b = n.x * n.y * a;

@@ -50,7 +50,8 @@ inline const LoadedPlugin& basic_plugin()
             return p;
         }
         p.abi_version = static_cast<const int*>(dlsym(p.handle, PATINA_PLUGIN_VERSION_SYMBOL));
-        auto entry = reinterpret_cast<PatinaPluginEntryFn>(dlsym(p.handle, PATINA_PLUGIN_ENTRY_SYMBOL));
+        auto entry =
+            reinterpret_cast<PatinaPluginEntryFn>(dlsym(p.handle, PATINA_PLUGIN_ENTRY_SYMBOL));
         if (!p.abi_version || !entry) {
             p.error = "missing ABI symbol in " + path;
             return p;
@@ -93,8 +94,10 @@ public:
                 set_color_at(i, d.default_value[0], d.default_value[1], d.default_value[2]);
                 break;
             case PATINA_PARAM_SPECTRUM:
-                if (d.default_spectrum) v.spectrum = *d.default_spectrum;
-                else set_spectrum_at(i, {0.0f}, {d.default_value[0]});
+                if (d.default_spectrum)
+                    v.spectrum = *d.default_spectrum;
+                else
+                    set_spectrum_at(i, {0.0f}, {d.default_value[0]});
                 break;
             case PATINA_PARAM_STRING:
             case PATINA_PARAM_TEXTURE: v.s = d.default_string ? d.default_string : ""; break;
@@ -170,7 +173,7 @@ private:
 
     const PatinaShaderDesc* desc_;
     std::vector<PatinaParamValue> values_;
-    std::deque<std::vector<float>> storage_;  // deque: elements never move
+    std::deque<std::vector<float>> storage_; // deque: elements never move
 };
 
 /// Owns one instance; empty when create refused the values.
@@ -210,7 +213,8 @@ inline PatinaWavelengths wavelengths(std::vector<float> lambda = {400.0f, 480.0f
 /// A BSDF instance with the calls spelled as in the math: f(wo, wi), pdf(wo, wi), sample.
 class Bsdf {
 public:
-    Bsdf(const char* name, const ParamSet& params, PatinaTransportMode mode = PATINA_TRANSPORT_RADIANCE)
+    Bsdf(const char* name, const ParamSet& params,
+         PatinaTransportMode mode = PATINA_TRANSPORT_RADIANCE)
         : instance_(shader(name), params), funcs_(shader(name).bsdf)
     {
         ctx_ = PatinaShadingContext{};
@@ -332,4 +336,4 @@ inline double albedo_by_sampling(const Bsdf& bsdf, Vec3 wo, int count, uint64_t 
     return sum / count;
 }
 
-}  // namespace patina::test
+} // namespace patina::test

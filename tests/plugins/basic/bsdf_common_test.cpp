@@ -26,11 +26,17 @@ const std::vector<Config>& configs()
         {"conductor_aniso", "conductor", {{"roughness", 0.4f}, {"anisotropy", 1.0f}}},
         {"conductor_r0001", "conductor", {{"roughness", 0.001f}}},
         {"dielectric_smooth", "dielectric", {{"roughness", 0.0f}}},
-        {"dielectric_smooth_importance", "dielectric", {{"roughness", 0.0f}}, PATINA_TRANSPORT_IMPORTANCE},
+        {"dielectric_smooth_importance",
+         "dielectric",
+         {{"roughness", 0.0f}},
+         PATINA_TRANSPORT_IMPORTANCE},
         {"dielectric_eta1", "dielectric", {{"eta", 1.0f}, {"roughness", 0.5f}}},
         {"dielectric_r005", "dielectric", {{"roughness", 0.05f}}},
         {"dielectric_r03", "dielectric", {{"roughness", 0.3f}}},
-        {"dielectric_r03_importance", "dielectric", {{"roughness", 0.3f}}, PATINA_TRANSPORT_IMPORTANCE},
+        {"dielectric_r03_importance",
+         "dielectric",
+         {{"roughness", 0.3f}},
+         PATINA_TRANSPORT_IMPORTANCE},
         {"dielectric_eta4_r1", "dielectric", {{"eta", 4.0f}, {"roughness", 1.0f}}},
         {"dielectric_eta1001_r02", "dielectric", {{"eta", 1.001f}, {"roughness", 0.2f}}},
         {"dielectric_r0001", "dielectric", {{"roughness", 0.001f}}},
@@ -96,9 +102,7 @@ TEST_P(BsdfProperties, SampleReturnsEvalAndPdfAtTheSampledDirection)
         const bool transmitted = wo.z * s.wi.z < 0.0f;
         EXPECT_EQ((s.lobe & PATINA_LOBE_TRANSMISSION) != 0, transmitted);
         EXPECT_EQ((s.lobe & PATINA_LOBE_REFLECTION) != 0, !transmitted);
-        if (!transmitted) {
-            EXPECT_EQ(s.eta, 1.0f);
-        }
+        if (!transmitted) { EXPECT_EQ(s.eta, 1.0f); }
     }
     RecordProperty("checked_samples", checked);
 }
@@ -109,10 +113,17 @@ TEST_P(BsdfProperties, NeverReturnsNanOrInf)
     ASSERT_TRUE(bsdf);
     const int n = bsdf.wl().count;
     // Degenerate and grazing directions, then random ones
-    std::vector<Vec3> dirs = {{0, 0, 1},         {0, 0, -1},         {1, 0, 0},
-                              {0, 1, 0},         {-1, 0, 0},         {0.6f, 0.8f, 0.0f},
-                              {0, 1e-8f, 1.0f},  {1.0f, 0, 1e-7f},   {1.0f, 0, -1e-7f},
-                              {0.70710678f, 0, 0.70710678f}, {-0.70710678f, 0, 0.70710678f},
+    std::vector<Vec3> dirs = {{0, 0, 1},
+                              {0, 0, -1},
+                              {1, 0, 0},
+                              {0, 1, 0},
+                              {-1, 0, 0},
+                              {0.6f, 0.8f, 0.0f},
+                              {0, 1e-8f, 1.0f},
+                              {1.0f, 0, 1e-7f},
+                              {1.0f, 0, -1e-7f},
+                              {0.70710678f, 0, 0.70710678f},
+                              {-0.70710678f, 0, 0.70710678f},
                               {0.70710678f, 0, -0.70710678f}};
     Pcg32 rng(5);
     for (int k = 0; k < 200; ++k) dirs.push_back(random_direction(rng));
@@ -151,7 +162,8 @@ TEST_P(BsdfProperties, EvalIsReentrantAcrossThreads)
     std::vector<float> a(pairs.size()), b(pairs.size());
     auto work = [&](std::vector<float>* out) {
         for (size_t k = 0; k < pairs.size(); ++k)
-            (*out)[k] = bsdf.f0(pairs[k].first, pairs[k].second) + bsdf.pdf(pairs[k].first, pairs[k].second);
+            (*out)[k] = bsdf.f0(pairs[k].first, pairs[k].second) +
+                        bsdf.pdf(pairs[k].first, pairs[k].second);
     };
     std::thread t1(work, &a), t2(work, &b);
     t1.join();
@@ -160,8 +172,11 @@ TEST_P(BsdfProperties, EvalIsReentrantAcrossThreads)
     EXPECT_EQ(b, serial);
 }
 
-INSTANTIATE_TEST_SUITE_P(Basic, BsdfProperties, ::testing::Range(0, static_cast<int>(configs().size())),
-                         [](const ::testing::TestParamInfo<int>& info) { return configs()[info.param].label; });
+INSTANTIATE_TEST_SUITE_P(Basic, BsdfProperties,
+                         ::testing::Range(0, static_cast<int>(configs().size())),
+                         [](const ::testing::TestParamInfo<int>& info) {
+                             return configs()[info.param].label;
+                         });
 
-}  // namespace
-}  // namespace patina::test
+} // namespace
+} // namespace patina::test

@@ -88,7 +88,7 @@ double simpson_recurse(const F& f, double a, double b, double c, double fa, doub
     const double right = h / 12.0 * (fb + 4.0 * fe + fc);
     const double both = left + right;
     if (depth <= 0 || std::abs(both - whole) < 15.0 * eps)
-        return both + (both - whole) / 15.0;  // Richardson extrapolation
+        return both + (both - whole) / 15.0; // Richardson extrapolation
     return simpson_recurse(f, a, d, b, fa, fd, fb, left, 0.5 * eps, depth - 1) +
            simpson_recurse(f, b, e, c, fb, fe, fc, right, 0.5 * eps, depth - 1);
 }
@@ -125,7 +125,7 @@ struct Result {
     double p_value = 0.0;
     double statistic = 0.0;
     int dof = 0;
-    double pdf_integral = 0.0;    // ∫ pdf over the sphere (1 unless sampling can fail)
+    double pdf_integral = 0.0; // ∫ pdf over the sphere (1 unless sampling can fail)
     double sampled_fraction = 0.0; // fraction of samples that produced a direction
     std::string message;
 };
@@ -135,15 +135,14 @@ struct Options {
     int phi_res = 32;
     int sample_count = 400000;
     double min_expected = 5.0;
-    double significance = 0.01;  // overall level before the Šidák correction
-    int test_count = 1;          // K, for the Šidák correction
+    double significance = 0.01; // overall level before the Šidák correction
+    int test_count = 1; // K, for the Šidák correction
     unsigned seed = 1;
 };
 
 /// Runs the test. `sample(Vec3* w)` draws one direction (false when sampling fails);
 /// `pdf(Vec3 w)` is the claimed solid-angle density.
-template <typename Sample, typename Pdf>
-Result run(const Options& opt, Sample&& sample, Pdf&& pdf)
+template <typename Sample, typename Pdf> Result run(const Options& opt, Sample&& sample, Pdf&& pdf)
 {
     Result r;
     const int cells = opt.theta_res * opt.phi_res;
@@ -183,9 +182,9 @@ Result run(const Options& opt, Sample&& sample, Pdf&& pdf)
             // Cells shrink by 1e-9 rad so that a pdf discontinuous at a cell border (the
             // horizon) is not sampled exactly on it
             constexpr double kInset = 1e-9;
-            const double integral = adaptive_simpson_2d(
-                integrand, ti * dtheta + kInset, pi * dphi + kInset, (ti + 1) * dtheta - kInset,
-                (pi + 1) * dphi - kInset, 1e-6, 6);
+            const double integral =
+                adaptive_simpson_2d(integrand, ti * dtheta + kInset, pi * dphi + kInset,
+                                    (ti + 1) * dtheta - kInset, (pi + 1) * dphi - kInset, 1e-6, 6);
             r.pdf_integral += integral;
             expected[ti * opt.phi_res + pi] = integral * opt.sample_count;
         }
@@ -201,12 +200,13 @@ Result run(const Options& opt, Sample&& sample, Pdf&& pdf)
         if (expected[c] <= 0.0) {
             if (observed[c] > opt.sample_count * 1e-5) {
                 char buf[160];
-                std::snprintf(buf, sizeof buf, "%g samples in a cell (θ %d, φ %d) where the pdf is 0",
-                              observed[c], c / opt.phi_res, c % opt.phi_res);
+                std::snprintf(buf, sizeof buf,
+                              "%g samples in a cell (θ %d, φ %d) where the pdf is 0", observed[c],
+                              c / opt.phi_res, c % opt.phi_res);
                 r.message = buf;
                 return r;
             }
-            pooled_obs += observed[c];  // a few stray samples: let them weigh in the pool
+            pooled_obs += observed[c]; // a few stray samples: let them weigh in the pool
         } else if (expected[c] < opt.min_expected ||
                    (pooled_exp > 0.0 && pooled_exp < opt.min_expected)) {
             pooled_obs += observed[c];
@@ -220,7 +220,7 @@ Result run(const Options& opt, Sample&& sample, Pdf&& pdf)
         chi2 += sqr_diff(pooled_obs, pooled_exp) / pooled_exp;
         ++dof;
     }
-    dof -= 1;  // the counts sum to N: one constraint
+    dof -= 1; // the counts sum to N: one constraint
     r.statistic = chi2;
     r.dof = dof;
     if (dof <= 0) {
@@ -231,10 +231,11 @@ Result run(const Options& opt, Sample&& sample, Pdf&& pdf)
     const double alpha = sidak(opt.significance, opt.test_count);
     r.passed = std::isfinite(r.p_value) && r.p_value >= alpha;
     char buf[200];
-    std::snprintf(buf, sizeof buf, "X2 = %.1f, dof = %d, p = %.4f (alpha' = %.2e), ∫pdf = %.5f, sampled %.5f",
-                  chi2, dof, r.p_value, alpha, r.pdf_integral, r.sampled_fraction);
+    std::snprintf(buf, sizeof buf,
+                  "X2 = %.1f, dof = %d, p = %.4f (alpha' = %.2e), ∫pdf = %.5f, sampled %.5f", chi2,
+                  dof, r.p_value, alpha, r.pdf_integral, r.sampled_fraction);
     r.message = buf;
     return r;
 }
 
-}  // namespace patina::test::chi2
+} // namespace patina::test::chi2

@@ -73,7 +73,8 @@ Chi2Case visible_normal_case(std::string label, Distribution distribution, float
 }
 
 /// A plain warp from sampling.h against its pdf.
-Chi2Case warp_case(std::string label, std::function<Vec3(Vec2)> warp, std::function<float(Vec3)> pdf)
+Chi2Case warp_case(std::string label, std::function<Vec3(Vec2)> warp,
+                   std::function<float(Vec3)> pdf)
 {
     return {std::move(label), [=](const chi2::Options& opt) {
                 Pcg32 rng(opt.seed);
@@ -93,7 +94,8 @@ const std::vector<Chi2Case>& all_cases()
         std::vector<Chi2Case> c;
         // lambert: cosine-weighted on the side of wo
         for (float theta : {0.0f, 45.0f, 89.0f, 120.0f})
-            c.push_back(bsdf_case("lambert_theta" + std::to_string(int(theta)), "lambert", {}, theta));
+            c.push_back(
+                bsdf_case("lambert_theta" + std::to_string(int(theta)), "lambert", {}, theta));
         // conductor (default copper), several roughnesses, both sides, anisotropic
         for (float theta : {0.0f, 45.0f, 80.0f})
             c.push_back(bsdf_case("conductor_r03_theta" + std::to_string(int(theta)), "conductor",
@@ -107,26 +109,36 @@ const std::vector<Chi2Case>& all_cases()
         c.push_back(bsdf_case("conductor_aniso_theta70", "conductor",
                               {{"roughness", 0.5f}, {"anisotropy", 0.8f}}, 70.0f, 100.0f));
         // dielectric: reflection + refraction, from outside and from inside
-        struct D { const char* tag; float eta, roughness; std::vector<float> thetas; };
+        struct D {
+            const char* tag;
+            float eta, roughness;
+            std::vector<float> thetas;
+        };
         for (const D& d : {D{"eta15_r03", 1.5f, 0.3f, {0.0f, 40.0f, 75.0f, 120.0f, 140.0f}},
                            D{"eta15_r07", 1.5f, 0.7f, {30.0f, 160.0f}},
                            D{"eta133_r05", 1.33f, 0.5f, {60.0f, 110.0f}},
                            D{"eta25_r04", 2.5f, 0.4f, {50.0f, 150.0f}},
                            D{"eta105_r02", 1.05f, 0.2f, {45.0f, 135.0f}}}) {
             for (float theta : d.thetas)
-                c.push_back(bsdf_case(std::string("dielectric_") + d.tag + "_theta" +
-                                          std::to_string(int(theta)),
-                                      "dielectric", {{"eta", d.eta}, {"roughness", d.roughness}}, theta));
+                c.push_back(bsdf_case(
+                    std::string("dielectric_") + d.tag + "_theta" + std::to_string(int(theta)),
+                    "dielectric", {{"eta", d.eta}, {"roughness", d.roughness}}, theta));
         }
         // microfacet.h: visible normals of GGX and Beckmann, Beckmann D cos θ sampling
-        c.push_back(visible_normal_case("ggx_vndf_iso_theta30", TrowbridgeReitz(0.3f, 0.3f), 30.0f));
-        c.push_back(visible_normal_case("ggx_vndf_aniso_theta70", TrowbridgeReitz(0.1f, 0.5f), 70.0f, 45.0f));
-        c.push_back(visible_normal_case("ggx_vndf_below_theta170", TrowbridgeReitz(0.8f, 0.8f), 170.0f));
+        c.push_back(
+            visible_normal_case("ggx_vndf_iso_theta30", TrowbridgeReitz(0.3f, 0.3f), 30.0f));
+        c.push_back(visible_normal_case("ggx_vndf_aniso_theta70", TrowbridgeReitz(0.1f, 0.5f),
+                                        70.0f, 45.0f));
+        c.push_back(
+            visible_normal_case("ggx_vndf_below_theta170", TrowbridgeReitz(0.8f, 0.8f), 170.0f));
         c.push_back(visible_normal_case("beckmann_vndf_iso_theta0", Beckmann(0.3f, 0.3f), 0.0f));
         c.push_back(visible_normal_case("beckmann_vndf_iso_theta60", Beckmann(0.3f, 0.3f), 60.0f));
-        c.push_back(visible_normal_case("beckmann_vndf_aniso_theta80", Beckmann(0.15f, 0.6f), 80.0f, 120.0f));
-        c.push_back(visible_normal_case("beckmann_vndf_rough_theta45", Beckmann(1.0f, 1.0f), 45.0f));
-        c.push_back(visible_normal_case("beckmann_vndf_below_theta120", Beckmann(0.5f, 0.5f), 120.0f));
+        c.push_back(visible_normal_case("beckmann_vndf_aniso_theta80", Beckmann(0.15f, 0.6f), 80.0f,
+                                        120.0f));
+        c.push_back(
+            visible_normal_case("beckmann_vndf_rough_theta45", Beckmann(1.0f, 1.0f), 45.0f));
+        c.push_back(
+            visible_normal_case("beckmann_vndf_below_theta120", Beckmann(0.5f, 0.5f), 120.0f));
         for (const auto& [label, b] : {std::pair{"beckmann_dcos_iso", Beckmann(0.4f, 0.4f)},
                                        std::pair{"beckmann_dcos_aniso", Beckmann(0.2f, 0.7f)}}) {
             c.push_back(warp_case(
@@ -167,5 +179,5 @@ INSTANTIATE_TEST_SUITE_P(Basic, Chi2, ::testing::Range(0, static_cast<int>(all_c
                              return all_cases()[info.param].label;
                          });
 
-}  // namespace
-}  // namespace patina::test
+} // namespace
+} // namespace patina::test

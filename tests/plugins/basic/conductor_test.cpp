@@ -97,18 +97,17 @@ TEST(Conductor, WhiteFurnaceNeverCreatesEnergy)
         ASSERT_TRUE(bsdf);
         bsdf.set_wavelengths(wavelengths({550.0f}));
         for (float theta : {0.0f, 0.8f, 1.4f, 2.2f}) {
-            SCOPED_TRACE("roughness " + std::to_string(roughness) + " theta " + std::to_string(theta));
+            SCOPED_TRACE("roughness " + std::to_string(roughness) + " theta " +
+                         std::to_string(theta));
             const Vec3 wo = direction(theta, 0.4f);
             const double quadrature = albedo_by_quadrature(bsdf, wo, 384);
             const double sampled = albedo_by_sampling(bsdf, wo, 20000);
             EXPECT_LE(quadrature, 1.0 + 2e-3);
-            EXPECT_LE(sampled, 1.0 + 1e-6);  // every weight is G2/G1 <= 1
+            EXPECT_LE(sampled, 1.0 + 1e-6); // every weight is G2/G1 <= 1
             EXPECT_NEAR(quadrature, sampled, 1e-2);
             std::printf("[ furnace  ] conductor r %.1f theta %.1f: quadrature %.5f, sampled %.5f\n",
                         roughness, theta, quadrature, sampled);
-            if (roughness == 0.2f && theta == 0.0f) {
-                EXPECT_GT(quadrature, 0.97);
-            }
+            if (roughness == 0.2f && theta == 0.0f) { EXPECT_GT(quadrature, 0.97); }
         }
     }
 }
@@ -127,7 +126,8 @@ TEST(Conductor, IsReciprocal)
             wo.z *= side;
             wi.z *= side;
             const auto a = bsdf.f(wo, wi), b = bsdf.f(wi, wo);
-            for (int i = 0; i < bsdf.wl().count; ++i) ASSERT_NEAR(a[i], b[i], 1e-5f * a[i] + 1e-12f);
+            for (int i = 0; i < bsdf.wl().count; ++i)
+                ASSERT_NEAR(a[i], b[i], 1e-5f * a[i] + 1e-12f);
         }
     }
 }
@@ -157,13 +157,41 @@ TEST(Conductor, RejectsWhatItCannotHonour)
             << what << ": " << test_host().errors.front();
     };
     const float nan = std::nanf("");
-    { ParamSet p(desc); p.set_float("roughness", 1.5f); expect_rejected(p, "roughness > 1", "roughness"); }
-    { ParamSet p(desc); p.set_float("roughness", nan); expect_rejected(p, "roughness NaN", "roughness"); }
-    { ParamSet p(desc); p.set_float("anisotropy", -0.1f); expect_rejected(p, "anisotropy < 0", "anisotropy"); }
-    { ParamSet p(desc); p.set_spectrum("eta", {400, 500, 600}, {1, -0.5f, 1}); expect_rejected(p, "negative eta", "eta:"); }
-    { ParamSet p(desc); p.set_spectrum("k", {400, 500, 600}, {1, nan, 1}); expect_rejected(p, "NaN k", "k:"); }
-    { ParamSet p(desc); p.set_spectrum("eta", {500, 400, 600}, {1, 1, 1}); expect_rejected(p, "unsorted", "increasing"); }
-    { ParamSet p(desc); p.set_spectrum("k", {}, {}); expect_rejected(p, "empty table", "k:"); }
+    {
+        ParamSet p(desc);
+        p.set_float("roughness", 1.5f);
+        expect_rejected(p, "roughness > 1", "roughness");
+    }
+    {
+        ParamSet p(desc);
+        p.set_float("roughness", nan);
+        expect_rejected(p, "roughness NaN", "roughness");
+    }
+    {
+        ParamSet p(desc);
+        p.set_float("anisotropy", -0.1f);
+        expect_rejected(p, "anisotropy < 0", "anisotropy");
+    }
+    {
+        ParamSet p(desc);
+        p.set_spectrum("eta", {400, 500, 600}, {1, -0.5f, 1});
+        expect_rejected(p, "negative eta", "eta:");
+    }
+    {
+        ParamSet p(desc);
+        p.set_spectrum("k", {400, 500, 600}, {1, nan, 1});
+        expect_rejected(p, "NaN k", "k:");
+    }
+    {
+        ParamSet p(desc);
+        p.set_spectrum("eta", {500, 400, 600}, {1, 1, 1});
+        expect_rejected(p, "unsorted", "increasing");
+    }
+    {
+        ParamSet p(desc);
+        p.set_spectrum("k", {}, {});
+        expect_rejected(p, "empty table", "k:");
+    }
     {
         ParamSet p(desc);
         p.set_constant("eta", 0.0f).set_constant("k", 0.0f);
@@ -172,10 +200,11 @@ TEST(Conductor, RejectsWhatItCannotHonour)
     {
         // Both vanish at 500 nm only
         ParamSet p(desc);
-        p.set_spectrum("eta", {400, 500, 600}, {1, 0, 1}).set_spectrum("k", {450, 500, 550}, {1, 0, 1});
+        p.set_spectrum("eta", {400, 500, 600}, {1, 0, 1})
+            .set_spectrum("k", {450, 500, 550}, {1, 0, 1});
         expect_rejected(p, "n + ik = 0 at 500 nm", "vanish");
     }
 }
 
-}  // namespace
-}  // namespace patina::test
+} // namespace
+} // namespace patina::test

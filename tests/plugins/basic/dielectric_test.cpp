@@ -31,12 +31,14 @@ TEST(Dielectric, SmoothNormalIncidenceReflectsFresnelR0)
         // R at normal incidence ((η − 1)/(η + 1))²: Hecht §4.6.2
         const float r0 = ((eta - 1.0f) / (eta + 1.0f)) * ((eta - 1.0f) / (eta + 1.0f));
         const float t0 = 1.0f - r0;
-        for (const PatinaTransportMode mode : {PATINA_TRANSPORT_RADIANCE, PATINA_TRANSPORT_IMPORTANCE}) {
+        for (const PatinaTransportMode mode :
+             {PATINA_TRANSPORT_RADIANCE, PATINA_TRANSPORT_IMPORTANCE}) {
             const Bsdf bsdf = make(eta, 0.0f, mode);
             ASSERT_TRUE(bsdf);
             const bool radiance = mode == PATINA_TRANSPORT_RADIANCE;
             for (const float side : {1.0f, -1.0f}) {
-                SCOPED_TRACE("eta " + std::to_string(eta) + (radiance ? " radiance" : " importance") +
+                SCOPED_TRACE("eta " + std::to_string(eta) +
+                             (radiance ? " radiance" : " importance") +
                              (side > 0 ? " outside" : " inside"));
                 const Vec3 wo(0.0f, 0.0f, side);
                 PatinaBsdfSample s;
@@ -126,11 +128,13 @@ TEST(Dielectric, WhiteFurnaceReflectionPlusTransmission)
         Bsdf bsdf = make(1.5f, roughness, PATINA_TRANSPORT_IMPORTANCE);
         bsdf.set_wavelengths(wavelengths({550.0f}));
         for (float theta : {0.0f, 0.9f, 1.4f, 2.0f, 2.9f}) {
-            SCOPED_TRACE("roughness " + std::to_string(roughness) + " theta " + std::to_string(theta));
+            SCOPED_TRACE("roughness " + std::to_string(roughness) + " theta " +
+                         std::to_string(theta));
             const Vec3 wo = direction(theta, 0.3f);
             const double quadrature = albedo_by_quadrature(bsdf, wo, 384);
             const double sampled = albedo_by_sampling(bsdf, wo, 20000);
-            std::printf("[ furnace  ] dielectric eta 1.5 r %.1f theta %.1f: quadrature %.5f, sampled %.5f\n",
+            std::printf("[ furnace  ] dielectric eta 1.5 r %.1f theta %.1f: quadrature %.5f, "
+                        "sampled %.5f\n",
                         roughness, theta, quadrature, sampled);
             EXPECT_LE(quadrature, 1.0 + 3e-3);
             EXPECT_NEAR(quadrature, sampled, 1.5e-2);
@@ -146,7 +150,7 @@ TEST(Dielectric, RadianceModeScalesTransmissionByInverseEtaSquared)
     const Bsdf radiance = make(1.5f, 0.4f, PATINA_TRANSPORT_RADIANCE);
     const Bsdf importance = make(1.5f, 0.4f, PATINA_TRANSPORT_IMPORTANCE);
     const Vec3 wo = direction(0.5f, 0.0f);
-    const Vec3 wi = direction(shading::kPi - 0.4f, shading::kPi);  // refracted side, inside
+    const Vec3 wi = direction(shading::kPi - 0.4f, shading::kPi); // refracted side, inside
     const float fr = radiance.f0(wo, wi), fi = importance.f0(wo, wi);
     ASSERT_GT(fi, 0.0f);
     EXPECT_NEAR(fr, fi / (1.5f * 1.5f), 1e-6f * fi);
@@ -195,7 +199,8 @@ TEST(Dielectric, RejectsWhatItCannotHonour)
         Instance instance(desc, params);
         EXPECT_FALSE(instance) << eta << " " << roughness;
         ASSERT_FALSE(test_host().errors.empty()) << "no error message";
-        EXPECT_NE(test_host().errors.front().find(mentions), std::string::npos) << test_host().errors.front();
+        EXPECT_NE(test_host().errors.front().find(mentions), std::string::npos)
+            << test_host().errors.front();
     };
     expect_rejected(0.9f, 0.1f, "eta");
     expect_rejected(4.5f, 0.1f, "eta");
@@ -204,5 +209,5 @@ TEST(Dielectric, RejectsWhatItCannotHonour)
     expect_rejected(1.5f, std::nanf(""), "roughness");
 }
 
-}  // namespace
-}  // namespace patina::test
+} // namespace
+} // namespace patina::test

@@ -36,15 +36,17 @@ TEST(Emitter, WhiteEmitsIntensityTimesD65)
     ASSERT_TRUE(e);
     // The colour was uplifted as an illuminant (declared max > 1)
     EXPECT_EQ(e.color().illuminant, 1);
-    const PatinaWavelengths wl = wavelengths({360.0f, 400.0f, 450.0f, 560.0f, 600.0f, 700.0f, 780.0f, 830.0f});
+    const PatinaWavelengths wl =
+        wavelengths({360.0f, 400.0f, 450.0f, 560.0f, 600.0f, 700.0f, 780.0f, 830.0f});
     for (const Vec3 wo : {Vec3(0, 0, 1), direction(1.2f, 0.4f), direction(1.55f, 3.0f)}) {
         const auto l = e.radiance(wo, wl);
         for (int i = 0; i < wl.count; ++i) {
             // CIE D65 relative SPD / 100 (CIE 15:2004 Table T.1; 100 at 560 nm)
-            EXPECT_NEAR(l[i], 3.0f * d65_normalised(wl.lambda_nm[i]), 1e-5f) << wl.lambda_nm[i] << " nm";
+            EXPECT_NEAR(l[i], 3.0f * d65_normalised(wl.lambda_nm[i]), 1e-5f)
+                << wl.lambda_nm[i] << " nm";
         }
-        EXPECT_FLOAT_EQ(l[3], 3.0f);           // 560 nm: exactly the intensity
-        EXPECT_NEAR(l[1], 3.0f * 0.827549f, 1e-5f);  // D65(400 nm) = 82.7549
+        EXPECT_FLOAT_EQ(l[3], 3.0f); // 560 nm: exactly the intensity
+        EXPECT_NEAR(l[1], 3.0f * 0.827549f, 1e-5f); // D65(400 nm) = 82.7549
     }
     // Only `count` entries are written
     const auto l = e.radiance(Vec3(0, 0, 1), wavelengths({500.0f, 600.0f}));
@@ -60,7 +62,8 @@ TEST(Emitter, ColourComesFromTheHostsUplift)
     const PatinaWavelengths wl = wavelengths();
     const auto l = e.radiance(direction(0.3f, 0.0f), wl);
     for (int i = 0; i < wl.count; ++i)
-        EXPECT_NEAR(l[i], 0.5f * TestHost::eval(e.color(), wl.lambda_nm[i]), 1e-5f) << wl.lambda_nm[i];
+        EXPECT_NEAR(l[i], 0.5f * TestHost::eval(e.color(), wl.lambda_nm[i]), 1e-5f)
+            << wl.lambda_nm[i];
     // Red emitter: more at 650 nm than at 450 nm
     const auto rb = e.radiance(Vec3(0, 0, 1), wavelengths({650.0f, 450.0f}));
     EXPECT_GT(rb[0], 4.0f * rb[1]);
@@ -103,12 +106,29 @@ TEST(Emitter, RejectsWhatItCannotHonour)
         Instance instance(desc, params);
         EXPECT_FALSE(instance) << mentions;
         ASSERT_FALSE(test_host().errors.empty()) << mentions << ": no error message";
-        EXPECT_NE(test_host().errors.front().find(mentions), std::string::npos) << test_host().errors.front();
+        EXPECT_NE(test_host().errors.front().find(mentions), std::string::npos)
+            << test_host().errors.front();
     };
-    { ParamSet p(desc); p.set_float("intensity", -1.0f); expect_rejected(p, "intensity"); }
-    { ParamSet p(desc); p.set_float("intensity", std::nanf("")); expect_rejected(p, "intensity"); }
-    { ParamSet p(desc); p.set_float("intensity", INFINITY); expect_rejected(p, "intensity"); }
-    { ParamSet p(desc); p.set_color("color", -0.5f, 1.0f, 1.0f); expect_rejected(p, "color"); }
+    {
+        ParamSet p(desc);
+        p.set_float("intensity", -1.0f);
+        expect_rejected(p, "intensity");
+    }
+    {
+        ParamSet p(desc);
+        p.set_float("intensity", std::nanf(""));
+        expect_rejected(p, "intensity");
+    }
+    {
+        ParamSet p(desc);
+        p.set_float("intensity", INFINITY);
+        expect_rejected(p, "intensity");
+    }
+    {
+        ParamSet p(desc);
+        p.set_color("color", -0.5f, 1.0f, 1.0f);
+        expect_rejected(p, "color");
+    }
     {
         ParamSet p(desc);
         p.set_color_spectrum("color", PatinaRgbSpectrum{0.0f, 0.0f, 0.0f, -2.0f, 1});
@@ -127,5 +147,5 @@ TEST(Emitter, RejectsWhatItCannotHonour)
     }
 }
 
-}  // namespace
-}  // namespace patina::test
+} // namespace
+} // namespace patina::test

@@ -86,7 +86,7 @@ TEST(Lambert, RejectsWhatItCannotHonour)
     };
     {
         ParamSet p(desc);
-        p.set_color("reflectance", 1.5f, 0.5f, 0.5f);  // an albedo above 1 creates energy
+        p.set_color("reflectance", 1.5f, 0.5f, 0.5f); // an albedo above 1 creates energy
         expect_rejected(p, "rgb above 1");
     }
     {
@@ -96,7 +96,7 @@ TEST(Lambert, RejectsWhatItCannotHonour)
     }
     {
         ParamSet p(desc);
-        p.set_color_spectrum("reflectance", PatinaRgbSpectrum{0.0f, 0.0f, 0.0f, 3.0f, 0});  // 1.5
+        p.set_color_spectrum("reflectance", PatinaRgbSpectrum{0.0f, 0.0f, 0.0f, 3.0f, 0}); // 1.5
         expect_rejected(p, "spectrum above 1");
     }
     {
@@ -111,5 +111,5 @@ TEST(Lambert, RejectsWhatItCannotHonour)
     }
 }
 
-}  // namespace
-}  // namespace patina::test
+} // namespace
+} // namespace patina::test

@@ -44,23 +44,28 @@ std::string readme_row(const PatinaParamDecl& d)
     switch (d.type) {
     case PATINA_PARAM_FLOAT: std::snprintf(def, sizeof def, "%g", d.default_value[0]); break;
     case PATINA_PARAM_INT: std::snprintf(def, sizeof def, "%d", int(d.default_value[0])); break;
-    case PATINA_PARAM_BOOL: std::snprintf(def, sizeof def, "%s", d.default_value[0] != 0.0f ? "true" : "false"); break;
+    case PATINA_PARAM_BOOL:
+        std::snprintf(def, sizeof def, "%s", d.default_value[0] != 0.0f ? "true" : "false");
+        break;
     case PATINA_PARAM_COLOR:
-        std::snprintf(def, sizeof def, "%g %g %g", d.default_value[0], d.default_value[1], d.default_value[2]);
+        std::snprintf(def, sizeof def, "%g %g %g", d.default_value[0], d.default_value[1],
+                      d.default_value[2]);
         break;
     case PATINA_PARAM_SPECTRUM:
         if (d.default_spectrum)
-            std::snprintf(def, sizeof def, "table of %d values, %g-%g nm", d.default_spectrum->count,
-                          d.default_spectrum->lambda_nm[0],
+            std::snprintf(def, sizeof def, "table of %d values, %g-%g nm",
+                          d.default_spectrum->count, d.default_spectrum->lambda_nm[0],
                           d.default_spectrum->lambda_nm[d.default_spectrum->count - 1]);
         else
             std::snprintf(def, sizeof def, "%g", d.default_value[0]);
         break;
     case PATINA_PARAM_STRING:
-    case PATINA_PARAM_TEXTURE: std::snprintf(def, sizeof def, "%s", d.default_string ? d.default_string : ""); break;
+    case PATINA_PARAM_TEXTURE:
+        std::snprintf(def, sizeof def, "%s", d.default_string ? d.default_string : "");
+        break;
     }
-    if (d.type == PATINA_PARAM_FLOAT || d.type == PATINA_PARAM_INT || d.type == PATINA_PARAM_COLOR ||
-        d.type == PATINA_PARAM_SPECTRUM)
+    if (d.type == PATINA_PARAM_FLOAT || d.type == PATINA_PARAM_INT ||
+        d.type == PATINA_PARAM_COLOR || d.type == PATINA_PARAM_SPECTRUM)
         std::snprintf(range, sizeof range, "[%g, %g]", d.min_value, d.max_value);
     std::ostringstream row;
     row << "| `" << d.name << "` | " << type_name(d.type) << " | " << def << " | " << range << " | "
@@ -71,7 +76,8 @@ std::string readme_row(const PatinaParamDecl& d)
 std::string readme_section(const PatinaShaderDesc& s)
 {
     std::ostringstream out;
-    out << "## " << s.name << " (" << kind_name(s.kind) << ")\n\n" << s.help << "\n\n"
+    out << "## " << s.name << " (" << kind_name(s.kind) << ")\n\n"
+        << s.help << "\n\n"
         << "| parameter | type | default | range | colour space / units | description |\n"
         << "|---|---|---|---|---|---|\n";
     for (int i = 0; i < s.param_count; ++i) out << readme_row(s.params[i]) << "\n";
@@ -96,8 +102,10 @@ TEST(BasicPlugin, DeclaresFourShadersWithTheirFunctionTables)
     ASSERT_TRUE(p.info) << p.error;
     ASSERT_EQ(p.info->shader_count, 4);
     const std::pair<const char*, PatinaShaderKind> expected[] = {
-        {"lambert", PATINA_SHADER_BSDF}, {"conductor", PATINA_SHADER_BSDF},
-        {"dielectric", PATINA_SHADER_BSDF}, {"emitter", PATINA_SHADER_EMITTER}};
+        {"lambert", PATINA_SHADER_BSDF},
+        {"conductor", PATINA_SHADER_BSDF},
+        {"dielectric", PATINA_SHADER_BSDF},
+        {"emitter", PATINA_SHADER_EMITTER}};
     for (const auto& [name, kind] : expected) {
         const PatinaShaderDesc& s = shader(name);
         EXPECT_EQ(s.kind, kind) << name;
@@ -153,9 +161,7 @@ TEST(BasicPlugin, EveryParameterHasCompleteMetadata)
                 for (int k = 0; k < t.count; ++k) {
                     EXPECT_GE(t.value[k], d.min_value);
                     EXPECT_LE(t.value[k], d.max_value);
-                    if (k > 0) {
-                        EXPECT_GT(t.lambda_nm[k], t.lambda_nm[k - 1]);
-                    }
+                    if (k > 0) { EXPECT_GT(t.lambda_nm[k], t.lambda_nm[k - 1]); }
                 }
             }
         }
@@ -187,8 +193,8 @@ TEST(BasicPlugin, ReadmeListsTheMetadata)
     ASSERT_TRUE(p.info) << p.error;
     for (int si = 0; si < p.info->shader_count; ++si) {
         const std::string section = readme_section(p.info->shaders[si]);
-        EXPECT_NE(readme.find(section), std::string::npos)
-            << "README.md lacks or differs from:\n" << section;
+        EXPECT_NE(readme.find(section), std::string::npos) << "README.md lacks or differs from:\n"
+                                                           << section;
     }
 }
 
@@ -201,5 +207,5 @@ TEST(BasicPlugin, DISABLED_PrintReadmeSections)
         std::printf("%s\n", readme_section(p.info->shaders[si]).c_str());
 }
 
-}  // namespace
-}  // namespace patina::test
+} // namespace
+} // namespace patina::test

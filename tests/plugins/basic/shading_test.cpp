@@ -66,7 +66,8 @@ TEST(ShadingFresnel, DielectricClosedFormsAndSymmetry)
     // Brewster's angle tan θB = η: only s-polarised light is reflected
     const float theta_b = std::atan(1.5f);
     const float rs = std::pow((std::cos(theta_b) - 1.5f * std::cos(kPiOver2 - theta_b)) /
-                                  (std::cos(theta_b) + 1.5f * std::cos(kPiOver2 - theta_b)), 2.0f);
+                                  (std::cos(theta_b) + 1.5f * std::cos(kPiOver2 - theta_b)),
+                              2.0f);
     EXPECT_NEAR(fresnel_dielectric(std::cos(theta_b), 1.5f), 0.5f * rs, 1e-6f);
     // Light from inside beyond the critical angle is totally reflected
     EXPECT_EQ(fresnel_dielectric(-std::cos(0.8f), 1.5f), 1.0f);
@@ -74,7 +75,8 @@ TEST(ShadingFresnel, DielectricClosedFormsAndSymmetry)
     for (float theta : {0.1f, 0.5f, 0.9f, 1.3f}) {
         const float sin_t = std::sin(theta) / 1.5f;
         const float cos_t = std::sqrt(1.0f - sin_t * sin_t);
-        EXPECT_NEAR(fresnel_dielectric(std::cos(theta), 1.5f), fresnel_dielectric(-cos_t, 1.5f), 1e-6f);
+        EXPECT_NEAR(fresnel_dielectric(std::cos(theta), 1.5f), fresnel_dielectric(-cos_t, 1.5f),
+                    1e-6f);
     }
 }
 
@@ -114,7 +116,7 @@ TEST(ShadingFrame, FramesAreOrthonormalAndRoundTrip)
         EXPECT_NEAR(dot(f.x, f.z), 0.0f, 1e-6f);
         EXPECT_NEAR(length(f.x), 1.0f, 1e-6f);
         EXPECT_NEAR(length(f.y), 1.0f, 1e-6f);
-        const Vec3 c = cross(f.x, f.y);  // right-handed
+        const Vec3 c = cross(f.x, f.y); // right-handed
         EXPECT_NEAR(dot(c, n), 1.0f, 1e-5f);
         const Vec3 v = sample_uniform_sphere(rng.next_vec2());
         const Vec3 back = f.from_local(f.to_local(v));
@@ -139,8 +141,7 @@ TEST(ShadingSampling, WarpsStayInTheirDomains)
 }
 
 /// ∫ g(w) dω over the upper hemisphere by the midpoint rule in (θ, φ).
-template <typename G>
-double integrate_hemisphere(const G& g, int theta_res = 400)
+template <typename G> double integrate_hemisphere(const G& g, int theta_res = 400)
 {
     const int phi_res = 2 * theta_res;
     const double dtheta = 0.5 * M_PI / theta_res, dphi = 2.0 * M_PI / phi_res;
@@ -148,15 +149,15 @@ double integrate_hemisphere(const G& g, int theta_res = 400)
     for (int i = 0; i < theta_res; ++i) {
         const double theta = (i + 0.5) * dtheta;
         for (int j = 0; j < phi_res; ++j) {
-            const Vec3 w = direction(static_cast<float>(theta), static_cast<float>((j + 0.5) * dphi));
+            const Vec3 w =
+                direction(static_cast<float>(theta), static_cast<float>((j + 0.5) * dphi));
             sum += g(w) * std::sin(theta);
         }
     }
     return sum * dtheta * dphi;
 }
 
-template <typename Distribution>
-void expect_normalised(const Distribution& d, const char* name)
+template <typename Distribution> void expect_normalised(const Distribution& d, const char* name)
 {
     SCOPED_TRACE(name);
     // Projected area of the microsurface is 1: ∫ D(wm) cos θm dωm = 1 (Heitz 2014)
@@ -170,7 +171,8 @@ void expect_normalised(const Distribution& d, const char* name)
     // Masking bounds: G1(wo) G1(wi) <= G2(wo, wi) <= min(G1(wo), G1(wi)) <= 1
     Pcg32 rng(4);
     for (int k = 0; k < 200; ++k) {
-        const Vec3 wo = sample_uniform_sphere(rng.next_vec2()), wi = sample_uniform_sphere(rng.next_vec2());
+        const Vec3 wo = sample_uniform_sphere(rng.next_vec2()),
+                   wi = sample_uniform_sphere(rng.next_vec2());
         const float g2 = d.g(wo, wi), g1o = d.g1(wo), g1i = d.g1(wi);
         EXPECT_LE(g1o * g1i, g2 + 1e-6f);
         EXPECT_LE(g2, std::min(g1o, g1i) + 1e-6f);
@@ -200,13 +202,13 @@ TEST(ShadingMicrofacet, ClosedFormsAtTheNormal)
     const float a = 0.5f, theta = std::atan(1.0f / a);
     const Vec3 w = direction(theta, 0.3f);
     EXPECT_NEAR(TrowbridgeReitz(a, a).lambda(w), (std::sqrt(2.0f) - 1.0f) / 2.0f, 1e-6f);
-    EXPECT_NEAR(Beckmann(a, a).lambda(w), (std::erf(1.0) - 1.0) / 2.0 + std::exp(-1.0) / (2.0 * std::sqrt(M_PI)),
-                1e-6);
+    EXPECT_NEAR(Beckmann(a, a).lambda(w),
+                (std::erf(1.0) - 1.0) / 2.0 + std::exp(-1.0) / (2.0 * std::sqrt(M_PI)), 1e-6);
     // Tiny widths stay finite
     const TrowbridgeReitz sharp(1e-6f, 1e-6f);
     EXPECT_TRUE(std::isfinite(sharp.d(Vec3(0, 0, 1))));
     EXPECT_TRUE(is_finite(sharp.sample_wm(direction(0.5f, 0.1f), Vec2(0.3f, 0.3f))));
-    EXPECT_LT(sharp.d(direction(0.1f, 0.0f)), 1e-6f);  // 0.1 rad off: negligible
+    EXPECT_LT(sharp.d(direction(0.1f, 0.0f)), 1e-6f); // 0.1 rad off: negligible
 }
 
 TEST(ShadingMicrofacet, ErfinvInvertsErf)
@@ -233,7 +235,7 @@ TEST(ShadingSpectral, HelpersEvaluateLikeTheAbi)
     EXPECT_NE(check_tabulated(PatinaTabulatedSpectrum{3, unsorted, value}), nullptr);
     EXPECT_NE(check_tabulated(PatinaTabulatedSpectrum{0, lambda, value}), nullptr);
     // The exact range of an RGB spectrum: brute force over 1 nm agrees
-    const PatinaRgbSpectrum s{-2e-4f, 0.22f, -58.0f, 0.9f, 0};  // a bump near 550 nm
+    const PatinaRgbSpectrum s{-2e-4f, 0.22f, -58.0f, 0.9f, 0}; // a bump near 550 nm
     float lo = 0, hi = 0;
     rgb_spectrum_range(s, &lo, &hi);
     float blo = 1e9f, bhi = -1e9f;
@@ -247,8 +249,9 @@ TEST(ShadingSpectral, HelpersEvaluateLikeTheAbi)
     EXPECT_GT(hi, lo + 0.1f);
     // eval_rgb is patina_rgb_spectrum_eval at each wavelength
     const SpectralArray r = eval_rgb(s, wl);
-    for (int i = 0; i < wl.count; ++i) EXPECT_EQ(r[i], patina_rgb_spectrum_eval(&s, wl.lambda_nm[i]));
+    for (int i = 0; i < wl.count; ++i)
+        EXPECT_EQ(r[i], patina_rgb_spectrum_eval(&s, wl.lambda_nm[i]));
 }
 
-}  // namespace
-}  // namespace patina::test
+} // namespace
+} // namespace patina::test

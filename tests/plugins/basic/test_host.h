@@ -44,11 +44,11 @@ struct TestHost : PatinaHost {
         working_space = "ACEScg";
         error = [](const PatinaHost* h, const char* shader, const char* message) {
             static_cast<const TestHost*>(h)->errors.push_back(std::string(shader ? shader : "?") +
-                                                             ": " + (message ? message : ""));
+                                                              ": " + (message ? message : ""));
         };
         warning = [](const PatinaHost* h, const char* shader, const char* message) {
-            static_cast<const TestHost*>(h)->warnings.push_back(
-                std::string(shader ? shader : "?") + ": " + (message ? message : ""));
+            static_cast<const TestHost*>(h)->warnings.push_back(std::string(shader ? shader : "?") +
+                                                                ": " + (message ? message : ""));
         };
         rgb_to_spectrum = uplift;
         eval_rgb_spectrum = [](const PatinaHost*, const PatinaRgbSpectrum* s,
@@ -86,9 +86,9 @@ struct TestHost : PatinaHost {
             const double t = 2.0 * std::clamp(y, 1e-4, 1.0 - 1e-4) - 1.0;
             return t / std::sqrt(1.0 - t * t);
         };
-        const double x0 = inverse_sigmoid(c[2] / out->scale);  // 450 nm: blue
-        const double x1 = inverse_sigmoid(c[1] / out->scale);  // 550 nm: green
-        const double x2 = inverse_sigmoid(c[0] / out->scale);  // 650 nm: red
+        const double x0 = inverse_sigmoid(c[2] / out->scale); // 450 nm: blue
+        const double x1 = inverse_sigmoid(c[1] / out->scale); // 550 nm: green
+        const double x2 = inverse_sigmoid(c[0] / out->scale); // 650 nm: red
         // Newton form of the quadratic through (450, x0), (550, x1), (650, x2)
         const double d1 = (x1 - x0) / 100.0, d2 = (x2 - x1) / 100.0;
         const double a = (d2 - d1) / 200.0;
@@ -100,4 +100,4 @@ struct TestHost : PatinaHost {
     }
 };
 
-}  // namespace patina::test
+} // namespace patina::test
