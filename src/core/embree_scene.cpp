@@ -74,7 +74,11 @@ Imath::V3f offset_ray_origin(const SurfacePoint& sp, const Imath::V3f& dir)
 {
     // Offset along Ng by the error box's extent in that direction (pbrt-v4 OffsetRayOrigin),
     // then round each component away from P so the rounding of the sum cannot undo it.
-    const float d = abs(sp.Ng).dot(sp.p_error);
+    // pbrt's own triangle test also rejects hits closer than its t error bound; Embree
+    // accepts t = 0, so a point computed exactly (error 0, e.g. on the plane y = 0) would
+    // hit its own triangle again: never offset by less than the scaled epsilon.
+    const float scale = std::max({std::abs(sp.P.x), std::abs(sp.P.y), std::abs(sp.P.z)});
+    const float d = std::max(abs(sp.Ng).dot(sp.p_error), kRelativeOffset * scale + kAbsoluteOffset);
     Imath::V3f offset = d * sp.Ng;
     if (sp.Ng.dot(dir) < 0.0f)
         offset = -offset;

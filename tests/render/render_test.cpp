@@ -1,0 +1,223 @@
+// The renderer end to end: scene files, plugin shading, spectral film, determinism.
+#include "render/renderer.h"
+#include "render/scene.h"
+
+#include "core/color_management.h"
+#include "core/host.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <cstring>
+#include <fstream>
+
+namespace fs = std::filesystem;
+namespace pr = patina::render;
+
+namespace {
+
+fs::path write_scene(const std::string& name, const std::string& text)
+{
+    const fs::path dir = fs::path(PATINA_TEST_BUILD_DIR) / "render_scenes";
+    fs::create_directories(dir);
+    const fs::path p = dir / (name + ".toml");
+    std::ofstream(p) << text;
+    return p;
+}
+
+struct Loaded {
+    patina::PluginRegistry registry{patina::default_host().c_host()};
+    pr::Scene scene;
+};
+
+std::unique_ptr<Loaded> load(const fs::path& path)
+{
+    auto l = std::make_unique<Loaded>();
+    const pr::SceneFile file = pr::parse_scene_file(path);
+    pr::PluginSearch search;
+    search.bundled = false;
+    search.environment = false;
+    search.command_line = {PATINA_TEST_PLUGIN_DIR};
+    search.scene = file.plugin_dirs;
+    pr::load_plugins(l->registry, search);
+    l->scene = pr::build_scene(file, l->registry, patina::default_host());
+    return l;
+}
+
+std::string error_of(const std::string& name, const std::string& text)
+{
+    try {
+        load(write_scene(name, text));
+    } catch (const std::exception& e) {
+        return e.what();
+    }
+    ADD_FAILURE() << "no error for scene " << name;
+    return {};
+}
+
+const char* kWhiteFurnace = R"(
+[film]
+width = 24
+height = 16
+spp = 32
+seed = 7
+[camera]
+from = [0, 0, 4]
+to = [0, 0, 0]
+fov_deg = 40
+[environment]
+color = [1, 1, 1]
+[[shader]]
+name = "white"
+type = "lambert"
+reflectance = 1.0
+[[object]]
+shape = "sphere"
+radius = 1.0
+bsdf = "white"
+)";
+
+}  // namespace
+
+// A white Lambertian sphere in a uniform white environment is invisible: every path that
+// hits it leaves with weight exactly 1 (a convex surface sees only the sky), so sphere and
+// sky pixels have the sky's radiance. Unit white in the working space has Y = 1 up to the
+// D65 normalisation (D65/D65(560) has Y = 0.9997 in kCieYIntegral units).
+TEST(Render, WhiteFurnaceSphereMatchesTheSky)
+{
+    auto l = load(write_scene("furnace", kWhiteFurnace));
+    const std::vector<float> xyz = pr::render_xyz(l->scene, 0, true);
+    double sum_y = 0.0;
+    for (size_t i = 0; i < xyz.size(); i += 3)
+        sum_y += xyz[i + 1];
+    const double mean_y = sum_y / static_cast<double>(xyz.size() / 3);
+    EXPECT_NEAR(mean_y, 1.0, 0.01);
+    // The centre pixel (sphere) against a corner pixel (sky), each averaged over a 4x4 block.
+    auto block = [&](int x0, int y0) {
+        double s = 0;
+        for (int y = y0; y < y0 + 4; ++y)
+            for (int x = x0; x < x0 + 4; ++x)
+                s += xyz[(static_cast<size_t>(y) * 24 + x) * 3 + 1];
+        return s / 16.0;
+    };
+    EXPECT_NEAR(block(10, 6), block(0, 0), 0.03);
+}
+
+TEST(Render, SameSeedSameBitsForAnyThreadCount)
+{
+    auto l = load(write_scene("threads", kWhiteFurnace));
+    l->scene.film.spp = 4;
+    const std::vector<float> one = pr::render_xyz(l->scene, 1, true);
+    const std::vector<float> two = pr::render_xyz(l->scene, 2, true);
+    ASSERT_EQ(one.size(), two.size());
+    EXPECT_EQ(0, std::memcmp(one.data(), two.data(), one.size() * sizeof(float)));
+    l->scene.film.seed += 1;
+    const std::vector<float> other = pr::render_xyz(l->scene, 2, true);
+    EXPECT_NE(0, std::memcmp(one.data(), other.data(), one.size() * sizeof(float)));
+}
+
+// A Lambertian plane lit only by a uniform sky of radiance L reflects R * L (the
+// irradiance of a uniform hemisphere is pi L, times R / pi): the reflected Y is R.
+TEST(Render, LambertPlaneUnderUniformSky)
+{
+    auto l = load(write_scene("plane", R"(
+[film]
+width = 16
+height = 16
+spp = 64
+[camera]
+from = [0, 3, 0.001]
+to = [0, 0, 0]
+fov_deg = 20
+[environment]
+color = [1, 1, 1]
+[[shader]]
+name = "grey"
+type = "lambert"
+reflectance = 0.5
+[[object]]
+shape = "plane"
+size = 100.0
+bsdf = "grey"
+)"));
+    const std::vector<float> xyz = pr::render_xyz(l->scene, 0, true);
+    double sum_y = 0.0;
+    for (size_t i = 0; i < xyz.size(); i += 3)
+        sum_y += xyz[i + 1];
+    EXPECT_NEAR(sum_y / static_cast<double>(xyz.size() / 3), 0.5, 0.01);
+}
+
+TEST(Render, BadKeyNamesFileLineAndKey)
+{
+    const std::string msg = error_of("badkey", "[film]\nwidth = 10\nspp_count = 4\n");
+    EXPECT_NE(msg.find("badkey.toml:3:"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("unknown key 'spp_count' in [film]"), std::string::npos) << msg;
+}
+
+TEST(Render, MissingMeshNamesTheFile)
+{
+    const std::string msg = error_of("nomesh", R"(
+[[shader]]
+name = "a"
+type = "lambert"
+[[object]]
+mesh = "no_such_statue.obj"
+bsdf = "a"
+)");
+    EXPECT_NE(msg.find("no_such_statue.obj"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("nomesh.toml:6:"), std::string::npos) << msg;
+}
+
+TEST(Render, UnknownColourSpaceIsNamed)
+{
+    const std::string msg = error_of("badspace", "[environment]\ncolor = [1, 1, 1]\ncolorspace = 'adobe_rgb_1998'\n");
+    EXPECT_NE(msg.find("unknown colour space 'adobe_rgb_1998'"), std::string::npos) << msg;
+}
+
+TEST(Render, UnknownShaderParameterIsAnError)
+{
+    const std::string msg = error_of("badparam", R"(
+[[shader]]
+name = "metal"
+type = "conductor"
+roughnes = 0.2
+)");
+    EXPECT_NE(msg.find("parameter 'roughnes'"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("did you mean 'roughness'"), std::string::npos) << msg;
+}
+
+TEST(Render, ShaderOfTheWrongKindIsRefused)
+{
+    const std::string msg = error_of("wrongkind", R"(
+[[shader]]
+name = "lamp"
+type = "emitter"
+[[object]]
+shape = "sphere"
+bsdf = "lamp"
+)");
+    EXPECT_NE(msg.find("cannot be used as 'bsdf'"), std::string::npos) << msg;
+}
+
+TEST(Render, WritesExrAndPngAndNoTemporaryFiles)
+{
+    const fs::path dir = fs::path(PATINA_TEST_BUILD_DIR) / "render_out";
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    const fs::path scene = write_scene("write", kWhiteFurnace);
+    pr::PluginSearch search;
+    search.bundled = false;
+    search.environment = false;
+    search.command_line = {PATINA_TEST_PLUGIN_DIR};
+    pr::RenderOptions opt;
+    opt.output = dir / "image.exr";
+    opt.spp = 2;
+    opt.quiet = true;
+    pr::render_scene_file(scene, search, opt);
+    EXPECT_TRUE(fs::exists(dir / "image.exr"));
+    EXPECT_TRUE(fs::exists(dir / "image.png"));
+    size_t files = 0;
+    for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir))
+        ++files;
+    EXPECT_EQ(files, 2u);
+}
