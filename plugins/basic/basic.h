@@ -5,6 +5,8 @@
 #include <patina/abi.h>
 
 #include <cstdio>
+#include <new>
+#include <utility>
 
 namespace patina::basic {
 
@@ -28,6 +30,16 @@ void report_error(const PatinaHost* host, const char* shader, const char* format
         std::snprintf(message, sizeof message, format, args...);
     }
     host->error(host, shader, message);
+}
+
+/// Allocates an instance (create only); reports an error and returns nullptr when memory
+/// runs out, so that no exception crosses the C ABI.
+template <typename T, typename... Args>
+T* make_instance(const PatinaHost* host, const char* shader, Args&&... args)
+{
+    T* instance = new (std::nothrow) T{std::forward<Args>(args)...};
+    if (!instance) report_error(host, shader, "out of memory");
+    return instance;
 }
 
 /// The transport mode of a shading point (radiance when the host gave no context).

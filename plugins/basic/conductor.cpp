@@ -43,7 +43,6 @@
 
 #include <algorithm>
 #include <new>
-#include <vector>
 
 namespace patina::basic {
 namespace {
@@ -165,22 +164,32 @@ void* create(const PatinaHost* host, const PatinaParamValue* values)
         return nullptr;
     }
 
-    auto* c = new (std::nothrow) Conductor;
+    auto* c = make_instance<Conductor>(host, kName);
     if (!c) return nullptr;
-    c->eta = TabulatedSpectrum(eta.spectrum);
-    c->k = TabulatedSpectrum(k.spectrum);
+    try {
+        c->eta = TabulatedSpectrum(eta.spectrum);
+        c->k = TabulatedSpectrum(k.spectrum);
+    } catch (const std::bad_alloc&) {
+        report_error(host, kName, "out of memory");
+        delete c;
+        return nullptr;
+    }
     // n + ik = 0 has no Fresnel reflectance; n and k are piecewise linear over the union
     // of both tables' wavelengths, so checking those wavelengths covers every λ
-    std::vector<float> nodes;
-    for (int i = 0; i < c->eta.size(); ++i) nodes.push_back(c->eta.lambda_nm(i));
-    for (int i = 0; i < c->k.size(); ++i) nodes.push_back(c->k.lambda_nm(i));
-    for (float lambda : nodes) {
-        if (c->eta.eval(lambda) == 0.0f && c->k.eval(lambda) == 0.0f) {
-            report_error(host, kName, "eta and k are both 0 at %g nm; a complex index of "
-                                      "refraction n + ik must not vanish", lambda);
-            delete c;
-            return nullptr;
-        }
+    auto vanishes_at = [&](float lambda) {
+        if (c->eta.eval(lambda) != 0.0f || c->k.eval(lambda) != 0.0f) return false;
+        report_error(host, kName, "eta and k are both 0 at %g nm; a complex index of "
+                                  "refraction n + ik must not vanish", lambda);
+        return true;
+    };
+    bool vanishes = false;
+    for (int i = 0; i < c->eta.size() && !vanishes; ++i)
+        vanishes = vanishes_at(c->eta.lambda_nm(i));
+    for (int i = 0; i < c->k.size() && !vanishes; ++i)
+        vanishes = vanishes_at(c->k.lambda_nm(i));
+    if (vanishes) {
+        delete c;
+        return nullptr;
     }
     c->smooth = roughness.f < kSmoothRoughness;
     // Anisotropic widths from one roughness: Burley 2012, addendum (aspect = sqrt(1 − 0.9 a))

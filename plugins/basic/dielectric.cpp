@@ -44,7 +44,6 @@
 #include <patina/shading/microfacet.h>
 #include <patina/shading/spectral.h>
 
-#include <new>
 
 namespace patina::basic {
 namespace {
@@ -125,7 +124,7 @@ void* create(const PatinaHost* host, const PatinaParamValue* values)
         report_error(host, kName, "roughness %g must lie in [0, 1]", roughness.f);
         return nullptr;
     }
-    auto* d = new (std::nothrow) Dielectric;
+    auto* d = make_instance<Dielectric>(host, kName);
     if (!d) return nullptr;
     d->eta = eta.f;
     // An index-matched boundary has no microfacet geometry to speak of: it is invisible

@@ -25,7 +25,6 @@
 
 #include <patina/shading/spectral.h>
 
-#include <new>
 
 namespace patina::basic {
 namespace {
@@ -87,7 +86,7 @@ void* create(const PatinaHost* host, const PatinaParamValue* values)
         report_error(host, kName, "two_sided: expected a bool value");
         return nullptr;
     }
-    return new (std::nothrow) Emitter{host, s, intensity.f, two_sided.i != 0};
+    return make_instance<Emitter>(host, kName, host, s, intensity.f, two_sided.i != 0);
 }
 
 void destroy(void* instance) { delete static_cast<Emitter*>(instance); }

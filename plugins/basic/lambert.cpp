@@ -23,7 +23,6 @@
 #include <patina/shading/sampling.h>
 #include <patina/shading/spectral.h>
 
-#include <new>
 
 namespace patina::basic {
 namespace {
@@ -74,7 +73,7 @@ void* create(const PatinaHost* host, const PatinaParamValue* values)
                      "within [0, 1]", lo, hi);
         return nullptr;
     }
-    return new (std::nothrow) Lambert{s};
+    return make_instance<Lambert>(host, kName, s);
 }
 
 void destroy(void* instance) { delete static_cast<Lambert*>(instance); }

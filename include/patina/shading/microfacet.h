@@ -30,7 +30,8 @@
 //
 // A BSDF turns the normal density into a direction density with the Jacobian of the
 // reflection or refraction that maps wm to wi: 1 / (4 |wo·wm|) for reflection, and
-// η_i² |wi·wm| / (η_i wi·wm + η_o wo·wm)² for refraction (Walter et al. 2007, Eqs. 14, 17).
+// η_i² |wi·wm| / (η_i wi·wm + η_o wo·wm)² for refraction, η_i and η_o the indices on the
+// sides of wi and wo (Walter et al. 2007, Eqs. 14, 17).
 //
 // Everything is allocation-free and reentrant; no member returns NaN for unit inputs, and
 // widths as small as 1e-7 stay finite (a width of 0 is a delta lobe: handle it in the BSDF).
