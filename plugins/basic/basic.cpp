@@ -10,7 +10,7 @@ const int patina_plugin_abi_version = PATINA_ABI_VERSION;
 
 PATINA_PLUGIN_EXPORT const PatinaPluginInfo* patina_plugin_entry(const PatinaHost* host);
 
-}  // extern "C"
+} // extern "C"
 
 const PatinaPluginInfo* patina_plugin_entry(const PatinaHost* /*host*/)
 {

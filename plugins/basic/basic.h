@@ -22,7 +22,8 @@ inline constexpr float kSmoothRoughness = 1e-3f;
 template <typename... Args>
 void report_error(const PatinaHost* host, const char* shader, const char* format, Args... args)
 {
-    if (!host || !host->error) return;
+    if (!host || !host->error)
+        return;
     char message[512];
     if constexpr (sizeof...(Args) == 0) {
         std::snprintf(message, sizeof message, "%s", format);
@@ -38,7 +39,8 @@ template <typename T, typename... Args>
 T* make_instance(const PatinaHost* host, const char* shader, Args&&... args)
 {
     T* instance = new (std::nothrow) T{std::forward<Args>(args)...};
-    if (!instance) report_error(host, shader, "out of memory");
+    if (!instance)
+        report_error(host, shader, "out of memory");
     return instance;
 }
 
@@ -48,4 +50,4 @@ inline PatinaTransportMode transport_mode(const PatinaShadingContext* ctx)
     return ctx ? ctx->mode : PATINA_TRANSPORT_RADIANCE;
 }
 
-}  // namespace patina::basic
+} // namespace patina::basic

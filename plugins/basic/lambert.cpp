@@ -23,106 +23,116 @@
 #include <patina/shading/sampling.h>
 #include <patina/shading/spectral.h>
 
-
 namespace patina::basic {
 namespace {
 
-using namespace patina::shading;
+    using namespace patina::shading;
 
-constexpr const char* kName = "lambert";
+    constexpr const char* kName = "lambert";
 
-struct Lambert {
-    PatinaRgbSpectrum reflectance;
-};
+    struct Lambert {
+        PatinaRgbSpectrum reflectance;
+    };
 
-const PatinaParamDecl kParams[] = {
-    {"reflectance", PATINA_PARAM_COLOR, {0.5f, 0.5f, 0.5f}, nullptr, nullptr, 0.0f, 1.0f,
-     "scene_linear", "Diffuse reflectance (albedo) R in [0, 1]; f = R / pi."},
-};
+    // clang-format off
+    const PatinaParamDecl kParams[] = {
+        {"reflectance", PATINA_PARAM_COLOR, {0.5f, 0.5f, 0.5f}, nullptr, nullptr, 0.0f, 1.0f,
+         "scene_linear", "Diffuse reflectance (albedo) R in [0, 1]; f = R / pi."},
+    };
+    // clang-format on
 
-void* create(const PatinaHost* host, const PatinaParamValue* values)
-{
-    const PatinaParamValue& r = values[0];
-    if (r.type != PATINA_PARAM_COLOR) {
-        report_error(host, kName, "reflectance: expected a colour value");
-        return nullptr;
-    }
-    for (int c = 0; c < 3; ++c) {
-        if (!(r.rgb[c] >= 0.0f && r.rgb[c] <= 1.0f)) {
-            report_error(host, kName, "reflectance (%g, %g, %g) must lie in [0, 1]", r.rgb[0],
-                         r.rgb[1], r.rgb[2]);
+    void* create(const PatinaHost* host, const PatinaParamValue* values)
+    {
+        const PatinaParamValue& r = values[0];
+        if (r.type != PATINA_PARAM_COLOR) {
+            report_error(host, kName, "reflectance: expected a colour value");
             return nullptr;
         }
+        for (int c = 0; c < 3; ++c) {
+            if (!(r.rgb[c] >= 0.0f && r.rgb[c] <= 1.0f)) {
+                report_error(host, kName, "reflectance (%g, %g, %g) must lie in [0, 1]", r.rgb[0],
+                             r.rgb[1], r.rgb[2]);
+                return nullptr;
+            }
+        }
+        const PatinaRgbSpectrum& s = r.color;
+        if (s.illuminant != 0) {
+            report_error(host, kName,
+                         "reflectance was uplifted as an emission colour; a "
+                         "reflectance spectrum is needed");
+            return nullptr;
+        }
+        if (!is_finite(s.c0) || !is_finite(s.c1) || !is_finite(s.c2) || !is_finite(s.scale)) {
+            report_error(host, kName, "reflectance spectrum has non-finite coefficients");
+            return nullptr;
+        }
+        // An albedo above 1 would create energy; allow only float rounding
+        float lo = 0.0f, hi = 0.0f;
+        rgb_spectrum_range(s, &lo, &hi);
+        if (lo < 0.0f || hi > 1.0f + 1e-5f) {
+            report_error(host, kName,
+                         "reflectance spectrum ranges over [%g, %g] in 360-830 nm; it must stay "
+                         "within [0, 1]",
+                         lo, hi);
+            return nullptr;
+        }
+        return make_instance<Lambert>(host, kName, s);
     }
-    const PatinaRgbSpectrum& s = r.color;
-    if (s.illuminant != 0) {
-        report_error(host, kName, "reflectance was uplifted as an emission colour; a "
-                                  "reflectance spectrum is needed");
-        return nullptr;
+
+    void destroy(void* instance)
+    {
+        delete static_cast<Lambert*>(instance);
     }
-    if (!is_finite(s.c0) || !is_finite(s.c1) || !is_finite(s.c2) || !is_finite(s.scale)) {
-        report_error(host, kName, "reflectance spectrum has non-finite coefficients");
-        return nullptr;
+
+    void eval(const void* instance, const PatinaShadingContext*, PatinaVec3 wo, PatinaVec3 wi,
+              const PatinaWavelengths* wl, float* f)
+    {
+        const auto* lambert = static_cast<const Lambert*>(instance);
+        if (!same_hemisphere(wo, wi)) {
+            fill(0.0f, *wl, f);
+            return;
+        }
+        // Lambertian BRDF f = R / π: pbrt-v4 §9.2
+        store(eval_rgb(lambert->reflectance, *wl) * kInvPi, *wl, f);
     }
-    // An albedo above 1 would create energy; allow only float rounding
-    float lo = 0.0f, hi = 0.0f;
-    rgb_spectrum_range(s, &lo, &hi);
-    if (lo < 0.0f || hi > 1.0f + 1e-5f) {
-        report_error(host, kName,
-                     "reflectance spectrum ranges over [%g, %g] in 360-830 nm; it must stay "
-                     "within [0, 1]", lo, hi);
-        return nullptr;
+
+    float pdf(const void*, const PatinaShadingContext*, PatinaVec3 wo, PatinaVec3 wi,
+              const PatinaWavelengths*)
+    {
+        if (!same_hemisphere(wo, wi))
+            return 0.0f;
+        return cosine_hemisphere_pdf(abs_cos_theta(wi));
     }
-    return make_instance<Lambert>(host, kName, s);
-}
 
-void destroy(void* instance) { delete static_cast<Lambert*>(instance); }
-
-void eval(const void* instance, const PatinaShadingContext*, PatinaVec3 wo, PatinaVec3 wi,
-          const PatinaWavelengths* wl, float* f)
-{
-    const auto* lambert = static_cast<const Lambert*>(instance);
-    if (!same_hemisphere(wo, wi)) {
-        fill(0.0f, *wl, f);
-        return;
+    int sample(const void* instance, const PatinaShadingContext* ctx, PatinaVec3 wo,
+               float /*u_lobe*/, PatinaVec2 u, const PatinaWavelengths* wl, PatinaBsdfSample* out)
+    {
+        if (wo.z == 0.0f)
+            return 0;
+        // Cosine-weighted hemisphere on the side of wo
+        Vec3 wi = sample_cosine_hemisphere(u);
+        if (wo.z < 0.0f)
+            wi.z = -wi.z;
+        const float p = cosine_hemisphere_pdf(abs_cos_theta(wi));
+        if (p == 0.0f)
+            return 0;
+        out->wi = wi;
+        eval(instance, ctx, wo, wi, wl, out->f);
+        out->pdf = p;
+        out->lobe = PATINA_LOBE_REFLECTION | PATINA_LOBE_DIFFUSE;
+        out->eta = 1.0f;
+        return 1;
     }
-    // Lambertian BRDF f = R / π: pbrt-v4 §9.2
-    store(eval_rgb(lambert->reflectance, *wl) * kInvPi, *wl, f);
-}
 
-float pdf(const void*, const PatinaShadingContext*, PatinaVec3 wo, PatinaVec3 wi,
-          const PatinaWavelengths*)
-{
-    if (!same_hemisphere(wo, wi)) return 0.0f;
-    return cosine_hemisphere_pdf(abs_cos_theta(wi));
-}
+    void albedo(const void* instance, const PatinaShadingContext*, PatinaVec3,
+                const PatinaWavelengths* wl, float* a)
+    {
+        store(eval_rgb(static_cast<const Lambert*>(instance)->reflectance, *wl), *wl, a);
+    }
 
-int sample(const void* instance, const PatinaShadingContext* ctx, PatinaVec3 wo,
-           float /*u_lobe*/, PatinaVec2 u, const PatinaWavelengths* wl, PatinaBsdfSample* out)
-{
-    if (wo.z == 0.0f) return 0;
-    // Cosine-weighted hemisphere on the side of wo
-    Vec3 wi = sample_cosine_hemisphere(u);
-    if (wo.z < 0.0f) wi.z = -wi.z;
-    const float p = cosine_hemisphere_pdf(abs_cos_theta(wi));
-    if (p == 0.0f) return 0;
-    out->wi = wi;
-    eval(instance, ctx, wo, wi, wl, out->f);
-    out->pdf = p;
-    out->lobe = PATINA_LOBE_REFLECTION | PATINA_LOBE_DIFFUSE;
-    out->eta = 1.0f;
-    return 1;
-}
+    const PatinaBsdfFuncs kFuncs = {eval, pdf, sample, albedo};
 
-void albedo(const void* instance, const PatinaShadingContext*, PatinaVec3,
-            const PatinaWavelengths* wl, float* a)
-{
-    store(eval_rgb(static_cast<const Lambert*>(instance)->reflectance, *wl), *wl, a);
-}
-
-const PatinaBsdfFuncs kFuncs = {eval, pdf, sample, albedo};
-
-}  // namespace
+} // namespace
 
 PatinaShaderDesc lambert_shader()
 {
@@ -138,4 +148,4 @@ PatinaShaderDesc lambert_shader()
     return d;
 }
 
-}  // namespace patina::basic
+} // namespace patina::basic

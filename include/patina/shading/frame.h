@@ -28,15 +28,36 @@ namespace patina::shading {
 // Spherical coordinates in the local frame (pbrt-v4 §3.8.3, "Spherical Coordinates")
 // ---------------------------------------------------------------------------------------
 
-inline float cos_theta(Vec3 w) { return w.z; }
-inline float cos2_theta(Vec3 w) { return w.z * w.z; }
-inline float abs_cos_theta(Vec3 w) { return std::abs(w.z); }
-inline float sin2_theta(Vec3 w) { return std::max(0.0f, 1.0f - cos2_theta(w)); }
-inline float sin_theta(Vec3 w) { return std::sqrt(sin2_theta(w)); }
+inline float cos_theta(Vec3 w)
+{
+    return w.z;
+}
+inline float cos2_theta(Vec3 w)
+{
+    return w.z * w.z;
+}
+inline float abs_cos_theta(Vec3 w)
+{
+    return std::abs(w.z);
+}
+inline float sin2_theta(Vec3 w)
+{
+    return std::max(0.0f, 1.0f - cos2_theta(w));
+}
+inline float sin_theta(Vec3 w)
+{
+    return std::sqrt(sin2_theta(w));
+}
 /// tan θ; infinite at the horizon (cos θ = 0).
-inline float tan_theta(Vec3 w) { return sin_theta(w) / cos_theta(w); }
+inline float tan_theta(Vec3 w)
+{
+    return sin_theta(w) / cos_theta(w);
+}
 /// tan² θ; infinite at the horizon.
-inline float tan2_theta(Vec3 w) { return sin2_theta(w) / cos2_theta(w); }
+inline float tan2_theta(Vec3 w)
+{
+    return sin2_theta(w) / cos2_theta(w);
+}
 
 /// cos φ; 1 along the normal, where φ is undefined.
 inline float cos_phi(Vec3 w)
@@ -54,7 +75,10 @@ inline float sin_phi(Vec3 w)
 
 /// True when a and b lie strictly on the same side of the surface (a direction exactly in
 /// the tangent plane belongs to neither side).
-inline bool same_hemisphere(Vec3 a, Vec3 b) { return a.z * b.z > 0.0f; }
+inline bool same_hemisphere(Vec3 a, Vec3 b)
+{
+    return a.z * b.z > 0.0f;
+}
 
 /// Unit vector (sin θ cos φ, sin θ sin φ, cos θ).
 inline Vec3 spherical_direction(float sin_theta_, float cos_theta_, float phi)
@@ -90,11 +114,13 @@ inline bool refract(Vec3 wi, Vec3 n, float eta, float* etap, Vec3* wt)
     // Snell's law, sin θt = sin θi / η: pbrt-v4 §9.3 ("Snell's Law")
     const float sin2_theta_i = std::max(0.0f, 1.0f - sqr(cos_theta_i));
     const float sin2_theta_t = sin2_theta_i / sqr(eta);
-    if (sin2_theta_t >= 1.0f) return false;
+    if (sin2_theta_t >= 1.0f)
+        return false;
     const float cos_theta_t = safe_sqrt(1.0f - sin2_theta_t);
     // Transmitted direction wt = −wi/η + (cos θi/η − cos θt) n: pbrt-v4 §9.3 ("Snell's Law")
     *wt = -wi / eta + (cos_theta_i / eta - cos_theta_t) * n;
-    if (etap) *etap = eta;
+    if (etap)
+        *etap = eta;
     return true;
 }
 
@@ -120,7 +146,8 @@ struct Frame {
     static Frame from_xz(Vec3 t, Vec3 n)
     {
         const Vec3 x = normalize(t - dot(t, n) * n);
-        if (length_squared(x) == 0.0f) return from_z(n);
+        if (length_squared(x) == 0.0f)
+            return from_z(n);
         Frame f;
         f.z = n;
         f.x = x;
@@ -132,4 +159,4 @@ struct Frame {
     Vec3 from_local(Vec3 v) const { return v.x * x + v.y * y + v.z * z; }
 };
 
-}  // namespace patina::shading
+} // namespace patina::shading

@@ -39,7 +39,8 @@ inline float fresnel_dielectric(float cos_theta_i, float eta)
     // Snell's law for cos θt; total internal reflection when sin θt >= 1: pbrt-v4 §9.3
     const float sin2_theta_i = 1.0f - sqr(cos_theta_i);
     const float sin2_theta_t = sin2_theta_i / sqr(eta);
-    if (sin2_theta_t >= 1.0f) return 1.0f;
+    if (sin2_theta_t >= 1.0f)
+        return 1.0f;
     const float cos_theta_t = safe_sqrt(1.0f - sin2_theta_t);
     // Fresnel equations for r∥ and r⊥: Born & Wolf, Principles of Optics, 7th ed., §1.5.2
     // ("Fresnel formulae"), written with relative index η as in pbrt-v4 §9.3
@@ -62,7 +63,8 @@ inline float fresnel_conductor(float cos_theta_i, float eta, float k)
     using Complex = std::complex<double>;
     const double cos_i = std::min(1.0, std::abs(static_cast<double>(cos_theta_i)));
     const Complex n(eta, k);
-    if (n == Complex(0.0, 0.0)) return 1.0f;  // infinite optical density mirrors everything
+    if (n == Complex(0.0, 0.0))
+        return 1.0f; // infinite optical density mirrors everything
     // Complex Snell's law, cos θt = sqrt(1 − sin²θi / η²) on the principal branch:
     // pbrt-v4 §9.3 ("The Fresnel Equations for Conductors")
     const double sin2_i = 1.0 - cos_i * cos_i;
@@ -73,7 +75,8 @@ inline float fresnel_conductor(float cos_theta_i, float eta, float k)
     const Complex r_perp = (cos_i - n * cos_t) / (cos_i + n * cos_t);
     const double r = 0.5 * (std::norm(r_parl) + std::norm(r_perp));
     // r is in [0, 1] in exact arithmetic; 0/0 at grazing incidence on a vacuum-like metal
-    if (!std::isfinite(r)) return 1.0f;
+    if (!std::isfinite(r))
+        return 1.0f;
     return static_cast<float>(std::clamp(r, 0.0, 1.0));
 }
 
@@ -86,4 +89,4 @@ inline float fresnel_conductor_normal(float eta, float k)
     return den > 0.0 ? static_cast<float>((sqr(e - 1.0) + sqr(kk)) / den) : 1.0f;
 }
 
-}  // namespace patina::shading
+} // namespace patina::shading

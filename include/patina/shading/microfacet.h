@@ -56,72 +56,77 @@ namespace patina::shading {
 
 namespace detail {
 
-inline constexpr double kSqrtPi = 1.77245385090551602730;
-inline constexpr double kInvSqrtPi = 0.56418958354775628695;
+    inline constexpr double kSqrtPi = 1.77245385090551602730;
+    inline constexpr double kInvSqrtPi = 0.56418958354775628695;
 
-/// Inverse error function on (-1, 1), to double precision; ±infinity at ±1.
-inline double erfinv(double x)
-{
-    if (!(x > -1.0)) return -std::numeric_limits<double>::infinity();
-    if (!(x < 1.0)) return std::numeric_limits<double>::infinity();
-    // Starting value: Giles 2010, "Approximating the erfinv function", GPU Computing Gems,
-    // single-precision polynomial (relative error < 4e-7)
-    double w = -std::log((1.0 - x) * (1.0 + x));
-    double p;
-    if (w < 5.0) {
-        w -= 2.5;
-        p = 2.81022636e-08;
-        p = 3.43273939e-07 + p * w;
-        p = -3.5233877e-06 + p * w;
-        p = -4.39150654e-06 + p * w;
-        p = 0.00021858087 + p * w;
-        p = -0.00125372503 + p * w;
-        p = -0.00417768164 + p * w;
-        p = 0.246640727 + p * w;
-        p = 1.50140941 + p * w;
-    } else {
-        w = std::sqrt(w) - 3.0;
-        p = -0.000200214257;
-        p = 0.000100950558 + p * w;
-        p = 0.00134934322 + p * w;
-        p = -0.00367342844 + p * w;
-        p = 0.00573950773 + p * w;
-        p = -0.0076224613 + p * w;
-        p = 0.00943887047 + p * w;
-        p = 1.00167406 + p * w;
-        p = 2.83297682 + p * w;
+    /// Inverse error function on (-1, 1), to double precision; ±infinity at ±1.
+    inline double erfinv(double x)
+    {
+        if (!(x > -1.0))
+            return -std::numeric_limits<double>::infinity();
+        if (!(x < 1.0))
+            return std::numeric_limits<double>::infinity();
+        // Starting value: Giles 2010, "Approximating the erfinv function", GPU Computing Gems,
+        // single-precision polynomial (relative error < 4e-7)
+        double w = -std::log((1.0 - x) * (1.0 + x));
+        double p;
+        if (w < 5.0) {
+            w -= 2.5;
+            p = 2.81022636e-08;
+            p = 3.43273939e-07 + p * w;
+            p = -3.5233877e-06 + p * w;
+            p = -4.39150654e-06 + p * w;
+            p = 0.00021858087 + p * w;
+            p = -0.00125372503 + p * w;
+            p = -0.00417768164 + p * w;
+            p = 0.246640727 + p * w;
+            p = 1.50140941 + p * w;
+        } else {
+            w = std::sqrt(w) - 3.0;
+            p = -0.000200214257;
+            p = 0.000100950558 + p * w;
+            p = 0.00134934322 + p * w;
+            p = -0.00367342844 + p * w;
+            p = 0.00573950773 + p * w;
+            p = -0.0076224613 + p * w;
+            p = 0.00943887047 + p * w;
+            p = 1.00167406 + p * w;
+            p = 2.83297682 + p * w;
+        }
+        double y = p * x;
+        // Two Newton steps on erf(y) = x, erf'(y) = 2/√π exp(−y²), reach double precision
+        for (int i = 0; i < 2; ++i) {
+            const double slope = 2.0 * kInvSqrtPi * std::exp(-y * y);
+            if (!(slope > 0.0))
+                break;
+            y -= (std::erf(y) - x) / slope;
+        }
+        return y;
     }
-    double y = p * x;
-    // Two Newton steps on erf(y) = x, erf'(y) = 2/√π exp(−y²), reach double precision
-    for (int i = 0; i < 2; ++i) {
-        const double slope = 2.0 * kInvSqrtPi * std::exp(-y * y);
-        if (!(slope > 0.0)) break;
-        y -= (std::erf(y) - x) / slope;
+
+    /// Unit normal of the microsurface with slopes (sx, sy): m ∝ (−sx, −sy, 1).
+    inline Vec3 slope_to_normal(double sx, double sy)
+    {
+        const double inv = 1.0 / std::sqrt(sx * sx + sy * sy + 1.0);
+        return Vec3(static_cast<float>(-sx * inv), static_cast<float>(-sy * inv),
+                    static_cast<float>(inv));
     }
-    return y;
-}
 
-/// Unit normal of the microsurface with slopes (sx, sy): m ∝ (−sx, −sy, 1).
-inline Vec3 slope_to_normal(double sx, double sy)
-{
-    const double inv = 1.0 / std::sqrt(sx * sx + sy * sy + 1.0);
-    return Vec3(static_cast<float>(-sx * inv), static_cast<float>(-sy * inv),
-                static_cast<float>(inv));
-}
+    /// D_w(wm) of any distribution with d() and g1(); w is flipped above the surface first, so
+    /// only normals facing it (w'·wm > 0) are visible.
+    template <typename Distribution>
+    float d_visible(const Distribution& distribution, Vec3 w, Vec3 wm)
+    {
+        const float cos_w = std::abs(w.z);
+        if (cos_w == 0.0f)
+            return 0.0f;
+        const float w_dot_wm = w.z < 0.0f ? -dot(w, wm) : dot(w, wm);
+        if (w_dot_wm <= 0.0f)
+            return 0.0f;
+        return distribution.g1(w) / cos_w * distribution.d(wm) * w_dot_wm;
+    }
 
-/// D_w(wm) of any distribution with d() and g1(); w is flipped above the surface first, so
-/// only normals facing it (w'·wm > 0) are visible.
-template <typename Distribution>
-float d_visible(const Distribution& distribution, Vec3 w, Vec3 wm)
-{
-    const float cos_w = std::abs(w.z);
-    if (cos_w == 0.0f) return 0.0f;
-    const float w_dot_wm = w.z < 0.0f ? -dot(w, wm) : dot(w, wm);
-    if (w_dot_wm <= 0.0f) return 0.0f;
-    return distribution.g1(w) / cos_w * distribution.d(wm) * w_dot_wm;
-}
-
-}  // namespace detail
+} // namespace detail
 
 // ---------------------------------------------------------------------------------------
 // Trowbridge-Reitz (GGX)
@@ -146,7 +151,8 @@ public:
     /// D(wm), zero below the surface.
     float d(Vec3 wm) const
     {
-        if (wm.z <= 0.0f) return 0.0f;
+        if (wm.z <= 0.0f)
+            return 0.0f;
         // Anisotropic GGX, D = 1 / (π αx αy (x²/αx² + y²/αy² + z²)²), the vector form of
         // Walter et al. 2007 Eq. 33, made anisotropic as in Heitz 2014
         // ("Anisotropic distributions")
@@ -161,7 +167,8 @@ public:
         // α(φ)² tan²θ = (αx² x² + αy² y²) / z²
         const float z2 = sqr(w.z);
         const float a2_tan2 = (sqr(alpha_x_ * w.x) + sqr(alpha_y_ * w.y)) / z2;
-        if (!is_finite(a2_tan2)) return std::numeric_limits<float>::infinity();
+        if (!is_finite(a2_tan2))
+            return std::numeric_limits<float>::infinity();
         // GGX Λ = (−1 + sqrt(1 + α² tan²θ)) / 2: Heitz 2014 (Λ of GGX, anisotropic α(φ)); as
         // x / (2 (1 + sqrt(1 + x))) to keep precision when α tan θ is tiny
         return a2_tan2 / (2.0f * (1.0f + std::sqrt(1.0f + a2_tan2)));
@@ -187,11 +194,12 @@ public:
     {
         // Transform w to the hemispherical configuration (unit roughness): Heitz 2018, Listing 1
         Vec3 wh = normalize(Vec3(alpha_x_ * w.x, alpha_y_ * w.y, w.z));
-        if (wh.z < 0.0f) wh = -wh;
+        if (wh.z < 0.0f)
+            wh = -wh;
         // Orthonormal basis (T1, T2, wh) around the stretched direction
         const float lensq = sqr(wh.x) + sqr(wh.y);
-        const Vec3 t1 = lensq > 0.0f ? Vec3(-wh.y, wh.x, 0.0f) / std::sqrt(lensq)
-                                     : Vec3(1.0f, 0.0f, 0.0f);
+        const Vec3 t1 =
+            lensq > 0.0f ? Vec3(-wh.y, wh.x, 0.0f) / std::sqrt(lensq) : Vec3(1.0f, 0.0f, 0.0f);
         const Vec3 t2 = cross(wh, t1);
         // Uniform point on the disk, warped onto the projected visible hemisphere
         const Vec2 p = sample_uniform_disk_polar(u);
@@ -230,13 +238,15 @@ public:
     /// D(wm), zero below the surface.
     float d(Vec3 wm) const
     {
-        if (wm.z <= 0.0f) return 0.0f;
+        if (wm.z <= 0.0f)
+            return 0.0f;
         // Anisotropic Beckmann, D = exp(−(x²/αx² + y²/αy²)/z²) / (π αx αy z⁴):
         // Walter et al. 2007 Eq. 25, made anisotropic as in Heitz 2014
         // ("Anisotropic distributions")
         const double z2 = static_cast<double>(wm.z) * wm.z;
         const double e = (sqr(static_cast<double>(wm.x) / alpha_x_) +
-                          sqr(static_cast<double>(wm.y) / alpha_y_)) / z2;
+                          sqr(static_cast<double>(wm.y) / alpha_y_)) /
+                         z2;
         const double v = std::exp(-e) / (static_cast<double>(kPi) * alpha_x_ * alpha_y_ * z2 * z2);
         return std::isfinite(v) ? static_cast<float>(v) : 0.0f;
     }
@@ -248,8 +258,10 @@ public:
         const double t = std::sqrt(sqr(static_cast<double>(alpha_x_) * w.x) +
                                    sqr(static_cast<double>(alpha_y_) * w.y));
         const double z = std::abs(static_cast<double>(w.z));
-        if (t == 0.0) return 0.0f;
-        if (z == 0.0) return std::numeric_limits<float>::infinity();
+        if (t == 0.0)
+            return 0.0f;
+        if (z == 0.0)
+            return std::numeric_limits<float>::infinity();
         const double a = z / t;
         // Beckmann Λ(a) = (erf(a) − 1)/2 + exp(−a²) / (2 a √π): Walter et al. 2007 Eq. 27,
         // Heitz 2014 (Λ of Beckmann); erfc avoids cancelling 1 − erf(a) for large a
@@ -280,7 +292,8 @@ public:
         // (stretch, sample slopes, rotate, unstretch)
         const Vec3 wf = w.z < 0.0f ? -w : w;
         Vec3 ws = normalize(Vec3(alpha_x_ * wf.x, alpha_y_ * wf.y, wf.z));
-        if (length_squared(ws) == 0.0f) ws = Vec3(0.0f, 0.0f, 1.0f);
+        if (length_squared(ws) == 0.0f)
+            ws = Vec3(0.0f, 0.0f, 1.0f);
         const double wsx = ws.x, wsy = ws.y;
         const double sin_theta = std::sqrt(wsx * wsx + wsy * wsy);
         const double cos_phi = sin_theta > 0.0 ? wsx / sin_theta : 1.0;
@@ -337,25 +350,32 @@ private:
         const double normalization =
             1.0 / (1.0 + hi + detail::kInvSqrtPi * tan_theta_i * std::exp(-sqr(cot_theta_i)));
         for (int it = 0; it < 64; ++it) {
-            if (!(b >= lo && b <= hi)) b = 0.5 * (lo + hi);
+            if (!(b >= lo && b <= hi))
+                b = 0.5 * (lo + hi);
             const double x = detail::erfinv(b);
             const double cdf =
                 normalization * (1.0 + b + detail::kInvSqrtPi * tan_theta_i * std::exp(-x * x));
             const double value = cdf - ux;
             const double derivative = normalization * (1.0 - x * tan_theta_i);
-            if (std::abs(value) < 1e-10) break;
-            if (value > 0.0) hi = b; else lo = b;
+            if (std::abs(value) < 1e-10)
+                break;
+            if (value > 0.0)
+                hi = b;
+            else
+                lo = b;
             b -= value / derivative;
         }
         *sx = detail::erfinv(b);
         // The y slope is independent of the incidence: a Gaussian
         *sy = detail::erfinv(2.0 * uy - 1.0);
-        if (!std::isfinite(*sx)) *sx = 0.0;
-        if (!std::isfinite(*sy)) *sy = 0.0;
+        if (!std::isfinite(*sx))
+            *sx = 0.0;
+        if (!std::isfinite(*sy))
+            *sy = 0.0;
     }
 
     float alpha_x_ = 1.0f;
     float alpha_y_ = 1.0f;
 };
 
-}  // namespace patina::shading
+} // namespace patina::shading

@@ -22,7 +22,8 @@ inline Vec2 sample_uniform_disk_concentric(Vec2 u)
     // Concentric map: Shirley & Chiu 1997, "A Low Distortion Map Between Disk and Square",
     // J. Graphics Tools 2(3), §3 (pbrt-v4 §A.5.1)
     const Vec2 uo(2.0f * u.x - 1.0f, 2.0f * u.y - 1.0f);
-    if (uo.x == 0.0f && uo.y == 0.0f) return {};
+    if (uo.x == 0.0f && uo.y == 0.0f)
+        return {};
     float r, theta;
     if (std::abs(uo.x) > std::abs(uo.y)) {
         r = uo.x;
@@ -44,7 +45,10 @@ inline Vec2 sample_uniform_disk_polar(Vec2 u)
 }
 
 /// Density of the uniform disk warps, per unit area: 1/π.
-inline constexpr float uniform_disk_pdf() { return kInvPi; }
+inline constexpr float uniform_disk_pdf()
+{
+    return kInvPi;
+}
 
 /// Direction in the +z hemisphere with density cos θ / π (Malley's method).
 inline Vec3 sample_cosine_hemisphere(Vec2 u)
@@ -73,7 +77,10 @@ inline Vec3 sample_uniform_hemisphere(Vec2 u)
 }
 
 /// Solid-angle density of sample_uniform_hemisphere: 1/(2π).
-inline constexpr float uniform_hemisphere_pdf() { return kInv2Pi; }
+inline constexpr float uniform_hemisphere_pdf()
+{
+    return kInv2Pi;
+}
 
 /// Direction on the whole unit sphere, uniform in solid angle.
 inline Vec3 sample_uniform_sphere(Vec2 u)
@@ -86,6 +93,9 @@ inline Vec3 sample_uniform_sphere(Vec2 u)
 }
 
 /// Solid-angle density of sample_uniform_sphere: 1/(4π).
-inline constexpr float uniform_sphere_pdf() { return kInv4Pi; }
+inline constexpr float uniform_sphere_pdf()
+{
+    return kInv4Pi;
+}
 
-}  // namespace patina::shading
+} // namespace patina::shading

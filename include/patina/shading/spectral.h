@@ -39,11 +39,11 @@ inline int wavelength_count(const PatinaWavelengths& wl)
 }
 
 /// Calls f(i, lambda_nm) for i in [0, wavelength_count(wl)).
-template <typename F>
-void for_each_wavelength(const PatinaWavelengths& wl, F&& f)
+template <typename F> void for_each_wavelength(const PatinaWavelengths& wl, F&& f)
 {
     const int n = wavelength_count(wl);
-    for (int i = 0; i < n; ++i) f(i, wl.lambda_nm[i]);
+    for (int i = 0; i < n; ++i)
+        f(i, wl.lambda_nm[i]);
 }
 
 /// One value per wavelength of a path; all PATINA_MAX_WAVELENGTHS entries are always
@@ -54,7 +54,8 @@ struct SpectralArray {
     constexpr SpectralArray() = default;
     explicit constexpr SpectralArray(float c)
     {
-        for (float& x : v) x = c;
+        for (float& x : v)
+            x = c;
     }
 
     constexpr float& operator[](int i) { return v[i]; }
@@ -62,47 +63,63 @@ struct SpectralArray {
 
     constexpr SpectralArray& operator+=(const SpectralArray& b)
     {
-        for (int i = 0; i < PATINA_MAX_WAVELENGTHS; ++i) v[i] += b.v[i];
+        for (int i = 0; i < PATINA_MAX_WAVELENGTHS; ++i)
+            v[i] += b.v[i];
         return *this;
     }
     constexpr SpectralArray& operator*=(const SpectralArray& b)
     {
-        for (int i = 0; i < PATINA_MAX_WAVELENGTHS; ++i) v[i] *= b.v[i];
+        for (int i = 0; i < PATINA_MAX_WAVELENGTHS; ++i)
+            v[i] *= b.v[i];
         return *this;
     }
     constexpr SpectralArray& operator*=(float s)
     {
-        for (float& x : v) x *= s;
+        for (float& x : v)
+            x *= s;
         return *this;
     }
 };
 
-constexpr SpectralArray operator+(SpectralArray a, const SpectralArray& b) { return a += b; }
-constexpr SpectralArray operator*(SpectralArray a, const SpectralArray& b) { return a *= b; }
-constexpr SpectralArray operator*(SpectralArray a, float s) { return a *= s; }
-constexpr SpectralArray operator*(float s, SpectralArray a) { return a *= s; }
+constexpr SpectralArray operator+(SpectralArray a, const SpectralArray& b)
+{
+    return a += b;
+}
+constexpr SpectralArray operator*(SpectralArray a, const SpectralArray& b)
+{
+    return a *= b;
+}
+constexpr SpectralArray operator*(SpectralArray a, float s)
+{
+    return a *= s;
+}
+constexpr SpectralArray operator*(float s, SpectralArray a)
+{
+    return a *= s;
+}
 
 /// Copies the first wavelength_count(wl) values of a to out (an ABI output array).
 inline void store(const SpectralArray& a, const PatinaWavelengths& wl, float* out)
 {
     const int n = wavelength_count(wl);
-    for (int i = 0; i < n; ++i) out[i] = a.v[i];
+    for (int i = 0; i < n; ++i)
+        out[i] = a.v[i];
 }
 
 /// Writes `value` to the first wavelength_count(wl) entries of out.
 inline void fill(float value, const PatinaWavelengths& wl, float* out)
 {
     const int n = wavelength_count(wl);
-    for (int i = 0; i < n; ++i) out[i] = value;
+    for (int i = 0; i < n; ++i)
+        out[i] = value;
 }
 
 /// A reflectance PatinaRgbSpectrum (illuminant == 0) at the path's wavelengths.
 inline SpectralArray eval_rgb(const PatinaRgbSpectrum& s, const PatinaWavelengths& wl)
 {
     SpectralArray a;
-    for_each_wavelength(wl, [&](int i, float lambda) {
-        a.v[i] = patina_rgb_spectrum_eval(&s, lambda);
-    });
+    for_each_wavelength(
+        wl, [&](int i, float lambda) { a.v[i] = patina_rgb_spectrum_eval(&s, lambda); });
     return a;
 }
 
@@ -110,9 +127,8 @@ inline SpectralArray eval_rgb(const PatinaRgbSpectrum& s, const PatinaWavelength
 inline SpectralArray eval_tabulated(const PatinaTabulatedSpectrum& s, const PatinaWavelengths& wl)
 {
     SpectralArray a;
-    for_each_wavelength(wl, [&](int i, float lambda) {
-        a.v[i] = patina_tabulated_eval(&s, lambda);
-    });
+    for_each_wavelength(wl,
+                        [&](int i, float lambda) { a.v[i] = patina_tabulated_eval(&s, lambda); });
     return a;
 }
 
@@ -120,10 +136,13 @@ inline SpectralArray eval_tabulated(const PatinaTabulatedSpectrum& s, const Pati
 /// wavelengths not strictly increasing), or nullptr when it is usable.
 inline const char* check_tabulated(const PatinaTabulatedSpectrum& s)
 {
-    if (s.count < 1) return "the spectrum has no entries";
-    if (!s.value || (s.count > 1 && !s.lambda_nm)) return "the spectrum's arrays are missing";
+    if (s.count < 1)
+        return "the spectrum has no entries";
+    if (!s.value || (s.count > 1 && !s.lambda_nm))
+        return "the spectrum's arrays are missing";
     for (int i = 0; i < s.count; ++i) {
-        if (!is_finite(s.value[i])) return "the spectrum has a value that is not a finite number";
+        if (!is_finite(s.value[i]))
+            return "the spectrum has a value that is not a finite number";
         if (s.count > 1 && !is_finite(s.lambda_nm[i]))
             return "the spectrum has a wavelength that is not a finite number";
         if (i > 0 && !(s.lambda_nm[i] > s.lambda_nm[i - 1]))
@@ -141,8 +160,10 @@ public:
     explicit TabulatedSpectrum(const PatinaTabulatedSpectrum& s)
         : value_(s.value, s.value + s.count)
     {
-        if (s.count > 1) lambda_.assign(s.lambda_nm, s.lambda_nm + s.count);
-        else lambda_.assign(1, 0.0f);
+        if (s.count > 1)
+            lambda_.assign(s.lambda_nm, s.lambda_nm + s.count);
+        else
+            lambda_.assign(1, 0.0f);
     }
 
     /// The ABI view of the copy (valid while this object lives).
@@ -184,10 +205,11 @@ inline void rgb_spectrum_range(const PatinaRgbSpectrum& s, float* min_value, flo
     include(lambda_max_nm);
     if (s.c0 != 0.0f) {
         const float vertex = -s.c1 / (2.0f * s.c0);
-        if (vertex > lambda_min_nm && vertex < lambda_max_nm) include(vertex);
+        if (vertex > lambda_min_nm && vertex < lambda_max_nm)
+            include(vertex);
     }
     *min_value = lo;
     *max_value = hi;
 }
 
-}  // namespace patina::shading
+} // namespace patina::shading

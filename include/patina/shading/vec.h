@@ -37,22 +37,36 @@ inline constexpr float kInv2Pi = 0.15915494309189533577f;
 inline constexpr float kInv4Pi = 0.07957747154594766788f;
 
 /// x * x.
-template <typename T>
-constexpr T sqr(T x)
+template <typename T> constexpr T sqr(T x)
 {
     return x * x;
 }
 
 /// sqrt(max(x, 0)): no NaN for a value that rounding pushed slightly below zero.
-inline float safe_sqrt(float x) { return std::sqrt(std::max(x, 0.0f)); }
-inline double safe_sqrt(double x) { return std::sqrt(std::max(x, 0.0)); }
+inline float safe_sqrt(float x)
+{
+    return std::sqrt(std::max(x, 0.0f));
+}
+inline double safe_sqrt(double x)
+{
+    return std::sqrt(std::max(x, 0.0));
+}
 
 /// acos / asin with the argument clamped to [-1, 1].
-inline float safe_acos(float x) { return std::acos(std::clamp(x, -1.0f, 1.0f)); }
-inline float safe_asin(float x) { return std::asin(std::clamp(x, -1.0f, 1.0f)); }
+inline float safe_acos(float x)
+{
+    return std::acos(std::clamp(x, -1.0f, 1.0f));
+}
+inline float safe_asin(float x)
+{
+    return std::asin(std::clamp(x, -1.0f, 1.0f));
+}
 
 /// True when x is neither NaN nor infinite.
-inline bool is_finite(float x) { return std::isfinite(x); }
+inline bool is_finite(float x)
+{
+    return std::isfinite(x);
+}
 
 // ---------------------------------------------------------------------------------------
 // Vec2
@@ -63,24 +77,63 @@ struct Vec2 {
 
     constexpr Vec2() = default;
     constexpr Vec2(float x_, float y_) : x(x_), y(y_) {}
-    constexpr Vec2(PatinaVec2 v) : x(v.x), y(v.y) {}  // NOLINT: implicit by design
+    constexpr Vec2(PatinaVec2 v) : x(v.x), y(v.y) {} // NOLINT: implicit by design
     constexpr operator PatinaVec2() const { return {x, y}; }
 
     constexpr float operator[](int i) const { return i == 0 ? x : y; }
     constexpr Vec2 operator-() const { return {-x, -y}; }
-    constexpr Vec2& operator+=(Vec2 b) { x += b.x; y += b.y; return *this; }
-    constexpr Vec2& operator-=(Vec2 b) { x -= b.x; y -= b.y; return *this; }
-    constexpr Vec2& operator*=(float s) { x *= s; y *= s; return *this; }
+    constexpr Vec2& operator+=(Vec2 b)
+    {
+        x += b.x;
+        y += b.y;
+        return *this;
+    }
+    constexpr Vec2& operator-=(Vec2 b)
+    {
+        x -= b.x;
+        y -= b.y;
+        return *this;
+    }
+    constexpr Vec2& operator*=(float s)
+    {
+        x *= s;
+        y *= s;
+        return *this;
+    }
 };
 
-constexpr Vec2 operator+(Vec2 a, Vec2 b) { return {a.x + b.x, a.y + b.y}; }
-constexpr Vec2 operator-(Vec2 a, Vec2 b) { return {a.x - b.x, a.y - b.y}; }
-constexpr Vec2 operator*(Vec2 a, float s) { return {a.x * s, a.y * s}; }
-constexpr Vec2 operator*(float s, Vec2 a) { return {a.x * s, a.y * s}; }
-constexpr Vec2 operator/(Vec2 a, float s) { return {a.x / s, a.y / s}; }
-constexpr float dot(Vec2 a, Vec2 b) { return a.x * b.x + a.y * b.y; }
-constexpr float length_squared(Vec2 a) { return dot(a, a); }
-inline float length(Vec2 a) { return std::sqrt(length_squared(a)); }
+constexpr Vec2 operator+(Vec2 a, Vec2 b)
+{
+    return {a.x + b.x, a.y + b.y};
+}
+constexpr Vec2 operator-(Vec2 a, Vec2 b)
+{
+    return {a.x - b.x, a.y - b.y};
+}
+constexpr Vec2 operator*(Vec2 a, float s)
+{
+    return {a.x * s, a.y * s};
+}
+constexpr Vec2 operator*(float s, Vec2 a)
+{
+    return {a.x * s, a.y * s};
+}
+constexpr Vec2 operator/(Vec2 a, float s)
+{
+    return {a.x / s, a.y / s};
+}
+constexpr float dot(Vec2 a, Vec2 b)
+{
+    return a.x * b.x + a.y * b.y;
+}
+constexpr float length_squared(Vec2 a)
+{
+    return dot(a, a);
+}
+inline float length(Vec2 a)
+{
+    return std::sqrt(length_squared(a));
+}
 
 // ---------------------------------------------------------------------------------------
 // Vec3
@@ -91,32 +144,86 @@ struct Vec3 {
 
     constexpr Vec3() = default;
     constexpr Vec3(float x_, float y_, float z_) : x(x_), y(y_), z(z_) {}
-    constexpr Vec3(PatinaVec3 v) : x(v.x), y(v.y), z(v.z) {}  // NOLINT: implicit by design
+    constexpr Vec3(PatinaVec3 v) : x(v.x), y(v.y), z(v.z) {} // NOLINT: implicit by design
     constexpr operator PatinaVec3() const { return {x, y, z}; }
 
     constexpr float operator[](int i) const { return i == 0 ? x : (i == 1 ? y : z); }
     constexpr Vec3 operator-() const { return {-x, -y, -z}; }
-    constexpr Vec3& operator+=(Vec3 b) { x += b.x; y += b.y; z += b.z; return *this; }
-    constexpr Vec3& operator-=(Vec3 b) { x -= b.x; y -= b.y; z -= b.z; return *this; }
-    constexpr Vec3& operator*=(float s) { x *= s; y *= s; z *= s; return *this; }
-    constexpr Vec3& operator/=(float s) { x /= s; y /= s; z /= s; return *this; }
+    constexpr Vec3& operator+=(Vec3 b)
+    {
+        x += b.x;
+        y += b.y;
+        z += b.z;
+        return *this;
+    }
+    constexpr Vec3& operator-=(Vec3 b)
+    {
+        x -= b.x;
+        y -= b.y;
+        z -= b.z;
+        return *this;
+    }
+    constexpr Vec3& operator*=(float s)
+    {
+        x *= s;
+        y *= s;
+        z *= s;
+        return *this;
+    }
+    constexpr Vec3& operator/=(float s)
+    {
+        x /= s;
+        y /= s;
+        z /= s;
+        return *this;
+    }
 };
 
-constexpr Vec3 operator+(Vec3 a, Vec3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-constexpr Vec3 operator-(Vec3 a, Vec3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-constexpr Vec3 operator*(Vec3 a, float s) { return {a.x * s, a.y * s, a.z * s}; }
-constexpr Vec3 operator*(float s, Vec3 a) { return {a.x * s, a.y * s, a.z * s}; }
-constexpr Vec3 operator/(Vec3 a, float s) { return {a.x / s, a.y / s, a.z / s}; }
-constexpr bool operator==(Vec3 a, Vec3 b) { return a.x == b.x && a.y == b.y && a.z == b.z; }
+constexpr Vec3 operator+(Vec3 a, Vec3 b)
+{
+    return {a.x + b.x, a.y + b.y, a.z + b.z};
+}
+constexpr Vec3 operator-(Vec3 a, Vec3 b)
+{
+    return {a.x - b.x, a.y - b.y, a.z - b.z};
+}
+constexpr Vec3 operator*(Vec3 a, float s)
+{
+    return {a.x * s, a.y * s, a.z * s};
+}
+constexpr Vec3 operator*(float s, Vec3 a)
+{
+    return {a.x * s, a.y * s, a.z * s};
+}
+constexpr Vec3 operator/(Vec3 a, float s)
+{
+    return {a.x / s, a.y / s, a.z / s};
+}
+constexpr bool operator==(Vec3 a, Vec3 b)
+{
+    return a.x == b.x && a.y == b.y && a.z == b.z;
+}
 
-constexpr float dot(Vec3 a, Vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-inline float abs_dot(Vec3 a, Vec3 b) { return std::abs(dot(a, b)); }
+constexpr float dot(Vec3 a, Vec3 b)
+{
+    return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+inline float abs_dot(Vec3 a, Vec3 b)
+{
+    return std::abs(dot(a, b));
+}
 constexpr Vec3 cross(Vec3 a, Vec3 b)
 {
     return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
-constexpr float length_squared(Vec3 a) { return dot(a, a); }
-inline float length(Vec3 a) { return std::sqrt(length_squared(a)); }
+constexpr float length_squared(Vec3 a)
+{
+    return dot(a, a);
+}
+inline float length(Vec3 a)
+{
+    return std::sqrt(length_squared(a));
+}
 
 /// a / |a|; the zero vector stays zero (never NaN).
 inline Vec3 normalize(Vec3 a)
@@ -126,10 +233,16 @@ inline Vec3 normalize(Vec3 a)
 }
 
 /// v flipped, if needed, onto the side of n: dot(result, n) >= 0.
-constexpr Vec3 face_forward(Vec3 v, Vec3 n) { return dot(v, n) < 0.0f ? -v : v; }
+constexpr Vec3 face_forward(Vec3 v, Vec3 n)
+{
+    return dot(v, n) < 0.0f ? -v : v;
+}
 
 /// True when every component is finite.
-inline bool is_finite(Vec3 a) { return is_finite(a.x) && is_finite(a.y) && is_finite(a.z); }
+inline bool is_finite(Vec3 a)
+{
+    return is_finite(a.x) && is_finite(a.y) && is_finite(a.z);
+}
 
 /// Two unit vectors b1, b2 completing the unit vector n to a right-handed orthonormal basis
 /// (b1, b2, n), continuous everywhere except across n.z = 0's sign change.
@@ -144,4 +257,4 @@ inline void coordinate_system(Vec3 n, Vec3* b1, Vec3* b2)
     *b2 = Vec3(b, sign + n.y * n.y * a, -n.y);
 }
 
-}  // namespace patina::shading
+} // namespace patina::shading

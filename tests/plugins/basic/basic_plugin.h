@@ -57,7 +57,8 @@ inline const LoadedPlugin& basic_plugin()
             return p;
         }
         p.info = entry(&test_host());
-        if (!p.info) p.error = "patina_plugin_entry returned NULL";
+        if (!p.info)
+            p.error = "patina_plugin_entry returned NULL";
         return p;
     }();
     return plugin;
@@ -67,9 +68,11 @@ inline const LoadedPlugin& basic_plugin()
 inline const PatinaShaderDesc& shader(const char* name)
 {
     const LoadedPlugin& p = basic_plugin();
-    if (!p.info) throw std::runtime_error("basic plugin not loaded: " + p.error);
+    if (!p.info)
+        throw std::runtime_error("basic plugin not loaded: " + p.error);
     for (int i = 0; i < p.info->shader_count; ++i)
-        if (std::strcmp(p.info->shaders[i].name, name) == 0) return p.info->shaders[i];
+        if (std::strcmp(p.info->shaders[i].name, name) == 0)
+            return p.info->shaders[i];
     throw std::runtime_error(std::string("no shader named ") + name);
 }
 
@@ -84,7 +87,9 @@ public:
             v = PatinaParamValue{};
             v.type = d.type;
             switch (d.type) {
-            case PATINA_PARAM_FLOAT: v.f = d.default_value[0]; break;
+            case PATINA_PARAM_FLOAT:
+                v.f = d.default_value[0];
+                break;
             case PATINA_PARAM_INT:
             case PATINA_PARAM_BOOL:
                 v.i = static_cast<int>(d.default_value[0]);
@@ -100,7 +105,9 @@ public:
                     set_spectrum_at(i, {0.0f}, {d.default_value[0]});
                 break;
             case PATINA_PARAM_STRING:
-            case PATINA_PARAM_TEXTURE: v.s = d.default_string ? d.default_string : ""; break;
+            case PATINA_PARAM_TEXTURE:
+                v.s = d.default_string ? d.default_string : "";
+                break;
             }
         }
     }
@@ -150,7 +157,8 @@ private:
     int index(const char* name) const
     {
         for (int i = 0; i < desc_->param_count; ++i)
-            if (std::strcmp(desc_->params[i].name, name) == 0) return i;
+            if (std::strcmp(desc_->params[i].name, name) == 0)
+                return i;
         throw std::runtime_error(std::string("no parameter named ") + name);
     }
     void set_color_at(int i, float r, float g, float b)
@@ -186,7 +194,8 @@ public:
     }
     ~Instance()
     {
-        if (instance_) desc_->destroy(instance_);
+        if (instance_)
+            desc_->destroy(instance_);
     }
     Instance(const Instance&) = delete;
     Instance& operator=(const Instance&) = delete;
@@ -206,7 +215,8 @@ inline PatinaWavelengths wavelengths(std::vector<float> lambda = {400.0f, 480.0f
 {
     PatinaWavelengths wl{};
     wl.count = static_cast<int>(std::min<size_t>(lambda.size(), PATINA_MAX_WAVELENGTHS));
-    for (int i = 0; i < wl.count; ++i) wl.lambda_nm[i] = lambda[i];
+    for (int i = 0; i < wl.count; ++i)
+        wl.lambda_nm[i] = lambda[i];
     return wl;
 }
 
@@ -247,7 +257,8 @@ public:
     std::array<float, PATINA_MAX_WAVELENGTHS> albedo(Vec3 wo) const
     {
         std::array<float, PATINA_MAX_WAVELENGTHS> out{};
-        if (funcs_->albedo) funcs_->albedo(instance_.get(), &ctx_, wo, &wl_, out.data());
+        if (funcs_->albedo)
+            funcs_->albedo(instance_.get(), &ctx_, wo, &wl_, out.data());
         return out;
     }
 
@@ -330,7 +341,8 @@ inline double albedo_by_sampling(const Bsdf& bsdf, Vec3 wo, int count, uint64_t 
         PatinaBsdfSample s;
         const float u_lobe = rng.next_float();
         const Vec2 u = rng.next_vec2();
-        if (!bsdf.sample(wo, u_lobe, u, &s) || s.pdf <= 0.0f) continue;
+        if (!bsdf.sample(wo, u_lobe, u, &s) || s.pdf <= 0.0f)
+            continue;
         sum += static_cast<double>(s.f[0]) * std::abs(s.wi.z) / s.pdf;
     }
     return sum / count;

@@ -34,7 +34,8 @@ using shading::Vec3;
 /// Regularised upper incomplete gamma function Q(a, x) = Γ(a, x) / Γ(a).
 inline double gamma_q(double a, double x)
 {
-    if (x <= 0.0) return 1.0;
+    if (x <= 0.0)
+        return 1.0;
     const double log_prefactor = -x + a * std::log(x) - std::lgamma(a);
     if (x < a + 1.0) {
         // Series for P(a, x): Numerical Recipes, 3rd ed., §6.2, Eq. 6.2.5
@@ -43,7 +44,8 @@ inline double gamma_q(double a, double x)
             ap += 1.0;
             term *= x / ap;
             sum += term;
-            if (std::abs(term) < std::abs(sum) * 1e-15) break;
+            if (std::abs(term) < std::abs(sum) * 1e-15)
+                break;
         }
         return std::max(0.0, 1.0 - sum * std::exp(log_prefactor));
     }
@@ -54,22 +56,31 @@ inline double gamma_q(double a, double x)
         const double an = -i * (i - a);
         b += 2.0;
         d = an * d + b;
-        if (std::abs(d) < kTiny) d = kTiny;
+        if (std::abs(d) < kTiny)
+            d = kTiny;
         c = b + an / c;
-        if (std::abs(c) < kTiny) c = kTiny;
+        if (std::abs(c) < kTiny)
+            c = kTiny;
         d = 1.0 / d;
         const double delta = d * c;
         h *= delta;
-        if (std::abs(delta - 1.0) < 1e-15) break;
+        if (std::abs(delta - 1.0) < 1e-15)
+            break;
     }
     return std::exp(log_prefactor) * h;
 }
 
 /// P(X² >= statistic) for a chi-square distribution with `dof` degrees of freedom.
-inline double p_value(double statistic, int dof) { return gamma_q(0.5 * dof, 0.5 * statistic); }
+inline double p_value(double statistic, int dof)
+{
+    return gamma_q(0.5 * dof, 0.5 * statistic);
+}
 
 /// Per-test significance for an overall level alpha over `tests` tests (Šidák 1967).
-inline double sidak(double alpha, int tests) { return 1.0 - std::pow(1.0 - alpha, 1.0 / tests); }
+inline double sidak(double alpha, int tests)
+{
+    return 1.0 - std::pow(1.0 - alpha, 1.0 / tests);
+}
 
 // ---------------------------------------------------------------------------------------
 // Adaptive Simpson quadrature
@@ -118,14 +129,17 @@ double adaptive_simpson_2d(const F& f, double x0, double y0, double x1, double y
 // The test
 // ---------------------------------------------------------------------------------------
 
-inline double sqr_diff(double a, double b) { return (a - b) * (a - b); }
+inline double sqr_diff(double a, double b)
+{
+    return (a - b) * (a - b);
+}
 
 struct Result {
     bool passed = false;
     double p_value = 0.0;
     double statistic = 0.0;
     int dof = 0;
-    double pdf_integral = 0.0; // ∫ pdf over the sphere (1 unless sampling can fail)
+    double pdf_integral = 0.0;     // ∫ pdf over the sphere (1 unless sampling can fail)
     double sampled_fraction = 0.0; // fraction of samples that produced a direction
     std::string message;
 };
@@ -136,7 +150,7 @@ struct Options {
     int sample_count = 400000;
     double min_expected = 5.0;
     double significance = 0.01; // overall level before the Šidák correction
-    int test_count = 1; // K, for the Šidák correction
+    int test_count = 1;         // K, for the Šidák correction
     unsigned seed = 1;
 };
 
@@ -153,7 +167,8 @@ template <typename Sample, typename Pdf> Result run(const Options& opt, Sample&&
     int produced = 0;
     for (int i = 0; i < opt.sample_count; ++i) {
         Vec3 w;
-        if (!sample(&w)) continue;
+        if (!sample(&w))
+            continue;
         const float len = shading::length(w);
         if (!shading::is_finite(w) || std::abs(len - 1.0f) > 1e-3f) {
             r.message = "sampler returned a non-finite or non-unit direction";
@@ -162,7 +177,8 @@ template <typename Sample, typename Pdf> Result run(const Options& opt, Sample&&
         ++produced;
         const double theta = std::acos(std::clamp(static_cast<double>(w.z), -1.0, 1.0));
         double phi = std::atan2(static_cast<double>(w.y), static_cast<double>(w.x));
-        if (phi < 0.0) phi += 2.0 * M_PI;
+        if (phi < 0.0)
+            phi += 2.0 * M_PI;
         const int ti = std::min(static_cast<int>(theta / dtheta), opt.theta_res - 1);
         const int pi = std::min(static_cast<int>(phi / dphi), opt.phi_res - 1);
         observed[ti * opt.phi_res + pi] += 1.0;

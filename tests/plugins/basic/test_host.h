@@ -15,6 +15,7 @@ namespace patina::test {
 
 /// CIE standard illuminant D65, relative SPD, 360-830 nm every 10 nm (100 at 560 nm):
 /// CIE 15:2004, Table T.1 (every second entry of the 5 nm table).
+// clang-format off
 inline constexpr float kD65Every10Nm[48] = {
     46.6383f, 52.0891f, 49.9755f, 54.6482f, 82.7549f, 91.486f,  93.4318f, 86.6823f,
     104.865f, 117.008f, 117.812f, 114.861f, 115.923f, 108.811f, 109.354f, 107.802f,
@@ -22,6 +23,7 @@ inline constexpr float kD65Every10Nm[48] = {
     90.0062f, 89.5991f, 87.6987f, 83.2886f, 83.6992f, 80.0268f, 80.2146f, 82.2778f,
     78.2842f, 69.7213f, 71.6091f, 74.349f,  61.604f,  69.8856f, 75.087f,  63.5927f,
     46.4182f, 66.8054f, 63.3828f, 64.304f,  59.4519f, 51.959f,  57.4406f, 60.3125f};
+// clang-format on
 
 /// D65 at a wavelength, normalised to 1 at 560 nm (linear interpolation, clamped ends).
 inline float d65_normalised(float lambda_nm)
@@ -53,7 +55,8 @@ struct TestHost : PatinaHost {
         rgb_to_spectrum = uplift;
         eval_rgb_spectrum = [](const PatinaHost*, const PatinaRgbSpectrum* s,
                                const PatinaWavelengths* wl, float* out) {
-            for (int i = 0; i < wl->count; ++i) out[i] = eval(*s, wl->lambda_nm[i]);
+            for (int i = 0; i < wl->count; ++i)
+                out[i] = eval(*s, wl->lambda_nm[i]);
         };
     }
     TestHost(const TestHost&) = delete;
@@ -73,7 +76,8 @@ struct TestHost : PatinaHost {
     {
         float c[3] = {rgb[0], rgb[1], rgb[2]};
         if (!is_illuminant)
-            for (float& v : c) v = std::clamp(v, 0.0f, 1.0f);
+            for (float& v : c)
+                v = std::clamp(v, 0.0f, 1.0f);
         *out = PatinaRgbSpectrum{0.0f, 0.0f, 0.0f, 0.0f, is_illuminant ? 1 : 0};
         if (c[0] == c[1] && c[1] == c[2]) {
             out->scale = 2.0f * c[0];
