@@ -61,4 +61,4 @@ KmLayerSpectrum km_composite_stack(std::span<const KmLayerSpectrum> top_to_botto
 SampledSpectrum km_reflectance_over(std::span<const KmLayerSpectrum> top_to_bottom,
                                     const SampledSpectrum& base_R);
 
-}  // namespace patina
+} // namespace patina

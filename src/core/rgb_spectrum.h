@@ -51,4 +51,4 @@ private:
     std::shared_ptr<Table> table_;
 };
 
-}  // namespace patina
+} // namespace patina

@@ -9,21 +9,20 @@
 namespace patina {
 namespace {
 
-// pcg-c's constants (pcg_basic.h: PCG32_INITIALIZER and the 64-bit LCG multiplier).
-constexpr uint64_t kPcgMult = 0x5851f42d4c957f2dULL;
-constexpr uint64_t kPcgDefaultState = 0x853c49e6748fea9bULL;
-constexpr uint64_t kPcgDefaultStream = 0xda3e39cb94b95bdbULL;
-constexpr float kOneMinusEpsilon = 0x1.fffffep-1f;
+    // pcg-c's constants (pcg_basic.h: PCG32_INITIALIZER and the 64-bit LCG multiplier).
+    constexpr uint64_t kPcgMult = 0x5851f42d4c957f2dULL;
+    constexpr uint64_t kPcgDefaultState = 0x853c49e6748fea9bULL;
+    constexpr uint64_t kPcgDefaultStream = 0xda3e39cb94b95bdbULL;
+    constexpr float kOneMinusEpsilon = 0x1.fffffep-1f;
 
-}  // namespace
+} // namespace
 
-Pcg32::Pcg32()
-    : state_(kPcgDefaultState)
-    , inc_(kPcgDefaultStream)
+Pcg32::Pcg32() : state_(kPcgDefaultState), inc_(kPcgDefaultStream) {}
+
+Pcg32::Pcg32(uint64_t sequence_index, uint64_t offset)
 {
+    set_sequence(sequence_index, offset);
 }
-
-Pcg32::Pcg32(uint64_t sequence_index, uint64_t offset) { set_sequence(sequence_index, offset); }
 
 void Pcg32::set_sequence(uint64_t sequence_index, uint64_t offset)
 {
@@ -51,7 +50,8 @@ uint32_t Pcg32::uniform_u32(uint32_t bound)
     const uint32_t threshold = (~bound + 1u) % bound;
     for (;;) {
         const uint32_t r = uniform_u32();
-        if (r >= threshold) return r % bound;
+        if (r >= threshold)
+            return r % bound;
     }
 }
 
@@ -113,26 +113,30 @@ Pcg32 pixel_sample_rng(uint64_t seed, int x, int y, uint64_t sample_index)
 }
 
 Distribution1D::Distribution1D(std::span<const float> f, float min, float max)
-    : func_(f.begin(), f.end())
-    , min_(min)
-    , max_(max)
+    : func_(f.begin(), f.end()), min_(min), max_(max)
 {
-    if (!(max > min)) throw std::invalid_argument("Distribution1D: empty domain");
-    if (func_.empty()) func_.assign(1, 0.0f);
-    for (float& v : func_) v = std::isfinite(v) ? std::abs(v) : 0.0f;
+    if (!(max > min))
+        throw std::invalid_argument("Distribution1D: empty domain");
+    if (func_.empty())
+        func_.assign(1, 0.0f);
+    for (float& v : func_)
+        v = std::isfinite(v) ? std::abs(v) : 0.0f;
     const int n = size();
     const double width = (static_cast<double>(max_) - min_) / n;
     // Running sum in double so long rows (environment maps) keep their precision.
     cdf_.assign(n + 1, 0.0);
-    for (int i = 0; i < n; ++i) cdf_[i + 1] = cdf_[i] + func_[i] * width;
+    for (int i = 0; i < n; ++i)
+        cdf_[i + 1] = cdf_[i] + func_[i] * width;
     integral_ = cdf_[n];
     if (integral_ <= 0.0) {
         // Nothing to importance-sample: fall back to the uniform density.
         std::fill(func_.begin(), func_.end(), 1.0f);
-        for (int i = 0; i <= n; ++i) cdf_[i] = static_cast<double>(i) / n;
+        for (int i = 0; i <= n; ++i)
+            cdf_[i] = static_cast<double>(i) / n;
         func_integral_ = max_ - min_;
     } else {
-        for (double& c : cdf_) c /= integral_;
+        for (double& c : cdf_)
+            c /= integral_;
         func_integral_ = integral_;
     }
     cdf_[n] = 1.0;
@@ -150,8 +154,10 @@ float Distribution1D::sample_continuous(float u, float* pdf, int* offset) const
     const int o = find_piece(u);
     const double width = cdf_[o + 1] - cdf_[o];
     const double du = width > 0.0 ? (u - cdf_[o]) / width : 0.0;
-    if (pdf) *pdf = static_cast<float>(func_[o] / func_integral_);
-    if (offset) *offset = o;
+    if (pdf)
+        *pdf = static_cast<float>(func_[o] / func_integral_);
+    if (offset)
+        *offset = o;
     const double t = (o + std::clamp(du, 0.0, 1.0)) / size();
     const float x = static_cast<float>(min_ + t * (static_cast<double>(max_) - min_));
     return std::min(x, std::nextafter(max_, min_));
@@ -161,7 +167,8 @@ int Distribution1D::sample_discrete(float u, float* pmf, float* u_remapped) cons
 {
     const int o = find_piece(u);
     const double p = cdf_[o + 1] - cdf_[o];
-    if (pmf) *pmf = static_cast<float>(p);
+    if (pmf)
+        *pmf = static_cast<float>(p);
     if (u_remapped)
         *u_remapped =
             p > 0.0 ? std::min(kOneMinusEpsilon, static_cast<float>((u - cdf_[o]) / p)) : 0.0f;
@@ -170,7 +177,8 @@ int Distribution1D::sample_discrete(float u, float* pmf, float* u_remapped) cons
 
 float Distribution1D::pdf(float x) const
 {
-    if (!(x >= min_ && x <= max_)) return 0.0f;
+    if (!(x >= min_ && x <= max_))
+        return 0.0f;
     const int n = size();
     const int o = std::clamp(static_cast<int>((x - min_) / (max_ - min_) * n), 0, n - 1);
     return static_cast<float>(func_[o] / func_integral_);
@@ -178,7 +186,8 @@ float Distribution1D::pdf(float x) const
 
 float Distribution1D::discrete_pmf(int i) const
 {
-    if (i < 0 || i >= size()) return 0.0f;
+    if (i < 0 || i >= size())
+        return 0.0f;
     return static_cast<float>(cdf_[i + 1] - cdf_[i]);
 }
 
@@ -207,7 +216,8 @@ Distribution2D::Sample Distribution2D::sample(float u0, float u1) const
 
 float Distribution2D::pdf(float u, float v) const
 {
-    if (!(u >= 0.0f && u <= 1.0f && v >= 0.0f && v <= 1.0f)) return 0.0f;
+    if (!(u >= 0.0f && u <= 1.0f && v >= 0.0f && v <= 1.0f))
+        return 0.0f;
     const int nv = static_cast<int>(conditional_.size());
     const int row = std::clamp(static_cast<int>(v * nv), 0, nv - 1);
     return marginal_.pdf(v) * conditional_[row].pdf(u);
@@ -216,7 +226,8 @@ float Distribution2D::pdf(float u, float v) const
 float power_heuristic(int nf, float f_pdf, int ng, float g_pdf)
 {
     const float f = static_cast<float>(nf) * f_pdf, g = static_cast<float>(ng) * g_pdf;
-    if (std::isinf(f * f)) return 1.0f;
+    if (std::isinf(f * f))
+        return 1.0f;
     const float denom = f * f + g * g;
     return denom > 0.0f ? f * f / denom : 0.0f;
 }
@@ -224,8 +235,9 @@ float power_heuristic(int nf, float f_pdf, int ng, float g_pdf)
 float balance_heuristic(int nf, float f_pdf, int ng, float g_pdf)
 {
     const float f = static_cast<float>(nf) * f_pdf, g = static_cast<float>(ng) * g_pdf;
-    if (std::isinf(f)) return 1.0f;
+    if (std::isinf(f))
+        return 1.0f;
     return f + g > 0.0f ? f / (f + g) : 0.0f;
 }
 
-}  // namespace patina
+} // namespace patina

@@ -83,10 +83,10 @@ public:
 private:
     int find_piece(float u) const;
 
-    std::vector<float> func_;  // |f|, or all ones when f was all zero
-    std::vector<double> cdf_;  // size + 1 entries, cdf_[0] = 0, cdf_.back() = 1
+    std::vector<float> func_; // |f|, or all ones when f was all zero
+    std::vector<double> cdf_; // size + 1 entries, cdf_[0] = 0, cdf_.back() = 1
     float min_ = 0.0f, max_ = 1.0f;
-    double func_integral_ = 0.0;  // ∫ func_ over [min, max]
+    double func_integral_ = 0.0; // ∫ func_ over [min, max]
     double integral_ = 0.0;
 };
 
@@ -100,8 +100,8 @@ public:
     Distribution2D(std::span<const float> f, int nu, int nv);
 
     struct Sample {
-        float u, v;  // in [0, 1)^2
-        float pdf;   // density with respect to area on [0, 1]^2
+        float u, v; // in [0, 1)^2
+        float pdf;  // density with respect to area on [0, 1]^2
     };
     Sample sample(float u0, float u1) const;
     float pdf(float u, float v) const;
@@ -118,4 +118,4 @@ float power_heuristic(int nf, float f_pdf, int ng, float g_pdf);
 /// Veach's balance heuristic.
 float balance_heuristic(int nf, float f_pdf, int ng, float g_pdf);
 
-}  // namespace patina
+} // namespace patina

@@ -7,7 +7,7 @@
 namespace patina {
 namespace {
 
-// clang-format off
+    // clang-format off
 // CIE 1931 2° standard colorimetric observer x̄, ȳ, z̄, 360-830 nm every 5 nm
 // (ISO 11664-1 / CIE S 014-1; numbers as distributed in Debian colord-data).
 constexpr float kCieX[kCieSamples] = {
@@ -63,55 +63,71 @@ constexpr float kD65[kCieSamples] = {
     65.0941f, 63.3828f, 63.8434f, 64.304f, 61.8779f, 59.4519f, 55.7054f, 51.959f, 54.6998f,
     57.4406f, 58.8765f, 60.3125f,
 };
-// clang-format on
+    // clang-format on
 
-// Linear interpolation in a 5 nm table; 0 outside 360-830 nm.
-float lerp_table(const float* table, float lambda_nm)
+    // Linear interpolation in a 5 nm table; 0 outside 360-830 nm.
+    float lerp_table(const float* table, float lambda_nm)
+    {
+        if (!(lambda_nm >= kLambdaMinNm && lambda_nm <= kLambdaMaxNm))
+            return 0.0f;
+        float x = (lambda_nm - kLambdaMinNm) / kCieStepNm;
+        int i = std::min(static_cast<int>(x), kCieSamples - 2);
+        float t = x - static_cast<float>(i);
+        return table[i] + t * (table[i + 1] - table[i]);
+    }
+
+    // Visible-wavelength importance sampling, pbrt-v4 (Pharr, Jakob, Humphreys 2023,
+    // SampleVisibleWavelengths):
+    // p(λ) = A / cosh²(k (λ − 538)) on [360, 830]; CDF(λ) = (tanh(k (λ − 538)) − T0) / (T1 − T0)
+    // with T0 = tanh(k (360 − 538)), T1 = tanh(k (830 − 538)), so A = k / (T1 − T0).
+    constexpr double kVisK = 0.0072;
+    constexpr double kVisT0 = -0.856910625469828;
+    constexpr double kVisT1MinusT0 = 1.8275019724100978;
+    constexpr double kVisA = 0.003939804229324407;
+
+    // frac(u + i/count): hero-wavelength rotation of one uniform number.
+    float rotate_u(float u, int i, int count)
+    {
+        float ui = u + static_cast<float>(i) / static_cast<float>(count);
+        if (ui >= 1.0f)
+            ui -= 1.0f;
+        return std::clamp(ui, 0.0f, 0x1.fffffep-1f);
+    }
+
+    template <class Op> SampledSpectrum& apply(SampledSpectrum& a, const SampledSpectrum& b, Op op)
+    {
+        assert(a.count == b.count);
+        for (int i = 0; i < a.count; ++i)
+            a.v[i] = op(a.v[i], b.v[i]);
+        return a;
+    }
+
+} // namespace
+
+float cie_x(float lambda_nm)
 {
-    if (!(lambda_nm >= kLambdaMinNm && lambda_nm <= kLambdaMaxNm)) return 0.0f;
-    float x = (lambda_nm - kLambdaMinNm) / kCieStepNm;
-    int i = std::min(static_cast<int>(x), kCieSamples - 2);
-    float t = x - static_cast<float>(i);
-    return table[i] + t * (table[i + 1] - table[i]);
+    return lerp_table(kCieX, lambda_nm);
 }
-
-// Visible-wavelength importance sampling, pbrt-v4 (Pharr, Jakob, Humphreys 2023,
-// SampleVisibleWavelengths):
-// p(λ) = A / cosh²(k (λ − 538)) on [360, 830]; CDF(λ) = (tanh(k (λ − 538)) − T0) / (T1 − T0)
-// with T0 = tanh(k (360 − 538)), T1 = tanh(k (830 − 538)), so A = k / (T1 − T0).
-constexpr double kVisK = 0.0072;
-constexpr double kVisT0 = -0.856910625469828;
-constexpr double kVisT1MinusT0 = 1.8275019724100978;
-constexpr double kVisA = 0.003939804229324407;
-
-// frac(u + i/count): hero-wavelength rotation of one uniform number.
-float rotate_u(float u, int i, int count)
+float cie_y(float lambda_nm)
 {
-    float ui = u + static_cast<float>(i) / static_cast<float>(count);
-    if (ui >= 1.0f) ui -= 1.0f;
-    return std::clamp(ui, 0.0f, 0x1.fffffep-1f);
+    return lerp_table(kCieY, lambda_nm);
 }
-
-template <class Op> SampledSpectrum& apply(SampledSpectrum& a, const SampledSpectrum& b, Op op)
+float cie_z(float lambda_nm)
 {
-    assert(a.count == b.count);
-    for (int i = 0; i < a.count; ++i) a.v[i] = op(a.v[i], b.v[i]);
-    return a;
+    return lerp_table(kCieZ, lambda_nm);
 }
-
-}  // namespace
-
-float cie_x(float lambda_nm) { return lerp_table(kCieX, lambda_nm); }
-float cie_y(float lambda_nm) { return lerp_table(kCieY, lambda_nm); }
-float cie_z(float lambda_nm) { return lerp_table(kCieZ, lambda_nm); }
-float d65(float lambda_nm) { return lerp_table(kD65, lambda_nm); }
+float d65(float lambda_nm)
+{
+    return lerp_table(kD65, lambda_nm);
+}
 
 float illuminant_a(float lambda_nm)
 {
     // CIE 15:2004, definition of illuminant A: S_A(λ) = 100 (560/λ)^5 (exp(c2/(2848·560)) − 1) /
     // (exp(c2/(2848 λ)) − 1) with c2 = 1.435e7 nm·K (the value fixed in the definition, not today's
     // CODATA c2).
-    if (!(lambda_nm > 0.0f)) return 0.0f;
+    if (!(lambda_nm > 0.0f))
+        return 0.0f;
     const double l = lambda_nm;
     const double c2 = 1.435e7;
     const double num = std::expm1(c2 / (2848.0 * 560.0));
@@ -134,8 +150,10 @@ Xyz spectrum_to_xyz(const SpectrumFn& reflectance, const SpectrumFn& illuminant)
         xyz[2] += e * r * cie_z(l);
         white_y += e * cie_y(l);
     }
-    if (white_y <= 0.0) return {0.0, 0.0, 0.0};
-    for (double& c : xyz) c /= white_y;
+    if (white_y <= 0.0)
+        return {0.0, 0.0, 0.0};
+    for (double& c : xyz)
+        c /= white_y;
     return xyz;
 }
 
@@ -149,13 +167,15 @@ Xyz emission_to_xyz(const SpectrumFn& radiance)
         xyz[1] += e * cie_y(l);
         xyz[2] += e * cie_z(l);
     }
-    for (double& c : xyz) c /= kCieYIntegral;
+    for (double& c : xyz)
+        c /= kCieYIntegral;
     return xyz;
 }
 
 float visible_wavelength_pdf(float lambda_nm)
 {
-    if (!(lambda_nm >= kLambdaMinNm && lambda_nm <= kLambdaMaxNm)) return 0.0f;
+    if (!(lambda_nm >= kLambdaMinNm && lambda_nm <= kLambdaMaxNm))
+        return 0.0f;
     const double c = std::cosh(kVisK * (lambda_nm - 538.0));
     return static_cast<float>(kVisA / (c * c));
 }
@@ -180,7 +200,8 @@ PatinaWavelengths sample_wavelengths_visible(float u, int count)
 
 float uniform_wavelength_pdf(float lambda_nm)
 {
-    if (!(lambda_nm >= kLambdaMinNm && lambda_nm <= kLambdaMaxNm)) return 0.0f;
+    if (!(lambda_nm >= kLambdaMinNm && lambda_nm <= kLambdaMaxNm))
+        return 0.0f;
     return 1.0f / (kLambdaMaxNm - kLambdaMinNm);
 }
 
@@ -199,7 +220,8 @@ PatinaWavelengths sample_wavelengths_uniform(float u, int count)
 SampledSpectrum SampledSpectrum::from_array(int n, const float* values)
 {
     SampledSpectrum s(n, 0.0f);
-    for (int i = 0; i < n; ++i) s.v[i] = values[i];
+    for (int i = 0; i < n; ++i)
+        s.v[i] = values[i];
     return s;
 }
 
@@ -221,53 +243,62 @@ SampledSpectrum& SampledSpectrum::operator/=(const SampledSpectrum& o)
 }
 SampledSpectrum& SampledSpectrum::operator*=(float s)
 {
-    for (int i = 0; i < count; ++i) v[i] *= s;
+    for (int i = 0; i < count; ++i)
+        v[i] *= s;
     return *this;
 }
 SampledSpectrum& SampledSpectrum::operator/=(float s)
 {
-    for (int i = 0; i < count; ++i) v[i] = s != 0.0f ? v[i] / s : 0.0f;
+    for (int i = 0; i < count; ++i)
+        v[i] = s != 0.0f ? v[i] / s : 0.0f;
     return *this;
 }
 
 float SampledSpectrum::average() const
 {
-    if (count == 0) return 0.0f;
+    if (count == 0)
+        return 0.0f;
     float sum = 0.0f;
-    for (int i = 0; i < count; ++i) sum += v[i];
+    for (int i = 0; i < count; ++i)
+        sum += v[i];
     return sum / static_cast<float>(count);
 }
 
 float SampledSpectrum::max_value() const
 {
-    if (count == 0) return 0.0f;
+    if (count == 0)
+        return 0.0f;
     return *std::max_element(v, v + count);
 }
 
 float SampledSpectrum::min_value() const
 {
-    if (count == 0) return 0.0f;
+    if (count == 0)
+        return 0.0f;
     return *std::min_element(v, v + count);
 }
 
 bool SampledSpectrum::is_black() const
 {
     for (int i = 0; i < count; ++i)
-        if (v[i] != 0.0f) return false;
+        if (v[i] != 0.0f)
+            return false;
     return true;
 }
 
 SampledSpectrum exp(const SampledSpectrum& s)
 {
     SampledSpectrum r = s;
-    for (int i = 0; i < r.count; ++i) r.v[i] = std::exp(s.v[i]);
+    for (int i = 0; i < r.count; ++i)
+        r.v[i] = std::exp(s.v[i]);
     return r;
 }
 
 SampledSpectrum sqrt(const SampledSpectrum& s)
 {
     SampledSpectrum r = s;
-    for (int i = 0; i < r.count; ++i) r.v[i] = std::sqrt(std::max(s.v[i], 0.0f));
+    for (int i = 0; i < r.count; ++i)
+        r.v[i] = std::sqrt(std::max(s.v[i], 0.0f));
     return r;
 }
 
@@ -281,16 +312,19 @@ Xyz xyz_from_samples(const SampledSpectrum& L, const PatinaWavelengths& wl,
 {
     // Monte Carlo estimate of ∫ L x̄ dλ / ∫ ȳ dλ: one sample per wavelength, averaged.
     Xyz xyz = {0.0, 0.0, 0.0};
-    if (L.count == 0) return xyz;
+    if (L.count == 0)
+        return xyz;
     for (int i = 0; i < L.count; ++i) {
-        if (pdf.v[i] == 0.0f) continue;
+        if (pdf.v[i] == 0.0f)
+            continue;
         const float l = wl.lambda_nm[i];
         const double w = static_cast<double>(L.v[i]) / pdf.v[i];
         xyz[0] += w * cie_x(l);
         xyz[1] += w * cie_y(l);
         xyz[2] += w * cie_z(l);
     }
-    for (double& c : xyz) c /= static_cast<double>(L.count) * kCieYIntegral;
+    for (double& c : xyz)
+        c /= static_cast<double>(L.count) * kCieYIntegral;
     return xyz;
 }
 
@@ -299,4 +333,4 @@ Xyz xyz_from_samples(const SampledSpectrum& L, const PatinaWavelengths& wl)
     return xyz_from_samples(L, wl, visible_wavelength_pdf(wl));
 }
 
-}  // namespace patina
+} // namespace patina

@@ -76,11 +76,11 @@ struct SampledSpectrum {
     float v[PATINA_MAX_WAVELENGTHS] = {};
 
     SampledSpectrum() = default;
-    SampledSpectrum(int n, float value)
-        : count(n)
+    SampledSpectrum(int n, float value) : count(n)
     {
         assert(n >= 0 && n <= PATINA_MAX_WAVELENGTHS);
-        for (int i = 0; i < n; ++i) v[i] = value;
+        for (int i = 0; i < n; ++i)
+            v[i] = value;
     }
     /// Copy n values (e.g. the float[PATINA_MAX_WAVELENGTHS] output of a plugin).
     static SampledSpectrum from_array(int n, const float* values);
@@ -88,7 +88,8 @@ struct SampledSpectrum {
     template <class Fn> static SampledSpectrum from_function(const PatinaWavelengths& wl, Fn&& fn)
     {
         SampledSpectrum s(wl.count, 0.0f);
-        for (int i = 0; i < wl.count; ++i) s.v[i] = static_cast<float>(fn(wl.lambda_nm[i]));
+        for (int i = 0; i < wl.count; ++i)
+            s.v[i] = static_cast<float>(fn(wl.lambda_nm[i]));
         return s;
     }
 
@@ -111,13 +112,34 @@ struct SampledSpectrum {
     bool is_black() const;
 };
 
-inline SampledSpectrum operator+(SampledSpectrum a, const SampledSpectrum& b) { return a += b; }
-inline SampledSpectrum operator-(SampledSpectrum a, const SampledSpectrum& b) { return a -= b; }
-inline SampledSpectrum operator*(SampledSpectrum a, const SampledSpectrum& b) { return a *= b; }
-inline SampledSpectrum operator/(SampledSpectrum a, const SampledSpectrum& b) { return a /= b; }
-inline SampledSpectrum operator*(SampledSpectrum a, float s) { return a *= s; }
-inline SampledSpectrum operator*(float s, SampledSpectrum a) { return a *= s; }
-inline SampledSpectrum operator/(SampledSpectrum a, float s) { return a /= s; }
+inline SampledSpectrum operator+(SampledSpectrum a, const SampledSpectrum& b)
+{
+    return a += b;
+}
+inline SampledSpectrum operator-(SampledSpectrum a, const SampledSpectrum& b)
+{
+    return a -= b;
+}
+inline SampledSpectrum operator*(SampledSpectrum a, const SampledSpectrum& b)
+{
+    return a *= b;
+}
+inline SampledSpectrum operator/(SampledSpectrum a, const SampledSpectrum& b)
+{
+    return a /= b;
+}
+inline SampledSpectrum operator*(SampledSpectrum a, float s)
+{
+    return a *= s;
+}
+inline SampledSpectrum operator*(float s, SampledSpectrum a)
+{
+    return a *= s;
+}
+inline SampledSpectrum operator/(SampledSpectrum a, float s)
+{
+    return a /= s;
+}
 
 /// Elementwise exp(s), e.g. Beer-Lambert transmittance exp(-sigma_t * t).
 SampledSpectrum exp(const SampledSpectrum& s);
@@ -136,4 +158,4 @@ Xyz xyz_from_samples(const SampledSpectrum& L, const PatinaWavelengths& wl,
 /// As above, for wavelengths drawn by sample_wavelengths_visible.
 Xyz xyz_from_samples(const SampledSpectrum& L, const PatinaWavelengths& wl);
 
-}  // namespace patina
+} // namespace patina
