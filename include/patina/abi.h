@@ -2,7 +2,7 @@
  * patina/abi.h — the Patina shading-plugin ABI, version 1.
  *
  * This header is the whole contract between a Patina host (patina-render, the texgen tools,
- * a studio's own renderer) and a shading plugin. It is plain C89-compatible C so that a
+ * a studio's own renderer) and a shading plugin. It is plain C (C99) so that a
  * plugin built with another compiler or C++ standard library still loads. Nothing else is
  * needed to write a plugin; the optional C++ helpers in <patina/shading/...> are header-only.
  *
@@ -11,8 +11,13 @@
  * ---------------------------------------------------------------------------------------
  * A plugin is a shared library (.so) exporting exactly two symbols with C linkage:
  *
- *     PATINA_PLUGIN_EXPORT const int patina_plugin_abi_version = PATINA_ABI_VERSION;
- *     PATINA_PLUGIN_EXPORT const PatinaPluginInfo* patina_plugin_entry(const PatinaHost* host);
+ *     PATINA_PLUGIN_DEFINE_VERSION;   (defines const int patina_plugin_abi_version)
+ *     PATINA_PLUGIN_ENTRY_DECL const PatinaPluginInfo* patina_plugin_entry(const PatinaHost* host)
+ *     { ... return &table; }
+ *
+ * The macros give both symbols C linkage and default visibility from C and from C++ (in
+ * C++ a plain `const int` at namespace scope would have internal linkage and not be
+ * exported).
  *
  * The host dlopen()s the library with RTLD_NOW | RTLD_LOCAL (a plugin's symbols never leak
  * into the host or into other plugins), reads `patina_plugin_abi_version`, and refuses the
@@ -60,6 +65,8 @@
  *    solid-angle density with which `sample` generates wi given wo; it must match `sample`
  *    exactly (checked by a chi-square test). Delta lobes are never returned by eval/pdf.
  *  - Never NaN or Inf; return 0 (and a zero pdf) instead.
+ *  - `ctx` is never NULL when a host calls; both sides of a surface are shaded (wo.z < 0
+ *    means the viewer is below the shading normal): a one-sided shader returns 0 there.
  *
  * ---------------------------------------------------------------------------------------
  * 4. Version history (bump PATINA_ABI_VERSION_MINOR when adding at the end of a struct or a
@@ -89,6 +96,19 @@ extern "C" {
 #else
 #define PATINA_PLUGIN_EXPORT
 #endif
+
+#ifdef __cplusplus
+#define PATINA_EXTERN_C extern "C"
+#else
+#define PATINA_EXTERN_C
+#endif
+
+/** Define the exported version symbol: put `PATINA_PLUGIN_DEFINE_VERSION;` in one source. */
+#define PATINA_PLUGIN_DEFINE_VERSION                                                          \
+    PATINA_EXTERN_C PATINA_PLUGIN_EXPORT const int patina_plugin_abi_version = PATINA_ABI_VERSION
+
+/** Prefix of the entry point's definition (C linkage, exported). */
+#define PATINA_PLUGIN_ENTRY_DECL PATINA_EXTERN_C PATINA_PLUGIN_EXPORT
 
 /** Names of the two symbols the host looks up with dlsym. */
 #define PATINA_PLUGIN_VERSION_SYMBOL "patina_plugin_abi_version"
@@ -124,7 +144,8 @@ typedef struct PatinaWavelengths {
  * with lambda in nanometres. For a reflectance (PATINA_PARAM_COLOR) the value lies in [0, 1];
  * a grey g is stored exactly as c = 0, scale = 2g (a constant spectrum). When `illuminant`
  * is non-zero (emission colours), the value is further multiplied by the working space's
- * white illuminant, normalised to 1 at 560 nm: evaluate it with PatinaHostServices::
+ * white illuminant (D65) normalised to luminance Y = 1, so that an emission colour
+ * (1, 1, 1) renders as (1, 1, 1) in the working space: evaluate it with PatinaHost::
  * eval_rgb_spectrum. For reflectances `patina_rgb_spectrum_eval` below is exact.
  */
 typedef struct PatinaRgbSpectrum {
@@ -290,7 +311,8 @@ typedef struct PatinaBsdfSample {
     float pdf;                          /**< solid-angle pdf; for a specular lobe the discrete
                                              probability of having chosen it */
     int lobe;                           /**< PATINA_LOBE_* flags of the sampled lobe */
-    float eta;                          /**< relative IOR across the boundary for transmission, else 1 */
+    float eta;                          /**< for transmission: index of refraction on wi's side over
+                                             the index on wo's side; else 1 */
 } PatinaBsdfSample;
 
 typedef struct PatinaBsdfFuncs {

@@ -13,9 +13,10 @@
  *     L(λ) = intensity · E(λ),
  *
  * where E is the host's illuminant uplift of `color` (abi.h, PatinaRgbSpectrum with
- * illuminant = 1): the working space's white illuminant, normalised to 1 at 560 nm, times
- * a smooth reflectance-like factor. A white colour (1, 1, 1) therefore emits the white
- * illuminant itself (D65 for the usual working spaces), with L(560 nm) = intensity.
+ * illuminant = 1): the working space's white illuminant normalised to luminance Y = 1,
+ * times a smooth reflectance-like factor. A white colour (1, 1, 1) therefore emits the
+ * white illuminant itself (D65 for the usual working spaces) with luminance `intensity`,
+ * and renders as (intensity, intensity, intensity) in the working space.
  * Units: W/(m² sr nm) when intensity is read in those units.
  *
  * Only the side the shading normal points to (+z) emits, unless `two_sided` is set; the
@@ -37,7 +38,7 @@ namespace {
         {"color", PATINA_PARAM_COLOR, {1.0f, 1.0f, 1.0f}, nullptr, nullptr, 0.0f, 1e30f,
          "scene_linear",
          "Emission colour, uplifted as an illuminant; white emits the working space's white "
-         "(1 at 560 nm)."},
+         "with luminance 1."},
         {"intensity", PATINA_PARAM_FLOAT, {1.0f, 0.0f, 0.0f}, nullptr, nullptr, 0.0f, 1e30f, "",
          "Scale of the emitted radiance."},
         {"two_sided", PATINA_PARAM_BOOL, {0.0f, 0.0f, 0.0f}, nullptr, nullptr, 0.0f, 1.0f, "",

@@ -441,8 +441,10 @@ PatinaRgbSpectrum RgbToSpectrum::uplift(const std::array<float, 3>& rgb_in, bool
 float RgbToSpectrum::eval(const PatinaRgbSpectrum& s, float lambda_nm)
 {
     const float v = patina_rgb_spectrum_eval(&s, lambda_nm);
-    // Illuminants carry the white (D65) normalised to 1 at 560 nm.
-    return s.illuminant ? v * d65(lambda_nm) * 0.01f : v;
+    // Illuminants carry the white (D65) normalised to luminance Y = 1, so that an emission
+    // colour (1, 1, 1) renders as working-space (1, 1, 1), as rgb_of assumes.
+    static const float kD65UnitLuminance = static_cast<float>(1.0 / emission_to_xyz(d65)[1]);
+    return s.illuminant ? v * d65(lambda_nm) * kD65UnitLuminance : v;
 }
 
 std::array<float, 3> RgbToSpectrum::rgb_of(const PatinaRgbSpectrum& s) const

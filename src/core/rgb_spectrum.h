@@ -7,8 +7,9 @@
 // of spectrum_to_xyz (core/spectrum.h) to ~5e-5.
 //
 // White: an emission colour (r, g, b) in the working space becomes
-// scale * S(...) * D65(l) / D65(560 nm); RGB (1, 1, 1) is exactly D65 scaled to 1 at 560 nm,
-// whose luminance is ∫ D65 ȳ / (100 ∫ ȳ) ≈ 0.9889 in kCieYIntegral units.
+// scale * S(...) * D65(l) / Y(D65), with Y(D65) = ∫ D65 ȳ / ∫ ȳ (≈ 98.89 for the table scaled
+// to 100 at 560 nm): RGB (1, 1, 1) is D65 with luminance exactly 1 (pbrt-v4's convention), so
+// a unit white light renders as working-space (1, 1, 1).
 // Objects are copyable and thread-safe; copies share the lazily built warm-start table.
 #pragma once
 
@@ -38,7 +39,7 @@ public:
     static float eval(const PatinaRgbSpectrum& s, float lambda_nm);
 
     /// RGB of a reflectance spectrum under D65 (the inverse used for round-trip checks).
-    /// For an illuminant spectrum: its emission colour with D65 / D65(560 nm) as (1, 1, 1),
+    /// For an illuminant spectrum: its emission colour, D65 of luminance 1 being (1, 1, 1),
     /// so rgb_of(uplift(rgb, true)) == rgb as well.
     std::array<float, 3> rgb_of(const PatinaRgbSpectrum& s) const;
 

@@ -225,17 +225,23 @@ namespace {
     TEST(RgbSpectrumTest, IlluminantsCarryD65AndRoundTrip)
     {
         const RgbToSpectrum up(spaces().acescg_to_xyz);
-        // White (1, 1, 1) is D65 normalised to 1 at 560 nm.
+        // White (1, 1, 1) is D65 normalised to luminance 1 (abi.h, PatinaRgbSpectrum): the
+        // shape of D65 (ratio to 560 nm, CIE 15 table) ...
         const PatinaRgbSpectrum white = up.uplift({1.0f, 1.0f, 1.0f}, true);
         EXPECT_EQ(white.illuminant, 1);
+        const float at_560 = RgbToSpectrum::eval(white, 560.0f);
         for (float l : {380.0f, 460.0f, 560.0f, 700.0f})
-            EXPECT_FLOAT_EQ(RgbToSpectrum::eval(white, l), d65(l) / 100.0f);
-        EXPECT_FLOAT_EQ(RgbToSpectrum::eval(white, 560.0f), 1.0f);
-        // Its luminance in kCieYIntegral units is ∫ D65 ȳ / (100 ∫ ȳ) = 0.98892 from the 5 nm
-        // CIE tables (sums of the colord-data files), as documented in rgb_spectrum.h.
+            EXPECT_NEAR(RgbToSpectrum::eval(white, l) / at_560, d65(l) / 100.0f, 1e-6f);
+        // ... scaled so that Y = 1: D65 at 560 nm is then 100 / 98.892 = 1.01121, from
+        // ∫ D65 ȳ / ∫ ȳ = 98.892 for the 5 nm CIE tables (sums of the colord-data files).
+        EXPECT_NEAR(at_560, 1.0f / 0.98892f, 3e-4f);
         const Xyz w =
             emission_to_xyz([&](double l) { return RgbToSpectrum::eval(white, float(l)); });
-        EXPECT_NEAR(w[1], 0.98892, 2e-4);
+        EXPECT_NEAR(w[1], 1.0, 1e-5);
+        // And it maps back to the working-space white.
+        const auto white_rgb = up.rgb_of(white);
+        for (float c : white_rgb)
+            EXPECT_NEAR(c, 1.0f, 1e-3f);
         // Unbounded colours: scale = 2 max, colour preserved.
         for (const std::array<float, 3> rgb :
              {std::array<float, 3>{4.0f, 2.0f, 1.0f}, {0.1f, 0.3f, 0.2f}, {20.0f, 20.0f, 25.0f}}) {

@@ -21,7 +21,7 @@ protected:
     // Binds `toml_text` to the fixture shader and reads the bound values back through eval.
     std::array<float, PATINA_MAX_WAVELENGTHS> bind(std::string_view toml_text)
     {
-        const toml::table params = toml::parse(toml_text, "scene.toml");
+        const toml::table params = toml::parse(toml_text, std::string_view("scene.toml"));
         auto inst = patina::create_shader_instance(registry, "fixture_diffuse", params, "probe",
                                                    {"scene.toml", {}, {"type"}});
         std::array<float, PATINA_MAX_WAVELENGTHS> f{};

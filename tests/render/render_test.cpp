@@ -81,8 +81,7 @@ bsdf = "white"
 
 // A white Lambertian sphere in a uniform white environment is invisible: every path that
 // hits it leaves with weight exactly 1 (a convex surface sees only the sky), so sphere and
-// sky pixels have the sky's radiance. Unit white in the working space has Y = 1 up to the
-// D65 normalisation (D65/D65(560) has Y = 0.9997 in kCieYIntegral units).
+// sky pixels have the sky's radiance. A unit white emission colour is D65 with luminance 1.
 TEST(Render, WhiteFurnaceSphereMatchesTheSky)
 {
     auto l = load(write_scene("furnace", kWhiteFurnace));
@@ -91,7 +90,7 @@ TEST(Render, WhiteFurnaceSphereMatchesTheSky)
     for (size_t i = 0; i < xyz.size(); i += 3)
         sum_y += xyz[i + 1];
     const double mean_y = sum_y / static_cast<double>(xyz.size() / 3);
-    EXPECT_NEAR(mean_y, 1.0, 0.01);
+    EXPECT_NEAR(mean_y, 1.0, 0.01);  // unit white light has Y = 1 (abi.h PatinaRgbSpectrum)
     // The centre pixel (sphere) against a corner pixel (sky), each averaged over a 4x4 block.
     auto block = [&](int x0, int y0) {
         double s = 0;

@@ -2,6 +2,8 @@
 // to spectra (greys exactly, as the ABI requires; other colours by a simple fit that is
 // good enough for these tests — the real uplift is src/core's and is tested there) and
 // evaluates those spectra, multiplying emission colours by CIE D65 normalised at 560 nm.
+// (The real host normalises D65 to luminance 1 instead; the emitter only scales whatever
+// the host's eval_rgb_spectrum returns, which is what these tests check.)
 #pragma once
 
 #include <patina/abi.h>
