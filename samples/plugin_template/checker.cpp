@@ -92,8 +92,7 @@ const PatinaPluginInfo kInfo = {"checker", "1.0", 1, kShaders};
 }  // namespace
 
 extern "C" {
-PATINA_PLUGIN_EXPORT extern const int patina_plugin_abi_version;
-const int patina_plugin_abi_version = PATINA_ABI_VERSION;
+PATINA_PLUGIN_DEFINE_VERSION;
 
 PATINA_PLUGIN_EXPORT const PatinaPluginInfo* patina_plugin_entry(const PatinaHost*)
 {
