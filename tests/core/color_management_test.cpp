@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "test_util.h"
+
 #include <cstdlib>
 #include <filesystem>
 #include <cmath>
@@ -17,15 +19,7 @@ namespace {
 
     const std::filesystem::path kConfig = PATINA_SOURCE_DIR "/ocio/config.ocio";
 
-    std::string message_of(const auto& f)
-    {
-        try {
-            f();
-        } catch (const std::runtime_error& e) {
-            return e.what();
-        }
-        return "(no exception)";
-    }
+    using patina::test::message_of;
 
     /// Sets or unsets $OCIO for one scope.
     class ScopedOcioEnv {

@@ -3,6 +3,8 @@
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
+#include "test_util.h"
+
 #include <unistd.h>
 
 #include <cmath>
@@ -42,15 +44,7 @@ namespace {
         return n;
     }
 
-    std::string message_of(const auto& f)
-    {
-        try {
-            f();
-        } catch (const std::runtime_error& e) {
-            return e.what();
-        }
-        return "(no exception)";
-    }
+    using patina::test::message_of;
 
 }  // namespace
 

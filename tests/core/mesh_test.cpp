@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "test_util.h"
+
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -21,15 +23,7 @@ namespace {
         return path;
     }
 
-    std::string message_of(const auto& f)
-    {
-        try {
-            f();
-        } catch (const std::runtime_error& e) {
-            return e.what();
-        }
-        return "(no exception)";
-    }
+    using patina::test::message_of;
 
     Imath::V3f face_normal(const TriangleMesh& m, size_t t)
     {

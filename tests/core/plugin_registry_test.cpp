@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include "test_util.h"
+
 #include <filesystem>
 #include <fstream>
 
@@ -18,17 +20,11 @@ fs::path fixture(const char* which)
     return fs::path(PATINA_FIXTURE_PLUGIN_DIR) / which / (std::string("patina_fixture_") + which + ".so");
 }
 
-// Runs `f`, expects a PluginError, and returns its message.
+// Runs `f` and returns the message of the PluginError it throws.
 template <class F>
 std::string error_of(F&& f)
 {
-    try {
-        f();
-    } catch (const PluginError& e) {
-        return e.what();
-    }
-    ADD_FAILURE() << "no PluginError thrown";
-    return {};
+    return patina::test::message_of<PluginError>(f);
 }
 
 }  // namespace

@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include "test_util.h"
+
 #include <atomic>
 #include <filesystem>
 #include <fstream>
@@ -43,15 +45,7 @@ namespace {
         return path;
     }
 
-    std::string message_of(const auto& f)
-    {
-        try {
-            f();
-        } catch (const std::runtime_error& e) {
-            return e.what();
-        }
-        return "(no exception)";
-    }
+    using patina::test::message_of;
 
 }  // namespace
 
