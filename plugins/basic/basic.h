@@ -45,6 +45,24 @@ T* make_instance(const PatinaHost* host, const char* shader, Args&&... args)
 }
 
 /// The transport mode of a shading point (radiance when the host gave no context).
+/// A descriptor with the fields every shader fills; the caller sets its function table.
+template <size_t N>
+PatinaShaderDesc describe(const char* name, PatinaShaderKind kind, const char* help,
+                          const PatinaParamDecl (&params)[N],
+                          void* (*create)(const PatinaHost*, const PatinaParamValue*),
+                          void (*destroy)(void*))
+{
+    PatinaShaderDesc d{};
+    d.name = name;
+    d.kind = kind;
+    d.help = help;
+    d.param_count = static_cast<int>(N);
+    d.params = params;
+    d.create = create;
+    d.destroy = destroy;
+    return d;
+}
+
 inline PatinaTransportMode transport_mode(const PatinaShadingContext* ctx)
 {
     return ctx ? ctx->mode : PATINA_TRANSPORT_RADIANCE;

@@ -296,15 +296,11 @@ namespace {
 
 PatinaShaderDesc conductor_shader()
 {
-    PatinaShaderDesc d{};
-    d.name = kName;
-    d.kind = PATINA_SHADER_BSDF;
-    d.help = "Rough or smooth metal: GGX microfacets with the exact Fresnel reflectance of a "
-             "spectral complex index of refraction n + ik.";
-    d.param_count = static_cast<int>(sizeof kParams / sizeof kParams[0]);
-    d.params = kParams;
-    d.create = create;
-    d.destroy = destroy;
+    PatinaShaderDesc d =
+        describe(kName, PATINA_SHADER_BSDF,
+                 "Rough or smooth metal: GGX microfacets with the exact Fresnel reflectance of a "
+                 "spectral complex index of refraction n + ik.",
+                 kParams, create, destroy);
     d.bsdf = &kFuncs;
     return d;
 }

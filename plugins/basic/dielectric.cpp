@@ -259,15 +259,11 @@ namespace {
 
 PatinaShaderDesc dielectric_shader()
 {
-    PatinaShaderDesc d{};
-    d.name = kName;
-    d.kind = PATINA_SHADER_BSDF;
-    d.help = "Rough or smooth boundary between two dielectrics (glass, water, varnish): "
-             "Fresnel-weighted reflection and refraction, from either side.";
-    d.param_count = static_cast<int>(sizeof kParams / sizeof kParams[0]);
-    d.params = kParams;
-    d.create = create;
-    d.destroy = destroy;
+    PatinaShaderDesc d =
+        describe(kName, PATINA_SHADER_BSDF,
+                 "Rough or smooth boundary between two dielectrics (glass, water, varnish): "
+                 "Fresnel-weighted reflection and refraction, from either side.",
+                 kParams, create, destroy);
     d.bsdf = &kFuncs;
     return d;
 }

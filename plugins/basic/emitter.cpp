@@ -122,15 +122,11 @@ namespace {
 
 PatinaShaderDesc emitter_shader()
 {
-    PatinaShaderDesc d{};
-    d.name = kName;
-    d.kind = PATINA_SHADER_EMITTER;
-    d.help = "Diffuse area light: uniform radiance intensity x colour (an illuminant "
-             "spectrum), from the front side or both sides.";
-    d.param_count = static_cast<int>(sizeof kParams / sizeof kParams[0]);
-    d.params = kParams;
-    d.create = create;
-    d.destroy = destroy;
+    PatinaShaderDesc d =
+        describe(kName, PATINA_SHADER_EMITTER,
+                 "Diffuse area light: uniform radiance intensity x colour (an illuminant "
+                 "spectrum), from the front side or both sides.",
+                 kParams, create, destroy);
     d.emitter = &kFuncs;
     return d;
 }

@@ -136,14 +136,10 @@ namespace {
 
 PatinaShaderDesc lambert_shader()
 {
-    PatinaShaderDesc d{};
-    d.name = kName;
-    d.kind = PATINA_SHADER_BSDF;
-    d.help = "Ideal diffuse (Lambertian) reflection, f = R / pi, on both sides of the surface.";
-    d.param_count = static_cast<int>(sizeof kParams / sizeof kParams[0]);
-    d.params = kParams;
-    d.create = create;
-    d.destroy = destroy;
+    PatinaShaderDesc d =
+        describe(kName, PATINA_SHADER_BSDF,
+                 "Ideal diffuse (Lambertian) reflection, f = R / pi, on both sides of the surface.",
+                 kParams, create, destroy);
     d.bsdf = &kFuncs;
     return d;
 }
