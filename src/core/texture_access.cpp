@@ -81,6 +81,9 @@ bool TextureAccess::lookup(const Handle* handle, float s, float t, float dsdx, f
 
     OIIO::TextureOpt opt; // one per call: TextureOpt is per-lookup state
     opt.swrap = opt.twrap = options_.wrap;
+    // Bilinear, not OIIO's default "smart bicubic": its B-spline is not interpolating, so a
+    // magnified data map (thickness, exposure) would not return its texel values.
+    opt.interpmode = OIIO::TextureOpt::InterpBilinear;
     OIIO::TextureSystem::Perthread* thread = ts_->get_perthread_info();
 
     // Only channels 0-2 (or a grey channel 0) carry colour; others pass through.

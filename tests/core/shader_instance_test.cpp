@@ -3,6 +3,8 @@
 #include "core/plugin_registry.h"
 #include "core/shader_instance.h"
 
+#include "core/image_io.h"
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -18,15 +20,19 @@ protected:
         registry.load_file(fs::path(PATINA_FIXTURE_PLUGIN_DIR) / "good" / "patina_fixture_good.so");
     }
 
-    // Binds `toml_text` to the fixture shader and reads the bound values back through eval.
-    std::array<float, PATINA_MAX_WAVELENGTHS> bind(std::string_view toml_text)
+    // Binds `toml_text` to the fixture shader and reads the bound values back through eval
+    // at a shading point with texture coordinates `uv`.
+    std::array<float, PATINA_MAX_WAVELENGTHS> bind(std::string_view toml_text,
+                                                   PatinaVec2 uv = {0.5f, 0.5f})
     {
         const toml::table params = toml::parse(toml_text, std::string_view("scene.toml"));
         auto inst = patina::create_shader_instance(registry, "fixture_diffuse", params, "probe",
-                                                   {"scene.toml", {}, {"type"}});
+                                                   {"scene.toml", PATINA_TEST_BUILD_DIR, {"type"}});
         std::array<float, PATINA_MAX_WAVELENGTHS> f{};
         PatinaWavelengths wl{8, {400, 450, 500, 550, 600, 650, 700, 750}};
-        inst->bsdf()->eval(inst->get(), nullptr, {0, 0, 1}, {0, 0, 1}, &wl, f.data());
+        PatinaShadingContext ctx{};
+        ctx.uv = uv;
+        inst->bsdf()->eval(inst->get(), &ctx, {0, 0, 1}, {0, 0, 1}, &wl, f.data());
         return f;
     }
 
@@ -153,7 +159,26 @@ TEST_F(ShaderInstanceTest, ShaderThatNoPluginProvides)
 TEST_F(ShaderInstanceTest, DescriptionListsEveryParameter)
 {
     const std::string text = patina::describe_shader(*registry.get("fixture_diffuse").desc);
-    for (const char* name : {"weight", "count", "flag", "color", "spectrum", "mode"})
+    for (const char* name : {"weight", "count", "flag", "color", "spectrum", "mode", "map"})
         EXPECT_NE(text.find(name), std::string::npos) << name;
     EXPECT_NE(text.find("[0, 1]"), std::string::npos) << text;
+}
+
+TEST_F(ShaderInstanceTest, TextureIsOpenedRelativeToTheSceneAndLookedUpInMeshUv)
+{
+    // A 2x2 raw texture; rows run top to bottom in the file: top (10, 20), bottom (30, 40).
+    const float pixels[4] = {10.0f, 20.0f, 30.0f, 40.0f};
+    patina::TextureOptions opt;
+    opt.format = OIIO::TypeDesc::FLOAT;
+    patina::make_texture_atomic(fs::path(PATINA_TEST_BUILD_DIR) / "fixture_map.exr", pixels, 2, 2,
+                                1, {"Y"}, opt);
+    EXPECT_FLOAT_EQ(bind("").at(6), -1.0f);  // no map: the plugin sees a NULL handle
+    // Mesh uv has v = 0 at the bottom of the image: (0.25, 0.25) is the bottom-left texel.
+    EXPECT_NEAR(bind("map = 'fixture_map.exr'", {0.25f, 0.25f}).at(6), 30.0f, 1e-4f);
+    EXPECT_NEAR(bind("map = 'fixture_map.exr'", {0.75f, 0.75f}).at(6), 20.0f, 1e-4f);
+    EXPECT_NEAR(bind("map = { file = 'fixture_map.exr', colorspace = 'raw' }", {0.25f, 0.75f}).at(6),
+                10.0f, 1e-4f);
+    const std::string msg = error_of("map = 'no_such_map.exr'");
+    EXPECT_NE(msg.find("parameter 'map'"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("no_such_map.exr"), std::string::npos) << msg;
 }
