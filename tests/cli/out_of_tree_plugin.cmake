@@ -28,4 +28,28 @@ foreach(expect checker_lambert color_a scale lambert conductor dielectric emitte
     message(FATAL_ERROR "--list-shaders output lacks '${expect}':\n${LAST_OUTPUT}")
   endif()
 endforeach()
-message(STATUS "out-of-tree plugin built and listed")
+
+# Patina::core from the installed package: a small program using libpatina.
+file(WRITE "${WORK_DIR}/core_user/CMakeLists.txt" [=[
+cmake_minimum_required(VERSION 3.25)
+project(core_user LANGUAGES C CXX)
+set(CMAKE_CXX_STANDARD 20)
+find_package(Patina 0.1 REQUIRED)
+add_executable(core_user main.cpp)
+target_link_libraries(core_user PRIVATE Patina::core)
+]=])
+file(WRITE "${WORK_DIR}/core_user/main.cpp" [=[
+#include "core/kubelka_munk.h"
+#include <cstdio>
+// R_inf of K/S = 0.5: 1 + 0.5 - sqrt(0.25 + 1) = 0.381966 (D&H 1996 section 4.1).
+int main() { std::printf("%.6f", patina::km_r_infinity(0.5f)); }
+]=])
+run(${CMAKE_COMMAND} -S "${WORK_DIR}/core_user" -B "${WORK_DIR}/core_user/build" -G Ninja
+    -DCMAKE_PREFIX_PATH=${prefix} -DCMAKE_BUILD_TYPE=Release)
+run(${CMAKE_COMMAND} --build "${WORK_DIR}/core_user/build")
+run("${WORK_DIR}/core_user/build/core_user")
+string(FIND "${LAST_OUTPUT}" "0.381966" pos)
+if(pos EQUAL -1)
+  message(FATAL_ERROR "Patina::core consumer printed '${LAST_OUTPUT}', expected 0.381966")
+endif()
+message(STATUS "out-of-tree plugin built and listed; Patina::core linked and ran")
