@@ -220,3 +220,51 @@ TEST(Render, WritesExrAndPngAndNoTemporaryFiles)
         ++files;
     EXPECT_EQ(files, 2u);
 }
+
+// The scene's [plugins] path is resolved against the scene file's folder.
+TEST(Render, ScenePluginPathIsRelativeToTheScene)
+{
+    const fs::path fixtures = fs::path(PATINA_FIXTURE_PLUGIN_DIR) / "good";
+    const fs::path scene_dir = fs::path(PATINA_TEST_BUILD_DIR) / "render_scenes";
+    fs::create_directories(scene_dir);
+    const std::string rel = fs::relative(fixtures, scene_dir).string();
+    auto l = load(write_scene("plugin_path", "[plugins]\npath = ['" + rel + "']\n"
+                                             "[[shader]]\nname = 'probe'\ntype = 'fixture_diffuse'\n"));
+    ASSERT_EQ(l->scene.shaders.count("probe"), 1u);
+    EXPECT_EQ(std::string(l->scene.shaders.at("probe")->desc().name), "fixture_diffuse");
+}
+
+// A mesh file goes through Assimp into Embree: a grey OBJ quad filling the view under a
+// uniform white sky reflects its albedo (as the built-in plane above).
+TEST(Render, ObjMeshUnderUniformSky)
+{
+    const fs::path dir = fs::path(PATINA_TEST_BUILD_DIR) / "render_scenes";
+    fs::create_directories(dir);
+    std::ofstream(dir / "quad.obj") << "v -50 0 -50\nv 50 0 -50\nv 50 0 50\nv -50 0 50\n"
+                                       "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
+                                       "f 1/1 4/4 3/3\nf 1/1 3/3 2/2\n";
+    auto l = load(write_scene("objmesh", R"(
+[film]
+width = 8
+height = 8
+spp = 64
+[camera]
+from = [0, 3, 0.001]
+to = [0, 0, 0]
+fov_deg = 20
+[environment]
+color = [1, 1, 1]
+[[shader]]
+name = "grey"
+type = "lambert"
+reflectance = 0.25
+[[object]]
+mesh = "quad.obj"
+bsdf = "grey"
+)"));
+    const std::vector<float> xyz = pr::render_xyz(l->scene, 0, true);
+    double sum_y = 0.0;
+    for (size_t i = 0; i < xyz.size(); i += 3)
+        sum_y += xyz[i + 1];
+    EXPECT_NEAR(sum_y / static_cast<double>(xyz.size() / 3), 0.25, 0.01);
+}
