@@ -32,9 +32,10 @@
  * its descriptors and their strings must live as long as the library is loaded (use
  * static storage).
  *
- * Discovery: the host searches only directories it was given — PATINA_PLUGIN_PATH
- * (colon-separated absolute directories), the --plugin-path option and the scene file —
- * never the current directory or LD_LIBRARY_PATH implicitly.
+ * Discovery: the host searches only directories it knows or was given — patina-render's own
+ * bundled folder (<prefix>/lib/patina/plugins), PATINA_PLUGIN_PATH (colon-separated absolute
+ * directories), the --plugin-path option and the scene file — never the current directory
+ * or LD_LIBRARY_PATH implicitly.
  *
  * ---------------------------------------------------------------------------------------
  * 2. Shaders, parameters and instances
