@@ -4,6 +4,7 @@
 #pragma once
 
 #include "render/camera.h"
+#include "render/shading_frame.h"
 #include "render/scene.h"
 
 #include "core/sampling.h"
@@ -17,15 +18,5 @@ namespace patina::render {
 SampledSpectrum trace_path(const Scene& scene, Ray ray, const PatinaWavelengths& wl,
                            SampledSpectrum& pdf, Pcg32& rng);
 
-/// The shading context of a surface point, and the local frame its BSDF works in.
-struct ShadingFrame {
-    PatinaShadingContext ctx{};
-    Imath::V3f s, t, n;  ///< orthonormal; n = shading normal
-
-    Imath::V3f to_local(const Imath::V3f& v) const { return {v.dot(s), v.dot(t), v.dot(n)}; }
-    Imath::V3f to_world(const Imath::V3f& v) const { return v.x * s + v.y * t + v.z * n; }
-};
-
-ShadingFrame make_shading_frame(const SurfacePoint& p);
 
 }  // namespace patina::render
