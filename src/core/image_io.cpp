@@ -93,7 +93,8 @@ std::filesystem::path temporary_path_for(const std::filesystem::path& path)
 void write_image_atomic(const std::filesystem::path& path, const float* pixels, int width,
                         int height, int channels,
                         const std::vector<std::string>& channel_names,
-                        OIIO::TypeDesc format, const Metadata& metadata)
+                        OIIO::TypeDesc format, const Metadata& metadata,
+                        const ImageWindow* window)
 {
     check_format(path, format);
     if (!pixels)
@@ -102,6 +103,13 @@ void write_image_atomic(const std::filesystem::path& path, const float* pixels, 
     add_metadata(spec, metadata);
     if (channels == 4 && channel_names.empty())
         spec.alpha_channel = 3;
+    if (window) {
+        spec.x = window->x;
+        spec.y = window->y;
+        spec.full_x = spec.full_y = 0;
+        spec.full_width = window->full_width;
+        spec.full_height = window->full_height;
+    }
 
     // The writer is chosen from the final name: the temporary name has no image extension.
     auto out = OIIO::ImageOutput::create(path.string());

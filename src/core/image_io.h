@@ -45,6 +45,14 @@ struct ImageData {
     }
 };
 
+/// Where the pixels sit in a larger frame (OpenEXR data window inside the display window):
+/// a crop or a farm tile of a `full_width` x `full_height` image, starting at pixel (x, y).
+/// Formats without data windows (PNG) store just the pixels.
+struct ImageWindow {
+    int x = 0, y = 0;
+    int full_width = 0, full_height = 0;
+};
+
 /// The temporary name a write goes to before the rename: `<path>.tmp-<pid>-<n>`, in the
 /// same folder (so the rename is atomic), `n` unique within the process.
 std::filesystem::path temporary_path_for(const std::filesystem::path& path);
@@ -60,7 +68,8 @@ std::filesystem::path temporary_path_for(const std::filesystem::path& path);
 void write_image_atomic(const std::filesystem::path& path, const float* pixels, int width,
                         int height, int channels,
                         const std::vector<std::string>& channel_names,
-                        OIIO::TypeDesc format, const Metadata& metadata = {});
+                        OIIO::TypeDesc format, const Metadata& metadata = {},
+                        const ImageWindow* window = nullptr);
 
 /// How make_texture_atomic builds a texture.
 struct TextureOptions {

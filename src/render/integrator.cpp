@@ -23,7 +23,7 @@ namespace {
 }  // namespace
 
 SampledSpectrum trace_path(const Scene& scene, Ray ray, const PatinaWavelengths& wl,
-                           SampledSpectrum& pdf, Pcg32& rng)
+                           SampledSpectrum& pdf, Pcg32& rng, PathAovs* aovs)
 {
     SampledSpectrum L(wl.count, 0.0f), beta(wl.count, 1.0f);
     bool secondaries_terminated = false;
@@ -40,6 +40,17 @@ SampledSpectrum trace_path(const Scene& scene, Ray ray, const PatinaWavelengths&
         const ShadingFrame frame = make_shading_frame(sp);
         const Imath::V3f wo_world = -ray.dir;
         const PatinaVec3 wo = to_abi(frame.to_local(wo_world));
+        if (depth == 0 && aovs) {
+            aovs->hit = true;
+            aovs->normal = sp.N;
+            aovs->depth = hit->t;
+            aovs->albedo = SampledSpectrum(wl.count, 0.0f);
+            if (obj.bsdf && obj.bsdf->bsdf()->albedo) {
+                float a[PATINA_MAX_WAVELENGTHS] = {};
+                obj.bsdf->bsdf()->albedo(obj.bsdf->get(), &frame.ctx, wo, &wl, a);
+                aovs->albedo = SampledSpectrum::from_array(wl.count, a);
+            }
+        }
 
         // Emission seen by the path.
         if (obj.emitter) {

@@ -22,7 +22,7 @@ int main(int argc, char** argv)
     bool no_bundled = false;
     pr::RenderOptions options;
 
-    app.add_option("scene", scene_file, "scene file (TOML)")->check(CLI::ExistingFile);
+    app.add_option("scene", scene_file, "scene file (TOML; '#' runs become the frame number with --frames)");
     app.add_flag("--list-shaders", list, "print every shader the plugins provide, with parameters");
     app.add_option("--plugin-path", plugin_paths,
                    "a folder of plugins to load (repeatable; also $PATINA_PLUGIN_PATH)");
@@ -37,6 +37,17 @@ int main(int argc, char** argv)
         ->check(CLI::NonNegativeNumber);
     app.add_option("--resolution", options.resolution, "width and height (overrides the scene)")
         ->expected(2)->check(CLI::PositiveNumber);
+    app.add_option("--crop", options.crop, "render only pixels [x0, x1) x [y0, y1) of the frame")
+        ->expected(4);
+    app.add_option("--tile", options.tile,
+                   "render farm tile i of n (0-based bands of rows); merge the tiles with "
+                   "oiiotool --add");
+    app.add_option("--frames", options.frames,
+                   "frame range first-last; a run of '#' in the scene and output paths becomes "
+                   "the zero-padded frame number");
+    app.add_option("--time-limit", options.time_limit,
+                   "seconds; stop after the sample pass that crosses it (spp in the EXR header)")
+        ->check(CLI::PositiveNumber);
     app.add_flag("--quiet", options.quiet, "no progress on stderr");
 
     try {

@@ -1,20 +1,20 @@
 #include "render/renderer.h"
 
+#include "render/film_output.h"
 #include "render/integrator.h"
+#include "render/progress.h"
 #include "render/scene.h"
 
-#include "core/color_management.h"
 #include "core/host.h"
-#include "core/image_io.h"
 
 #include <fmt/format.h>
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 
-#include <atomic>
+#include <charconv>
 #include <chrono>
-#include <cstdio>
-#include <mutex>
+#include <cmath>
+#include <stdexcept>
 
 namespace patina::render {
 
@@ -24,146 +24,251 @@ namespace {
 
     constexpr int kTileSize = 16;
 
-    // A per-pixel random stream that depends only on the seed, the pixel and the sample
-    // index, so the image is the same for any thread count or tile order.
-    Pcg32 pixel_rng(uint64_t seed, int x, int y, int width, int sample)
+    // Albedo AOV: the albedo spectrum as a reflectance under D65 of unit luminance, so a
+    // white albedo gives XYZ of the working space's white.
+    float unit_d65(float lambda_nm)
     {
-        const uint64_t pixel = static_cast<uint64_t>(y) * static_cast<uint64_t>(width) + static_cast<uint64_t>(x);
-        return Pcg32(mix_bits(seed * 0x9E3779B97F4A7C15ULL + pixel),
-                     mix_bits((seed << 32) ^ static_cast<uint64_t>(sample)));
+        static const float k = static_cast<float>(1.0 / emission_to_xyz(d65)[1]);
+        return d65(lambda_nm) * k;
     }
 
-    class Progress {
-    public:
-        Progress(size_t total, bool quiet) : total_(total), quiet_(quiet), start_(clock::now()) {}
-
-        void step()
-        {
-            const size_t done = ++done_;
-            if (quiet_)
-                return;
-            std::lock_guard lock(mutex_);
-            const double elapsed = seconds();
-            if (done != total_ && elapsed - last_ < 0.5)
-                return;
-            last_ = elapsed;
-            const double eta = elapsed / static_cast<double>(done) * static_cast<double>(total_ - done);
-            std::fprintf(stderr, "\rrender: %5.1f%%  elapsed %.1fs  ETA %.1fs   ",
-                         100.0 * static_cast<double>(done) / static_cast<double>(total_), elapsed, eta);
-            if (done == total_)
-                std::fputc('\n', stderr);
-        }
-
-        double seconds() const
-        {
-            return std::chrono::duration<double>(clock::now() - start_).count();
-        }
-
-    private:
-        using clock = std::chrono::steady_clock;
-        size_t total_;
-        bool quiet_;
-        clock::time_point start_;
-        std::atomic<size_t> done_{0};
-        std::mutex mutex_;
-        double last_ = -1.0;
+    // Per-pixel sums over sample passes, in double so the order of passes cannot matter.
+    struct Accumulator {
+        std::vector<double> xyz, albedo, normal, depth;
     };
+
+    int parse_int(std::string_view text, const char* what)
+    {
+        int v = 0;
+        const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+        if (ec != std::errc() || ptr != text.data() + text.size())
+            throw std::invalid_argument(fmt::format("{}: '{}' is not an integer", what, text));
+        return v;
+    }
 
 }  // namespace
 
-std::vector<float> render_xyz(const Scene& scene, int threads, bool quiet)
+Region tile_region(int index, int count, int width, int height)
+{
+    if (count < 1 || index < 0 || index >= count)
+        throw std::invalid_argument(fmt::format("--tile {}/{}: need 0 <= i < n", index, count));
+    if (count > height)
+        throw std::invalid_argument(fmt::format("--tile {}/{}: more tiles than the {} rows", index,
+                                                count, height));
+    const int base = height / count, extra = height % count;
+    const int y0 = index * base + std::min(index, extra);
+    const int y1 = y0 + base + (index < extra ? 1 : 0);
+    return {0, y0, width, y1};
+}
+
+std::pair<int, int> parse_tile(const std::string& text)
+{
+    const size_t slash = text.find('/');
+    if (slash == std::string::npos)
+        throw std::invalid_argument(fmt::format("--tile '{}': expected i/n, e.g. 0/4", text));
+    return {parse_int(std::string_view(text).substr(0, slash), "--tile"),
+            parse_int(std::string_view(text).substr(slash + 1), "--tile")};
+}
+
+std::pair<int, int> parse_frames(const std::string& text)
+{
+    const size_t dash = text.find('-', 1);
+    const std::pair<int, int> range =
+        dash == std::string::npos
+            ? std::pair{parse_int(text, "--frames"), parse_int(text, "--frames")}
+            : std::pair{parse_int(std::string_view(text).substr(0, dash), "--frames"),
+                        parse_int(std::string_view(text).substr(dash + 1), "--frames")};
+    if (range.second < range.first)
+        throw std::invalid_argument(fmt::format("--frames '{}': last frame before first", text));
+    return range;
+}
+
+std::string substitute_frame(const std::string& pattern, int frame)
+{
+    const size_t first = pattern.find('#');
+    if (first == std::string::npos)
+        return pattern;
+    size_t last = first;
+    while (last < pattern.size() && pattern[last] == '#')
+        ++last;
+    return pattern.substr(0, first) +
+           fmt::format("{:0{}d}", frame, static_cast<int>(last - first)) + pattern.substr(last);
+}
+
+FilmResult render_region(const Scene& scene, const Region& region, const RenderControl& control)
 {
     const FilmSettings& film = scene.film;
-    std::vector<float> xyz(static_cast<size_t>(film.width) * film.height * 3, 0.0f);
-    const int tiles_x = (film.width + kTileSize - 1) / kTileSize;
-    const int tiles_y = (film.height + kTileSize - 1) / kTileSize;
-    Progress progress(static_cast<size_t>(tiles_x) * tiles_y, quiet);
+    const int w = region.width(), h = region.height();
+    const size_t npix = static_cast<size_t>(w) * static_cast<size_t>(h);
+    Accumulator acc;
+    acc.xyz.assign(npix * 3, 0.0);
+    if (film.aov_albedo)
+        acc.albedo.assign(npix * 3, 0.0);
+    if (film.aov_normal)
+        acc.normal.assign(npix * 3, 0.0);
+    if (film.aov_depth)
+        acc.depth.assign(npix, 0.0);
+    const bool want_aovs = film.aov_albedo || film.aov_normal || film.aov_depth;
+
+    const int tiles_x = (w + kTileSize - 1) / kTileSize;
+    const int tiles_y = (h + kTileSize - 1) / kTileSize;
+    // With a time limit the samples come in passes, checked between passes; the sums per
+    // pixel are taken in sample order either way, so a pass split does not change bits.
+    const int pass_spp = control.time_limit ? std::max(1, std::min(film.spp, 4)) : film.spp;
+    const int passes = (film.spp + pass_spp - 1) / pass_spp;
+    Progress progress(static_cast<size_t>(tiles_x) * tiles_y * passes, control.quiet);
 
     std::unique_ptr<tbb::global_control> limit;
-    if (threads > 0)
-        limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
-                                                      static_cast<size_t>(threads));
-    tbb::parallel_for(0, tiles_x * tiles_y, [&](int tile) {
-        const int x0 = (tile % tiles_x) * kTileSize, y0 = (tile / tiles_x) * kTileSize;
-        for (int y = y0; y < std::min(y0 + kTileSize, film.height); ++y)
-            for (int x = x0; x < std::min(x0 + kTileSize, film.width); ++x) {
-                double sum[3] = {0, 0, 0};
-                for (int s = 0; s < film.spp; ++s) {
-                    Pcg32 rng = pixel_rng(film.seed, x, y, film.width, s);
-                    const float fx = (static_cast<float>(x) + rng.uniform_float()) / static_cast<float>(film.width);
-                    const float fy = (static_cast<float>(y) + rng.uniform_float()) / static_cast<float>(film.height);
-                    const PatinaWavelengths wl = sample_wavelengths_visible(rng.uniform_float(), film.wavelengths);
-                    SampledSpectrum pdf = visible_wavelength_pdf(wl);
-                    const SampledSpectrum L = trace_path(scene, scene.camera.generate(fx, fy), wl, pdf, rng);
-                    const Xyz c = xyz_from_samples(L, wl, pdf);
-                    for (int k = 0; k < 3; ++k)
-                        if (std::isfinite(c[static_cast<size_t>(k)]))
-                            sum[k] += c[static_cast<size_t>(k)];
+    if (control.threads > 0)
+        limit = std::make_unique<tbb::global_control>(
+            tbb::global_control::max_allowed_parallelism, static_cast<size_t>(control.threads));
+
+    int spp_done = 0;
+    for (int pass = 0; pass < passes; ++pass) {
+        const int s0 = pass * pass_spp, s1 = std::min(film.spp, s0 + pass_spp);
+        tbb::parallel_for(0, tiles_x * tiles_y, [&](int tile) {
+            const int tx0 = (tile % tiles_x) * kTileSize, ty0 = (tile / tiles_x) * kTileSize;
+            for (int ly = ty0; ly < std::min(ty0 + kTileSize, h); ++ly)
+                for (int lx = tx0; lx < std::min(tx0 + kTileSize, w); ++lx) {
+                    const int x = region.x0 + lx, y = region.y0 + ly;
+                    const size_t i = static_cast<size_t>(ly) * w + lx;
+                    for (int s = s0; s < s1; ++s) {
+                        Pcg32 rng = pixel_sample_rng(film.seed, x, y, static_cast<uint64_t>(s));
+                        const float fx = (static_cast<float>(x) + rng.uniform_float()) /
+                                         static_cast<float>(film.width);
+                        const float fy = (static_cast<float>(y) + rng.uniform_float()) /
+                                         static_cast<float>(film.height);
+                        const Imath::V2f lens{rng.uniform_float(), rng.uniform_float()};
+                        const PatinaWavelengths wl =
+                            sample_wavelengths_visible(rng.uniform_float(), film.wavelengths);
+                        SampledSpectrum pdf = visible_wavelength_pdf(wl);
+                        PathAovs aov;
+                        const SampledSpectrum L = trace_path(
+                            scene, scene.camera.generate(fx, fy, lens), wl, pdf, rng,
+                            want_aovs ? &aov : nullptr);
+                        const Xyz c = xyz_from_samples(L, wl, pdf);
+                        for (size_t k = 0; k < 3; ++k)
+                            if (std::isfinite(c[k]))
+                                acc.xyz[i * 3 + k] += c[k];
+                        if (!aov.hit)
+                            continue;
+                        if (film.aov_albedo) {
+                            const SampledSpectrum a = aov.albedo * SampledSpectrum::from_function(wl, unit_d65);
+                            const Xyz ax = xyz_from_samples(a, wl, visible_wavelength_pdf(wl));
+                            for (size_t k = 0; k < 3; ++k)
+                                acc.albedo[i * 3 + k] += ax[k];
+                        }
+                        if (film.aov_normal)
+                            for (size_t k = 0; k < 3; ++k)
+                                acc.normal[i * 3 + k] += aov.normal[static_cast<int>(k)];
+                        if (film.aov_depth)
+                            acc.depth[i] += aov.depth;
+                    }
                 }
-                float* out = &xyz[(static_cast<size_t>(y) * film.width + x) * 3];
-                for (int k = 0; k < 3; ++k)
-                    out[k] = static_cast<float>(sum[k] / film.spp);
-            }
-        progress.step();
-    });
-    return xyz;
+            progress.step();
+        });
+        spp_done = s1;
+        if (control.time_limit && progress.seconds() > *control.time_limit)
+            break;
+    }
+    progress.finish();
+
+    FilmResult out;
+    out.region = region;
+    out.spp = spp_done;
+    auto mean = [&](const std::vector<double>& sums) {
+        std::vector<float> v(sums.size());
+        for (size_t i = 0; i < sums.size(); ++i)
+            v[i] = static_cast<float>(sums[i] / spp_done);
+        return v;
+    };
+    out.xyz = mean(acc.xyz);
+    out.albedo_xyz = mean(acc.albedo);
+    out.normal = mean(acc.normal);
+    out.depth = mean(acc.depth);
+    return out;
 }
+
+std::vector<float> render_xyz(const Scene& scene, int threads, bool quiet)
+{
+    const Region full{0, 0, scene.film.width, scene.film.height};
+    return render_region(scene, full, {threads, quiet, std::nullopt}).xyz;
+}
+
+namespace {
+
+    Region region_for(const Scene& scene, const RenderOptions& options)
+    {
+        Region r{0, 0, scene.film.width, scene.film.height};
+        if (options.crop.size() == 4) {
+            const Region c{options.crop[0], options.crop[1], options.crop[2], options.crop[3]};
+            if (c.x0 < 0 || c.y0 < 0 || c.x1 > r.x1 || c.y1 > r.y1 || c.width() <= 0 ||
+                c.height() <= 0)
+                throw std::invalid_argument(fmt::format(
+                    "--crop {} {} {} {}: must lie inside the {}x{} frame with x0 < x1, y0 < y1",
+                    c.x0, c.y0, c.x1, c.y1, r.x1, r.y1));
+            r = c;
+        }
+        if (!options.tile.empty()) {
+            if (options.crop.size() == 4)
+                throw std::invalid_argument("--tile and --crop cannot be combined");
+            const auto [i, n] = parse_tile(options.tile);
+            r = tile_region(i, n, scene.film.width, scene.film.height);
+        }
+        return r;
+    }
+
+    void render_frame(const fs::path& scene_file, PluginSearch search, const RenderOptions& options,
+                      const fs::path& output)
+    {
+        Host& host = default_host();
+        const SceneFile file = parse_scene_file(scene_file);
+        search.scene = file.plugin_dirs;
+        PluginRegistry registry(host.c_host());
+        load_plugins(registry, search);
+        Scene scene = build_scene(file, registry, host);
+
+        // Command-line overrides.
+        if (options.spp)
+            scene.film.spp = *options.spp;
+        if (options.seed)
+            scene.film.seed = *options.seed;
+        if (options.resolution.size() == 2) {
+            scene.film.width = options.resolution[0];
+            scene.film.height = options.resolution[1];
+            scene.camera.set_aspect(static_cast<float>(scene.film.width) / scene.film.height);
+        }
+        fs::path exr = output.empty() ? scene.output.exr : output;
+        if (exr.empty())
+            throw std::runtime_error(fmt::format(
+                "{}: no output file: set [output] file or pass --output", scene_file.string()));
+        check_output_path(exr);
+
+        const Region region = region_for(scene, options);
+        const FilmResult film = render_region(scene, region, {options.threads, options.quiet,
+                                                             options.time_limit});
+        write_film(scene, film, exr, scene_file, host.colors());
+    }
+
+}  // namespace
 
 void render_scene_file(const fs::path& scene_file, PluginSearch search, const RenderOptions& options)
 {
-    Host& host = default_host();
-    const SceneFile file = parse_scene_file(scene_file);
-    search.scene = file.plugin_dirs;
-    PluginRegistry registry(host.c_host());
-    load_plugins(registry, search);
-    Scene scene = build_scene(file, registry, host);
-
-    // Command-line overrides.
-    if (options.spp)
-        scene.film.spp = *options.spp;
-    if (options.seed)
-        scene.film.seed = *options.seed;
-    if (options.resolution.size() == 2) {
-        scene.film.width = options.resolution[0];
-        scene.film.height = options.resolution[1];
+    if (options.frames.empty()) {
+        render_frame(scene_file, search, options, options.output);
+        return;
     }
-    fs::path exr = options.output.empty() ? scene.output.exr : options.output;
-    if (exr.empty())
-        throw std::runtime_error(fmt::format(
-            "{}: no output file: set [output] file or pass --output", scene_file.string()));
-    if (exr.extension() != ".exr")
-        throw std::runtime_error(fmt::format("output '{}' must be an .exr file", exr.string()));
-    if (!exr.parent_path().empty() && !fs::is_directory(exr.parent_path()))
-        throw std::runtime_error(fmt::format("output folder '{}' does not exist",
-                                             exr.parent_path().string()));
-
-    const std::vector<float> xyz = render_xyz(scene, options.threads, options.quiet);
-
-    // XYZ -> working space (OCIO), then the display image through the chosen view.
-    const ColorManager& colors = host.colors();
-    const size_t npix = static_cast<size_t>(scene.film.width) * scene.film.height;
-    std::vector<float> rgb = xyz;
-    colors.convert("CIE-XYZ-D65", colors.working_space(), rgb.data(), npix);
-    const Metadata meta = {
-        {"patina:scene", fs::absolute(scene_file).string()},
-        {"patina:spp", scene.film.spp},
-        {"patina:seed", static_cast<int>(scene.film.seed)},
-        {"patina:wavelengths", scene.film.wavelengths},
-        {"oiio:ColorSpace", colors.working_space()},
-    };
-    std::vector<float> display;
-    if (scene.output.png) {
-        display = rgb;
-        colors.convert_display(colors.working_space(), scene.output.display, scene.output.view,
-                               display.data(), npix);
-    }
-    write_image_atomic(exr, rgb.data(), scene.film.width, scene.film.height, 3, {"R", "G", "B"},
-                       OIIO::TypeDesc::FLOAT, meta);
-    if (scene.output.png) {
-        fs::path png = exr;
-        png.replace_extension(".png");
-        write_image_atomic(png, display.data(), scene.film.width, scene.film.height, 3, {},
-                           OIIO::TypeDesc::UINT8);
+    const auto [first, last] = parse_frames(options.frames);
+    for (int frame = first; frame <= last; ++frame) {
+        const fs::path scene_path = substitute_frame(scene_file.string(), frame);
+        const fs::path out = options.output.empty() ? fs::path()
+                                                    : fs::path(substitute_frame(options.output.string(), frame));
+        if (!options.quiet)
+            std::fprintf(stderr, "frame %d: %s\n", frame, scene_path.string().c_str());
+        if (!fs::exists(scene_path))
+            throw std::runtime_error(fmt::format("frame {}: scene file '{}' does not exist", frame,
+                                                 scene_path.string()));
+        render_frame(scene_path, search, options, out);
     }
 }
 

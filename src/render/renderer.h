@@ -1,4 +1,5 @@
-// patina-render's top level: load a scene file, load the plugins it needs, render, write.
+// patina-render's top level: load a scene file, load the plugins it needs, render a frame
+// (or a crop or farm tile of it) in sample passes, and write the outputs.
 #pragma once
 
 #include "render/plugin_setup.h"
@@ -6,9 +7,29 @@
 #include <cstdint>
 #include <filesystem>
 #include <optional>
+#include <string>
 #include <vector>
 
 namespace patina::render {
+
+struct Scene;
+
+/// A window of pixels [x0, x1) x [y0, y1) of the full frame.
+struct Region {
+    int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+    int width() const { return x1 - x0; }
+    int height() const { return y1 - y0; }
+};
+
+/// Tile `index` of `count` (0-based) of a width x height frame: horizontal bands of whole
+/// rows, the first height % count bands one row taller. Throws std::invalid_argument.
+Region tile_region(int index, int count, int width, int height);
+/// Parse "i/n" for --tile.
+std::pair<int, int> parse_tile(const std::string& text);
+/// Parse "first-last" or "n" for --frames.
+std::pair<int, int> parse_frames(const std::string& text);
+/// Replace the run of '#' in `pattern` by `frame`, zero-padded to the run's length.
+std::string substitute_frame(const std::string& pattern, int frame);
 
 /// Command-line overrides of the scene's [film] and [output] settings.
 struct RenderOptions {
@@ -17,19 +38,40 @@ struct RenderOptions {
     std::optional<uint64_t> seed;
     int threads = 0;                 ///< 0 = every core
     std::vector<int> resolution;     ///< {} or {width, height}
+    std::vector<int> crop;           ///< {} or {x0, y0, x1, y1} in pixels
+    std::string tile;                ///< "" or "i/n"
+    std::string frames;              ///< "" or "first-last": '#' runs in paths become the frame
+    std::optional<double> time_limit;  ///< seconds; stops after the last whole sample pass
     bool quiet = false;
 };
 
-/// Render `scene_file` and write its outputs (scene-linear EXR + display PNG). Throws
-/// std::exception with a message naming the file, line and key on any error; writes
-/// nothing unless the render completed.
+/// Accumulated film of one region: per-pixel means of what was asked for.
+struct FilmResult {
+    Region region;
+    int spp = 0;                   ///< samples per pixel actually taken
+    std::vector<float> xyz;        ///< CIE XYZ (D65), 3 per pixel
+    std::vector<float> albedo_xyz; ///< first-hit albedo as XYZ under unit D65 (if asked)
+    std::vector<float> normal;     ///< first-hit world shading normal (if asked)
+    std::vector<float> depth;      ///< first-hit distance along the camera ray, 0 = none
+};
+
+struct RenderControl {
+    int threads = 0;
+    bool quiet = true;
+    std::optional<double> time_limit;
+};
+
+/// Render `region` of the scene's frame. Pixels depend only on (seed, pixel, sample index),
+/// so the result is bitwise the same for any thread count, pass size or region split.
+FilmResult render_region(const Scene& scene, const Region& region, const RenderControl& control);
+
+/// Render the whole frame to interleaved CIE XYZ (D65, Y = 1 for a unit white).
+std::vector<float> render_xyz(const Scene& scene, int threads, bool quiet);
+
+/// Render `scene_file` and write its outputs (scene-linear EXR + display PNG), for every
+/// frame of options.frames. Throws std::exception with a message naming the file, line
+/// and key on any error; writes nothing of a frame unless its render completed.
 void render_scene_file(const std::filesystem::path& scene_file, PluginSearch search,
                        const RenderOptions& options);
 
-}  // namespace patina::render
-
-namespace patina::render {
-struct Scene;
-/// Render to an interleaved CIE XYZ (D65, Y = 1 for a unit white) float image.
-std::vector<float> render_xyz(const Scene& scene, int threads, bool quiet);
 }  // namespace patina::render

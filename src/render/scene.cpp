@@ -117,6 +117,9 @@ SceneFile parse_scene_file(const fs::path& path)
 {
     SceneFile file;
     file.path = path;
+    std::error_code ec;
+    if (!fs::is_regular_file(path, ec))
+        throw std::runtime_error(fmt::format("scene file '{}' does not exist", path.string()));
     try {
         file.root = toml::parse_file(path.string());
     } catch (const toml::parse_error& e) {
@@ -155,7 +158,8 @@ Scene build_scene(const SceneFile& file, const PluginRegistry& registry, const H
 
     // Film
     const toml::table& film = w.table(root, "film") ? *w.table(root, "film") : kEmpty;
-    w.check_keys(film, "film", {"width", "height", "spp", "seed", "max_depth", "wavelengths"});
+    w.check_keys(film, "film",
+                 {"width", "height", "spp", "seed", "max_depth", "wavelengths", "aovs"});
     scene.film.width = w.integer(film, "width", scene.film.width, 1, 1 << 15, "film");
     scene.film.height = w.integer(film, "height", scene.film.height, 1, 1 << 15, "film");
     scene.film.spp = w.integer(film, "spp", scene.film.spp, 1, 1 << 20, "film");
@@ -164,9 +168,30 @@ Scene build_scene(const SceneFile& file, const PluginRegistry& registry, const H
     scene.film.wavelengths =
         w.integer(film, "wavelengths", scene.film.wavelengths, 1, PATINA_MAX_WAVELENGTHS, "film");
 
+    if (const toml::node* n = film.get("aovs")) {
+        const toml::array* a = n->as_array();
+        if (!a)
+            w.fail(n, "[film] aovs must be an array of names (albedo, normal, depth)");
+        for (const toml::node& e : *a) {
+            const std::string name = e.value_or<std::string>("");
+            if (name == "albedo")
+                scene.film.aov_albedo = true;
+            else if (name == "normal")
+                scene.film.aov_normal = true;
+            else if (name == "depth")
+                scene.film.aov_depth = true;
+            else
+                w.fail(&e, fmt::format("unknown AOV '{}' (albedo, normal, depth)", name));
+        }
+    }
+
     // Output
     const toml::table& out = w.table(root, "output") ? *w.table(root, "output") : kEmpty;
-    w.check_keys(out, "output", {"file", "display", "view", "png"});
+    w.check_keys(out, "output", {"file", "display", "view", "png", "format"});
+    if (const std::string f = w.string(out, "format", "float", "output"); f == "half")
+        scene.output.half = true;
+    else if (f != "float")
+        w.fail(out.get("format"), fmt::format("[output] format '{}' must be 'half' or 'float'", f));
     if (const std::string f = w.string(out, "file", "", "output"); !f.empty())
         scene.output.exr = fs::path(f).is_relative() ? base_dir / f : fs::path(f);
     scene.output.display = w.string(out, "display", scene.output.display, "output");
@@ -179,13 +204,15 @@ Scene build_scene(const SceneFile& file, const PluginRegistry& registry, const H
 
     // Camera
     const toml::table& cam = w.table(root, "camera") ? *w.table(root, "camera") : kEmpty;
-    w.check_keys(cam, "camera", {"from", "to", "up", "fov_deg"});
+    w.check_keys(cam, "camera", {"from", "to", "up", "fov_deg", "aperture_radius", "focus_distance"});
     try {
         scene.camera = Camera(w.vec3(cam, "from", {0, 1, 5}, "camera"),
                               w.vec3(cam, "to", {0, 0, 0}, "camera"),
                               w.vec3(cam, "up", {0, 1, 0}, "camera"),
                               static_cast<float>(w.number(cam, "fov_deg", 40, 1e-3, 179.9, "camera")),
-                              static_cast<float>(scene.film.width) / scene.film.height);
+                              static_cast<float>(scene.film.width) / scene.film.height,
+                              static_cast<float>(w.number(cam, "aperture_radius", 0, 0, 1e9, "camera")),
+                              static_cast<float>(w.number(cam, "focus_distance", 0, 0, 1e12, "camera")));
     } catch (const std::invalid_argument& e) {
         w.fail(&cam, e.what());
     }

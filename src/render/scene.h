@@ -28,6 +28,9 @@ struct FilmSettings {
     uint64_t seed = 0;
     int max_depth = 8;
     int wavelengths = 4;  ///< hero-wavelength samples per path
+    bool aov_albedo = false;  ///< first-hit albedo (albedo.R/G/B)
+    bool aov_normal = false;  ///< first-hit world shading normal (N.X/Y/Z)
+    bool aov_depth = false;   ///< first-hit distance along the camera ray (Z)
 };
 
 struct OutputSettings {
@@ -35,6 +38,7 @@ struct OutputSettings {
     std::string display = "sRGB";
     std::string view = "ACES 1.0 - SDR Video";
     bool png = true;            ///< also write <exr stem>.png through display/view
+    bool half = false;          ///< EXR pixels as half instead of float
 };
 
 /// A surface: its triangles in Embree, its BSDF and optional emitter.

@@ -1,0 +1,22 @@
+// Writing a rendered film: working-space EXR (beauty and AOV channels, a crop or tile as the
+// data window of the full frame) and the display PNG through an OCIO view.
+#pragma once
+
+#include "render/renderer.h"
+#include "render/scene.h"
+
+#include "core/color_management.h"
+
+#include <filesystem>
+
+namespace patina::render {
+
+/// Throws when `exr` is not an .exr path in an existing folder.
+void check_output_path(const std::filesystem::path& exr);
+
+/// Convert the film's XYZ to the working space, write `exr` (and `<stem>.png` when the scene
+/// asks), each through a temporary name.
+void write_film(const Scene& scene, const FilmResult& film, const std::filesystem::path& exr,
+                const std::filesystem::path& scene_file, const ColorManager& colors);
+
+}  // namespace patina::render
