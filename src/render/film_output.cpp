@@ -61,6 +61,7 @@ void write_film(const Scene& scene, const FilmResult& film, const fs::path& exr,
         {"patina:wavelengths", scene.film.wavelengths},
         {"patina:max_depth", scene.film.max_depth},
         {"oiio:ColorSpace", colors.working_space()},
+        {"patina:colorspace", colors.working_space()},
     };
     const ImageWindow window{film.region.x0, film.region.y0, scene.film.width, scene.film.height};
     // The display image is computed before anything is written, so a bad view name leaves
