@@ -1,5 +1,9 @@
 #include "render/scene.h"
 
+#include "render/area_light.h"
+#include "render/distant_light.h"
+#include "render/environment_light.h"
+
 #include "core/color_management.h"
 
 #include <fmt/format.h>
@@ -111,6 +115,88 @@ namespace {
 
     const toml::table kEmpty;
 
+    // A colour in `space` (any colour space of the config) as working-space RGB.
+    Imath::V3f working_rgb(const Where& w, const toml::table& t, std::string_view table,
+                           const Host& host)
+    {
+        Imath::V3f rgb = w.vec3(t, "color", {1, 1, 1}, table);
+        const std::string space = w.string(t, "colorspace", "scene_linear", table);
+        if (!host.colors().has_colorspace(space))
+            w.fail(t.get("colorspace"), fmt::format("unknown colour space '{}' in OCIO config '{}'",
+                                                    space, host.colors().config_path().string()));
+        if (space != "scene_linear" && space != host.colors().working_space())
+            host.colors().convert(space, host.colors().working_space(), &rgb[0], 1);
+        for (int i = 0; i < 3; ++i)
+            if (!(rgb[i] >= 0.0f))
+                w.fail(t.get("color"), fmt::format("[{}] color must not be negative", table));
+        return rgb;
+    }
+
+    // [environment]: a lat-long map (file, colorspace, rotation_deg) or a uniform colour.
+    void add_environment(const Where& w, const toml::table& root, const fs::path& base_dir,
+                         const Host& host, std::vector<std::unique_ptr<Light>>& lights)
+    {
+        const toml::table* env = w.table(root, "environment");
+        if (!env)
+            return;
+        w.check_keys(*env, "environment", {"color", "colorspace", "intensity", "file", "rotation_deg"});
+        const float intensity = static_cast<float>(w.number(*env, "intensity", 1, 0, 1e30, "environment"));
+        const std::string file = w.string(*env, "file", "", "environment");
+        if (file.empty()) {
+            if (env->get("rotation_deg"))
+                w.fail(env->get("rotation_deg"), "[environment] rotation_deg needs a map 'file'");
+            const Imath::V3f rgb = working_rgb(w, *env, "environment", host);
+            lights.push_back(std::make_unique<EnvironmentLight>(
+                host, std::array<float, 3>{rgb.x, rgb.y, rgb.z}, intensity));
+            return;
+        }
+        if (env->get("color"))
+            w.fail(env->get("color"), "[environment] takes a 'file' or a 'color', not both");
+        const fs::path path = fs::path(file).is_relative() ? base_dir / file : fs::path(file);
+        const std::string space = w.string(*env, "colorspace", "scene_linear", "environment");
+        const float rotation =
+            static_cast<float>(w.number(*env, "rotation_deg", 0, -1e6, 1e6, "environment"));
+        try {
+            lights.push_back(std::make_unique<EnvironmentLight>(host, path, space, intensity, rotation));
+        } catch (const std::exception& e) {
+            w.fail(env->get("file"), e.what());
+        }
+    }
+
+    // [sun]: a distant light towards `direction` (or elevation/azimuth), with an angular
+    // diameter, a colour and the irradiance it gives a perpendicular surface.
+    void add_sun(const Where& w, const toml::table& root, const Host& host,
+                 std::vector<std::unique_ptr<Light>>& lights)
+    {
+        const toml::table* sun = w.table(root, "sun");
+        if (!sun)
+            return;
+        w.check_keys(*sun, "sun", {"direction", "elevation_deg", "azimuth_deg",
+                                   "angular_diameter_deg", "color", "colorspace", "irradiance"});
+        Imath::V3f dir;
+        if (sun->get("direction")) {
+            if (sun->get("elevation_deg") || sun->get("azimuth_deg"))
+                w.fail(sun->get("direction"), "[sun] takes 'direction' or elevation/azimuth, not both");
+            dir = w.vec3(*sun, "direction", {0, 1, 0}, "sun");
+            if (dir.length() <= 0.0f)
+                w.fail(sun->get("direction"), "[sun] direction must not be zero");
+            dir.normalize();
+        } else {
+            // Azimuth clockwise from north (-z) towards east (+x), elevation above the horizon.
+            const double el = w.number(*sun, "elevation_deg", 45, -90, 90, "sun") * M_PI / 180.0;
+            const double az = w.number(*sun, "azimuth_deg", 180, -360, 360, "sun") * M_PI / 180.0;
+            dir = Imath::V3f(static_cast<float>(std::cos(el) * std::sin(az)),
+                             static_cast<float>(std::sin(el)),
+                             static_cast<float>(-std::cos(el) * std::cos(az)));
+        }
+        const float diameter =
+            static_cast<float>(w.number(*sun, "angular_diameter_deg", 0.53, 0, 90, "sun"));
+        const float irradiance = static_cast<float>(w.number(*sun, "irradiance", 1, 0, 1e30, "sun"));
+        const Imath::V3f rgb = working_rgb(w, *sun, "sun", host);
+        lights.push_back(std::make_unique<DistantLight>(dir, diameter, host.uplift(&rgb[0], true),
+                                                        irradiance));
+    }
+
 }  // namespace
 
 SceneFile parse_scene_file(const fs::path& path)
@@ -127,8 +213,8 @@ SceneFile parse_scene_file(const fs::path& path)
                                              e.source().begin.column, e.description()));
     }
     const Where w{file.path};
-    w.check_keys(file.root, "scene",
-                 {"plugins", "film", "camera", "environment", "output", "shader", "object"});
+    w.check_keys(file.root, "scene", {"plugins", "film", "camera", "environment", "sun", "output",
+                                      "shader", "object"});
     if (const toml::table* p = w.table(file.root, "plugins")) {
         w.check_keys(*p, "plugins", {"path"});
         if (const toml::node* list = p->get("path")) {
@@ -158,8 +244,13 @@ Scene build_scene(const SceneFile& file, const PluginRegistry& registry, const H
 
     // Film
     const toml::table& film = w.table(root, "film") ? *w.table(root, "film") : kEmpty;
-    w.check_keys(film, "film",
-                 {"width", "height", "spp", "seed", "max_depth", "wavelengths", "aovs"});
+    w.check_keys(film, "film", {"width", "height", "spp", "seed", "max_depth", "wavelengths",
+                                "aovs", "integrator"});
+    if (const std::string integ = w.string(film, "integrator", "mis", "film"); integ == "bsdf")
+        scene.film.mis = false;
+    else if (integ != "mis")
+        w.fail(film.get("integrator"),
+               fmt::format("[film] integrator '{}' must be 'mis' or 'bsdf'", integ));
     scene.film.width = w.integer(film, "width", scene.film.width, 1, 1 << 15, "film");
     scene.film.height = w.integer(film, "height", scene.film.height, 1, 1 << 15, "film");
     scene.film.spp = w.integer(film, "spp", scene.film.spp, 1, 1 << 20, "film");
@@ -217,22 +308,9 @@ Scene build_scene(const SceneFile& file, const PluginRegistry& registry, const H
         w.fail(&cam, e.what());
     }
 
-    // Environment: a uniform radiance, uplifted as an illuminant colour.
-    const toml::table& env = w.table(root, "environment") ? *w.table(root, "environment") : kEmpty;
-    w.check_keys(env, "environment", {"color", "intensity", "colorspace"});
-    Imath::V3f rgb = w.vec3(env, "color", {1, 1, 1}, "environment");
-    const std::string space = w.string(env, "colorspace", "scene_linear", "environment");
-    if (!host.colors().has_colorspace(space))
-        w.fail(env.get("colorspace"), fmt::format("unknown colour space '{}' in OCIO config '{}'",
-                                                  space, host.colors().config_path().string()));
-    if (space != "scene_linear" && space != host.colors().working_space())
-        host.colors().convert(space, host.colors().working_space(), &rgb[0], 1);
-    for (int i = 0; i < 3; ++i)
-        if (rgb[i] < 0)
-            w.fail(env.get("color"), "[environment] color must not be negative");
-    scene.environment = host.uplift(&rgb[0], true);
-    scene.environment_intensity =
-        static_cast<float>(w.number(env, "intensity", env.empty() ? 0.0 : 1.0, 0, 1e30, "environment"));
+    std::vector<std::unique_ptr<Light>> lights;
+    add_environment(w, root, base_dir, host, lights);
+    add_sun(w, root, host, lights);
 
     // Shaders: [[shader]] name = "...", type = "<shader>", then its parameters.
     if (const toml::node* n = root.get("shader")) {
@@ -312,6 +390,15 @@ Scene build_scene(const SceneFile& file, const PluginRegistry& registry, const H
         }
     }
     scene.geometry->commit();
+
+    // Every mesh of an object with an emitter is an area light.
+    for (size_t id = 0; id < scene.mesh_object.size(); ++id) {
+        const SceneObject& obj = scene.objects[static_cast<size_t>(scene.mesh_object[id])];
+        if (obj.emitter)
+            lights.push_back(std::make_unique<AreaLight>(*scene.geometry, static_cast<int>(id),
+                                                         obj.emitter, host.c_host()));
+    }
+    scene.lights = LightSampler(std::move(lights));
     return scene;
 }
 

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "render/camera.h"
+#include "render/light_sampler.h"
 
 #include "core/embree_scene.h"
 #include "core/host.h"
@@ -31,6 +32,7 @@ struct FilmSettings {
     bool aov_albedo = false;  ///< first-hit albedo (albedo.R/G/B)
     bool aov_normal = false;  ///< first-hit world shading normal (N.X/Y/Z)
     bool aov_depth = false;   ///< first-hit distance along the camera ray (Z)
+    bool mis = true;          ///< light sampling + BSDF sampling with MIS; false: BSDF only
 };
 
 struct OutputSettings {
@@ -62,8 +64,7 @@ struct Scene {
     FilmSettings film;
     OutputSettings output;
     Camera camera;
-    PatinaRgbSpectrum environment{};   ///< uniform environment radiance (illuminant uplift)
-    float environment_intensity = 0.0f;
+    LightSampler lights;               ///< environment, sun and emissive meshes
     std::map<std::string, std::shared_ptr<ShaderInstance>> shaders;
     std::vector<SceneObject> objects;
     std::vector<int> mesh_object;      ///< Embree geometry id -> index into objects
