@@ -9,9 +9,11 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <cstring>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <unordered_map>
 
 namespace patina::render {
 
@@ -33,6 +35,17 @@ namespace {
     // A texel that is not black gets at least this fraction of the mean luminance as its
     // sampling weight, so a colour of (near) zero luminance is still found by light sampling.
     constexpr double kLuminanceFloor = 1e-3;
+    // Distinct colours remembered while uplifting (about 40 bytes each); colours met after
+    // the cache is full are uplifted without being remembered.
+    constexpr size_t kMaxCachedColours = size_t(1) << 18;
+
+    using RgbBits = std::array<uint32_t, 3>;
+    struct RgbBitsHash {
+        size_t operator()(const RgbBits& k) const
+        {
+            return static_cast<size_t>(mix_bits((uint64_t(k[0]) << 32 | k[1]) ^ mix_bits(k[2])));
+        }
+    };
 
     // Texels [first, last) of `texels` that overlap cell i of `cells` equal cells.
     struct TexelRange {
@@ -77,11 +90,10 @@ namespace {
         }
     }
 
-}  // namespace
+} // namespace
 
 EnvironmentLight::EnvironmentLight(const Host& host, const std::filesystem::path& file,
-                                   std::string_view colorspace, float intensity,
-                                   float rotation_deg)
+                                   std::string_view colorspace, float intensity, float rotation_deg)
     : source_name_(file.string()), intensity_(intensity), rotation_deg_(rotation_deg)
 {
     // Check the cheap arguments before reading a possibly large file.
@@ -97,8 +109,8 @@ EnvironmentLight::EnvironmentLight(const Host& host, const std::array<float, 3>&
 }
 
 EnvironmentLight::EnvironmentLight(const Host& host, const ImageData& image,
-                                   std::string_view colorspace, float intensity,
-                                   float rotation_deg, std::string source_name)
+                                   std::string_view colorspace, float intensity, float rotation_deg,
+                                   std::string source_name)
     : source_name_(std::move(source_name)), intensity_(intensity), rotation_deg_(rotation_deg)
 {
     build(host, image, colorspace);
@@ -108,20 +120,19 @@ void EnvironmentLight::check_arguments(const Host& host, std::string_view colors
 {
     const ColorManager& colors = host.colors();
     if (!std::isfinite(intensity_) || intensity_ < 0.0f)
-        throw std::invalid_argument(fmt::format(
-            "environment map '{}': intensity {} must be finite and >= 0", source_name_,
-            intensity_));
+        throw std::invalid_argument(
+            fmt::format("environment map '{}': intensity {} must be finite and >= 0", source_name_,
+                        intensity_));
     if (!std::isfinite(rotation_deg_))
         throw std::invalid_argument(fmt::format(
             "environment map '{}': rotation_deg {} must be finite", source_name_, rotation_deg_));
     if (!colors.has_colorspace(colorspace))
-        throw std::runtime_error(fmt::format(
-            "environment map '{}': unknown colour space '{}' in OCIO config '{}'", source_name_,
-            colorspace, colors.config_path().string()));
+        throw std::runtime_error(
+            fmt::format("environment map '{}': unknown colour space '{}' in OCIO config '{}'",
+                        source_name_, colorspace, colors.config_path().string()));
 }
 
-void EnvironmentLight::build(const Host& host, const ImageData& image,
-                             std::string_view colorspace)
+void EnvironmentLight::build(const Host& host, const ImageData& image, std::string_view colorspace)
 {
     check_arguments(host, colorspace);
     const ColorManager& colors = host.colors();
@@ -145,8 +156,8 @@ void EnvironmentLight::build(const Host& host, const ImageData& image,
                 const float v = image.at(x, y, ch[c]);
                 if (!std::isfinite(v))
                     throw std::runtime_error(fmt::format(
-                        "environment map '{}': texel ({}, {}) is {} (channel {})", source_name_,
-                        x, y, std::isnan(v) ? "NaN" : "infinite", "RGB"[c]));
+                        "environment map '{}': texel ({}, {}) is {} (channel {})", source_name_, x,
+                        y, std::isnan(v) ? "NaN" : "infinite", "RGB"[c]));
                 rgb[3 * (static_cast<size_t>(y) * width_ + x) + c] = v;
             }
 
@@ -160,23 +171,37 @@ void EnvironmentLight::build(const Host& host, const ImageData& image,
                                  static_cast<size_t>(width_));
             });
     }
+    // (v > 0 also folds -0 into +0, so equal colours have equal bits below.)
     for (float& v : rgb)
-        v = std::isfinite(v) ? std::max(v, 0.0f) : 0.0f;
+        v = std::isfinite(v) && v > 0.0f ? v : 0.0f;
 
-    // Uplift every texel once; a run of equal texels (flat sky, black ground, a constant map)
-    // reuses the previous uplift, which costs a few microseconds per colour.
-    texels_.resize(n);
-    tbb::parallel_for(0, height_, [&](int y) {
-        const float* row = &rgb[3 * static_cast<size_t>(y) * width_];
-        PatinaRgbSpectrum* out = &texels_[static_cast<size_t>(y) * width_];
-        for (int x = 0; x < width_; ++x) {
-            const float* c = row + 3 * x;
-            if (x > 0 && c[0] == c[-3] && c[1] == c[-2] && c[2] == c[-1])
-                out[x] = out[x - 1];
-            else
-                out[x] = host.uplift(c, true);
+    // Uplift every distinct colour once (a fit costs a few microseconds; hashing a texel far
+    // less): flat sky, black ground, clipped highlights and synthetic maps repeat colours.
+    std::vector<uint32_t> colour_of(n);
+    std::vector<size_t> first_texel; // of each distinct colour, in scanline order
+    {
+        std::unordered_map<RgbBits, uint32_t, RgbBitsHash> seen;
+        seen.reserve(std::min(n, kMaxCachedColours));
+        for (size_t i = 0; i < n; ++i) {
+            RgbBits key;
+            std::memcpy(key.data(), &rgb[3 * i], sizeof key);
+            const auto it = seen.find(key);
+            if (it != seen.end()) {
+                colour_of[i] = it->second;
+                continue;
+            }
+            colour_of[i] = static_cast<uint32_t>(first_texel.size());
+            first_texel.push_back(i);
+            if (seen.size() < kMaxCachedColours)
+                seen.emplace(key, colour_of[i]);
         }
-    });
+    }
+    std::vector<PatinaRgbSpectrum> distinct(first_texel.size());
+    tbb::parallel_for(size_t(0), distinct.size(),
+                      [&](size_t k) { distinct[k] = host.uplift(&rgb[3 * first_texel[k]], true); });
+    texels_.resize(n);
+    for (size_t i = 0; i < n; ++i)
+        texels_[i] = distinct[colour_of[i]];
 
     // Luminance (Y of the working-space RGB) per texel, and its integral over the sphere:
     // a texel row spans the solid angle (2 pi / W) (cos theta0 - cos theta1).
@@ -189,8 +214,8 @@ void EnvironmentLight::build(const Host& host, const ImageData& image,
         for (int x = 0; x < width_; ++x) {
             const size_t i = static_cast<size_t>(y) * width_ + x;
             const float* c = &rgb[3 * i];
-            luminance[i] = std::max(0.0, double(m[3]) * c[0] + double(m[4]) * c[1] +
-                                             double(m[5]) * c[2]);
+            luminance[i] =
+                std::max(0.0, double(m[3]) * c[0] + double(m[4]) * c[1] + double(m[5]) * c[2]);
             y_integral += luminance[i] * texel_solid_angle;
         }
     }
@@ -306,4 +331,4 @@ SampledSpectrum EnvironmentLight::escaped_radiance(const Imath::V3f& dir,
     return radiance_of(texel_at(uv.x, uv.y), wl);
 }
 
-}  // namespace patina::render
+} // namespace patina::render

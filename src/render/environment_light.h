@@ -40,7 +40,7 @@
 namespace patina {
 class Host;
 struct ImageData;
-}  // namespace patina
+} // namespace patina
 
 namespace patina::render {
 
@@ -109,8 +109,8 @@ private:
     float rotation_deg_ = 0.0f;
     float cos_rot_ = 1.0f, sin_rot_ = 0.0f;
     float power_ = 0.0f;
-    std::vector<PatinaRgbSpectrum> texels_;  ///< row-major, row 0 = the top (zenith) row
-    Distribution2D distribution_;            ///< over (u, v), density ∝ luminance * sin theta
+    std::vector<PatinaRgbSpectrum> texels_; ///< row-major, row 0 = the top (zenith) row
+    Distribution2D distribution_;           ///< over (u, v), density ∝ luminance * sin theta
 };
 
-}  // namespace patina::render
+} // namespace patina::render

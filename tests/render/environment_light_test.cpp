@@ -16,6 +16,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <vector>
 
@@ -88,7 +89,7 @@ float relative_difference(float a, float b)
 const PatinaWavelengths kWl = patina::sample_wavelengths_visible(0.37f, 4);
 const Imath::V3f kOrigin(0.0f, 0.0f, 0.0f);
 
-}  // namespace
+} // namespace
 
 // (1) A constant environment: c times the D65 white of luminance 1, a density of 1/(4π).
 TEST(EnvironmentLight, ConstantMapIsScaledD65White)
@@ -118,7 +119,7 @@ TEST(EnvironmentLight, ConstantColourMatchesItsUplift)
     const pr::EnvironmentLight light(host(), c, 1.5f);
     const PatinaRgbSpectrum s = host().uplift(c.data(), true);
     for (const Imath::V3f& d : {Imath::V3f(0, 1, 0), Imath::V3f(0, -1, 0), Imath::V3f(1, 0, 0),
-                               Imath::V3f(0.3f, -0.2f, -0.9f)}) {
+                                Imath::V3f(0.3f, -0.2f, -0.9f)}) {
         const patina::SampledSpectrum L = light.escaped_radiance(d, kWl);
         for (int k = 0; k < kWl.count; ++k)
             EXPECT_FLOAT_EQ(L[k], 1.5f * patina::RgbToSpectrum::eval(s, kWl.lambda_nm[k]));
@@ -139,8 +140,7 @@ TEST(EnvironmentLight, ConstantDensityIsUniformOverTheSphere)
             integral += pdf * (2.0 / n_mu) * (2.0 * kPi / n_phi);
             // Within 30° of the horizon the cell discretisation of sin θ is below 0.4 %.
             if (std::abs(mu) <= 0.5)
-                worst_mid_latitude =
-                    std::max(worst_mid_latitude, std::abs(pdf * 4.0 * kPi - 1.0));
+                worst_mid_latitude = std::max(worst_mid_latitude, std::abs(pdf * 4.0 * kPi - 1.0));
         }
     }
     EXPECT_NEAR(integral, 1.0, 1e-3);
@@ -219,8 +219,7 @@ TEST(EnvironmentLight, SamplesFollowPdfChiSquare)
                     const Imath::V3f d(float(-std::sin(theta) * std::sin(phi)),
                                        float(std::cos(theta)),
                                        float(std::sin(theta) * std::cos(phi)));
-                    expected[j * n_phi + i] +=
-                        light.pdf(p, d) * std::sin(theta) * dtheta * dphi;
+                    expected[j * n_phi + i] += light.pdf(p, d) * std::sin(theta) * dtheta * dphi;
                 }
     double total = 0.0;
     for (double e : expected)
@@ -267,7 +266,8 @@ TEST(EnvironmentLight, SamplesFollowPdfChiSquare)
     }
     // Wilson-Hilferty approximation of the χ² quantile at significance 1e-3 (z = 3.09).
     const double k = dof, z = 3.09;
-    const double threshold = k * std::pow(1.0 - 2.0 / (9.0 * k) + z * std::sqrt(2.0 / (9.0 * k)), 3);
+    const double threshold =
+        k * std::pow(1.0 - 2.0 / (9.0 * k) + z * std::sqrt(2.0 / (9.0 * k)), 3);
     EXPECT_LT(chi2, threshold) << "dof " << dof;
 }
 
@@ -324,7 +324,8 @@ TEST(EnvironmentLight, TopRowsAreTheZenith)
     int upward = 0;
     patina::Pcg32 rng(5);
     for (int s = 0; s < 1000; ++s)
-        upward += light.sample(kOrigin, {rng.uniform_float(), rng.uniform_float()}, kWl)->wi.y > 0.7f;
+        upward +=
+            light.sample(kOrigin, {rng.uniform_float(), rng.uniform_float()}, kWl)->wi.y > 0.7f;
     EXPECT_GT(upward, 950);
 }
 
@@ -423,25 +424,45 @@ TEST(EnvironmentLight, BadIntensityOrRotationIsRefused)
               std::string::npos);
 }
 
-// Not a timing gate: builds a 1024 x 512 map of distinct colours and reports the load time
-// (one uplift per texel), checking the light it makes is consistent.
-TEST(EnvironmentLight, LoadsALargeMap)
+// Not a timing gate: loads 1024 x 512 maps and reports the load time, checking texels against
+// their own uplift. The first map has a distinct colour per texel (one uplift each); the
+// second repeats a row gradient on every row (one uplift per distinct colour).
+TEST(EnvironmentLight, LoadsLargeMaps)
 {
     const int w = 1024, h = 512;
-    Map m(w, h);
+    Map distinct(w, h), repeated(w, h);
     for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x)
-            m.set(x, y, 0.1f + x * 1e-3f, 0.3f + y * 1e-3f, 0.2f + (x ^ y) * 1e-4f);
-    const fs::path file = m.write("large_gradient.exr");
-    const auto start = std::chrono::steady_clock::now();
-    const pr::EnvironmentLight light(host(), file, "lin_rec709");
-    const double seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    RecordProperty("load_seconds", std::to_string(seconds));
-    std::printf("EnvironmentLight: %dx%d map loaded in %.3f s\n", w, h, seconds);
-    EXPECT_EQ(light.width(), w);
-    EXPECT_EQ(light.height(), h);
-    const auto s = light.sample(kOrigin, {0.25f, 0.75f}, kWl);
-    ASSERT_TRUE(s);
-    EXPECT_NEAR(s->pdf, light.pdf(kOrigin, s->wi), 1e-4f * s->pdf);
+        for (int x = 0; x < w; ++x) {
+            distinct.set(x, y, 0.1f + x * 1e-3f, 0.3f + y * 1e-3f, 0.2f + (x ^ y) * 1e-4f);
+            repeated.set(x, y, 0.1f + x * 1e-3f, 0.3f, 0.2f);
+        }
+    for (const auto& [map, name] :
+         {std::pair{&distinct, "large_distinct.exr"}, std::pair{&repeated, "large_repeated.exr"}}) {
+        const fs::path file = map->write(name);
+        const auto start = std::chrono::steady_clock::now();
+        const pr::EnvironmentLight light(host(), file, "lin_rec709");
+        const double seconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        RecordProperty(name, std::to_string(seconds));
+        std::printf("EnvironmentLight: %dx%d map %s loaded in %.3f s\n", w, h, name, seconds);
+        ASSERT_EQ(light.width(), w);
+        ASSERT_EQ(light.height(), h);
+        // Texel (x, y) seen through its centre direction is its own converted colour.
+        for (const auto& [x, y] :
+             {std::pair{0, 0}, std::pair{517, 200}, std::pair{1023, 511}, std::pair{300, 511}}) {
+            std::array<float, 3> c;
+            for (int k = 0; k < 3; ++k)
+                c[k] = map->rgb[3 * (size_t(y) * w + x) + k];
+            host().colors().convert("lin_rec709", host().colors().working_space(), c.data(), 1);
+            const PatinaRgbSpectrum s = host().uplift(c.data(), true);
+            const patina::SampledSpectrum L =
+                light.escaped_radiance(light.uv_to_direction((x + 0.5f) / w, (y + 0.5f) / h), kWl);
+            for (int k = 0; k < kWl.count; ++k)
+                EXPECT_FLOAT_EQ(L[k], patina::RgbToSpectrum::eval(s, kWl.lambda_nm[k]))
+                    << "texel " << x << ", " << y;
+        }
+        const auto s = light.sample(kOrigin, {0.25f, 0.75f}, kWl);
+        ASSERT_TRUE(s);
+        EXPECT_NEAR(s->pdf, light.pdf(kOrigin, s->wi), 1e-4f * s->pdf);
+    }
 }
