@@ -15,7 +15,10 @@ namespace {
     // Points of the mesh at which power() asks the emitter for its radiance.
     constexpr int kPowerPoints = 16;
 
-    PatinaVec3 to_abi(const Imath::V3f& v) { return {v.x, v.y, v.z}; }
+    PatinaVec3 to_abi(const Imath::V3f& v)
+    {
+        return {v.x, v.y, v.z};
+    }
 
     struct Barycentrics {
         float b0, b1, b2;
@@ -45,7 +48,7 @@ namespace {
         p2 = m.positions[m.indices[t + 2]];
     }
 
-}  // namespace
+} // namespace
 
 AreaLight::AreaLight(const EmbreeScene& scene, int mesh_id,
                      std::shared_ptr<const ShaderInstance> emitter, const PatinaHost*)
@@ -65,7 +68,7 @@ AreaLight::AreaLight(const EmbreeScene& scene, int mesh_id,
         total_area_ += areas[i];
     }
     if (!(total_area_ > 0.0))
-        return;  // nothing to sample; power 0
+        return; // nothing to sample; power 0
     triangles_ = Distribution1D(areas);
     power_ = estimate_power();
 }
@@ -79,7 +82,7 @@ std::optional<LightSample> AreaLight::sample(const Imath::V3f& p, Imath::V2f u,
     float u_tri = 0.0f, pmf = 0.0f;
     const int tri = triangles_.sample_discrete(u.x, &pmf, &u_tri);
     if (!(pmf > 0.0f))
-        return std::nullopt;  // only a zero-area triangle at the rim of its cdf piece
+        return std::nullopt; // only a zero-area triangle at the rim of its cdf piece
     const Barycentrics b = sample_uniform_triangle(u_tri, u.y);
     Imath::V3f p0, p1, p2;
     triangle_vertices(scene_->mesh(mesh_id_), tri, p0, p1, p2);
@@ -100,7 +103,7 @@ std::optional<LightSample> AreaLight::sample(const Imath::V3f& p, Imath::V2f u,
     ls.wi = d / ls.distance;
     const float cos_light = std::abs(sp.Ng.dot(ls.wi));
     if (!(cos_light > 0.0f))
-        return std::nullopt;  // seen edge-on
+        return std::nullopt; // seen edge-on
     // Area density 1/A turned into solid angle: p_ω = p_A r² / |cos θ_light|
     // (pbrt-v4 §4.2.3, dω = cos θ dA / r²)
     ls.pdf = static_cast<float>(dist2 / (cos_light * total_area_));
@@ -114,7 +117,7 @@ std::optional<LightSample> AreaLight::sample(const Imath::V3f& p, Imath::V2f u,
                               radiance);
     ls.L = SampledSpectrum::from_array(wl.count, radiance);
     if (ls.L.is_black())
-        return std::nullopt;  // e.g. behind a one-sided emitter
+        return std::nullopt; // e.g. behind a one-sided emitter
     return ls;
 }
 
@@ -150,8 +153,8 @@ float AreaLight::estimate_power() const
         triangle_vertices(m, tri, p0, p1, p2);
         const Imath::V3f ng = (p1 - p0).cross(p2 - p0).normalized();
         const Imath::V3f P = b.b0 * p0 + b.b1 * p1 + b.b2 * p2;
-        const SurfacePoint sp = scene_->interpolate(Hit{1.0f, mesh_id_, tri, b.b1, b.b2},
-                                                    P + ng, -ng);
+        const SurfacePoint sp =
+            scene_->interpolate(Hit{1.0f, mesh_id_, tri, b.b1, b.b2}, P + ng, -ng);
         const ShadingFrame frame = make_shading_frame(sp);
         for (const float side : {1.0f, -1.0f}) {
             float radiance[PATINA_MAX_WAVELENGTHS] = {};
@@ -164,4 +167,4 @@ float AreaLight::estimate_power() const
     return std::isfinite(power) ? static_cast<float>(power) : 0.0f;
 }
 
-}  // namespace patina::render
+} // namespace patina::render

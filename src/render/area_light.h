@@ -48,9 +48,9 @@ private:
     const EmbreeScene* scene_;
     int mesh_id_;
     std::shared_ptr<const ShaderInstance> emitter_;
-    Distribution1D triangles_;  // over triangle areas
+    Distribution1D triangles_; // over triangle areas
     double total_area_ = 0.0;
     float power_ = 0.0f;
 };
 
-}  // namespace patina::render
+} // namespace patina::render

@@ -32,7 +32,7 @@ namespace {
         t = Imath::V3f(b, sign + n.y * n.y * a, -n.y);
     }
 
-}  // namespace
+} // namespace
 
 DistantLight::DistantLight(const Imath::V3f& direction, float angular_diameter_deg,
                            const PatinaRgbSpectrum& spectrum, float irradiance)
@@ -109,8 +109,8 @@ std::optional<LightSample> DistantLight::sample(const Imath::V3f&, Imath::V2f u,
     const float cos_theta = 1.0f - one_minus_cos;
     const float sin_theta = std::sqrt(std::max(0.0f, one_minus_cos * (2.0f - one_minus_cos)));
     const float phi = 2.0f * static_cast<float>(kPi) * u.y;
-    const Imath::V3f w = sin_theta * std::cos(phi) * s_ + sin_theta * std::sin(phi) * t_ +
-                         cos_theta * direction_;
+    const Imath::V3f w =
+        sin_theta * std::cos(phi) * s_ + sin_theta * std::sin(phi) * t_ + cos_theta * direction_;
     ls.wi = w.normalized();
     ls.L = radiance_scale_ * spectrum(wl);
     ls.pdf = cone_pdf_;
@@ -137,4 +137,4 @@ float DistantLight::power() const
            power_luminance(spectrum(wl));
 }
 
-}  // namespace patina::render
+} // namespace patina::render

@@ -44,7 +44,7 @@ public:
 private:
     SampledSpectrum spectrum(const PatinaWavelengths& wl) const;
 
-    Imath::V3f direction_, s_, t_;  // orthonormal frame about the sun's direction
+    Imath::V3f direction_, s_, t_; // orthonormal frame about the sun's direction
     PatinaRgbSpectrum spectrum_;
     float irradiance_ = 0;
     float cos_max_ = 1, one_minus_cos_max_ = 0, sin2_max_ = 0;
@@ -52,4 +52,4 @@ private:
     float scene_radius_ = 1;
 };
 
-}  // namespace patina::render
+} // namespace patina::render

@@ -72,4 +72,4 @@ const AreaLight* LightSampler::area_light_for_mesh(int mesh_id) const
     return it == by_mesh_.end() ? nullptr : it->second;
 }
 
-}  // namespace patina::render
+} // namespace patina::render

@@ -54,4 +54,4 @@ private:
     Distribution1D distribution_;
 };
 
-}  // namespace patina::render
+} // namespace patina::render
