@@ -138,6 +138,10 @@ void EnvironmentLight::build(const Host& host, const ImageData& image, std::stri
     const ColorManager& colors = host.colors();
     if (image.width <= 0 || image.height <= 0 || image.channels <= 0)
         throw std::runtime_error(fmt::format("environment map '{}': empty image", source_name_));
+    if (image.pixels.size() != static_cast<size_t>(image.width) * image.height * image.channels)
+        throw std::invalid_argument(fmt::format(
+            "environment map '{}': {} pixel values for {} x {} x {} channels", source_name_,
+            image.pixels.size(), image.width, image.height, image.channels));
 
     const double rot = rotation_deg_ * kPi / 180.0;
     cos_rot_ = static_cast<float>(std::cos(rot));
