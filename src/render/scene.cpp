@@ -391,6 +391,15 @@ Scene build_scene(const SceneFile& file, const PluginRegistry& registry, const H
     }
     scene.geometry->commit();
 
+    // Lights at infinity compare their power with the scene's by its bounding sphere.
+    if (scene.geometry->mesh_count() > 0) {
+        const Imath::Box3f b = scene.geometry->bounds();
+        const float radius = std::max(0.5f * (b.max - b.min).length(), 1e-6f);
+        for (auto& light : lights)
+            if (auto* sun = dynamic_cast<DistantLight*>(light.get()))
+                sun->set_scene_radius(radius);
+    }
+
     // Every mesh of an object with an emitter is an area light.
     for (size_t id = 0; id < scene.mesh_object.size(); ++id) {
         const SceneObject& obj = scene.objects[static_cast<size_t>(scene.mesh_object[id])];

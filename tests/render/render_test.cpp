@@ -268,3 +268,111 @@ bsdf = "grey"
         sum_y += xyz[i + 1];
     EXPECT_NEAR(sum_y / static_cast<double>(xyz.size() / 3), 0.25, 0.01);
 }
+
+namespace {
+
+double mean_y(const std::vector<float>& xyz)
+{
+    double sum = 0.0;
+    for (size_t i = 0; i < xyz.size(); i += 3)
+        sum += xyz[i + 1];
+    return sum / static_cast<double>(xyz.size() / 3);
+}
+
+}  // namespace
+
+// A Lambertian plane under the sun alone: L = R/π · E · sin(elevation) (the irradiance of a
+// distant source of irradiance E at elevation e on a horizontal plane is E sin e).
+TEST(Render, LambertPlaneUnderDistantLightMatchesTheClosedForm)
+{
+    for (const char* diameter : {"0.0", "0.53", "5.0"}) {
+        auto l = load(write_scene("sun", std::string(R"(
+[film]
+width = 8
+height = 8
+spp = 16
+max_depth = 1
+[camera]
+from = [0, 3, 0.001]
+to = [0, 0, 0]
+fov_deg = 10
+[sun]
+elevation_deg = 60
+azimuth_deg = 30
+irradiance = 2.0
+angular_diameter_deg = )") + diameter + R"(
+[[shader]]
+name = "grey"
+type = "lambert"
+reflectance = 0.5
+[[object]]
+shape = "plane"
+size = 100.0
+bsdf = "grey"
+)"));
+        const double expected = 0.5 / M_PI * 2.0 * std::sin(60.0 * M_PI / 180.0);
+        EXPECT_NEAR(mean_y(pr::render_xyz(l->scene, 0, true)), expected, 0.01 * expected)
+            << "angular diameter " << diameter;
+    }
+}
+
+// Light sampling with MIS and pure BSDF sampling are both unbiased: the same scene (a
+// plane, a diffuse and a glossy sphere, an emissive sphere, a dim sky) converges to the
+// same mean either way.
+TEST(Render, MisAndBsdfSamplingConvergeToTheSameMean)
+{
+    const std::string scene = R"(
+[film]
+width = 24
+height = 16
+spp = 256
+max_depth = 4
+integrator = "INTEGRATOR"
+[camera]
+from = [0, 2, 5]
+to = [0, 0.5, 0]
+fov_deg = 50
+[environment]
+color = [0.2, 0.2, 0.25]
+[[shader]]
+name = "grey"
+type = "lambert"
+reflectance = 0.6
+[[shader]]
+name = "metal"
+type = "conductor"
+roughness = 0.4
+[[shader]]
+name = "lamp"
+type = "emitter"
+intensity = 8.0
+[[object]]
+shape = "plane"
+size = 20.0
+bsdf = "grey"
+[[object]]
+shape = "sphere"
+center = [-0.8, 0.5, 0]
+radius = 0.5
+bsdf = "grey"
+[[object]]
+shape = "sphere"
+center = [0.8, 0.5, 0]
+radius = 0.5
+bsdf = "metal"
+[[object]]
+shape = "sphere"
+center = [0, 2.0, 0.5]
+radius = 0.3
+emitter = "lamp"
+)";
+    auto with = [&](const std::string& integrator) {
+        std::string text = scene;
+        text.replace(text.find("INTEGRATOR"), 10, integrator);
+        auto l = load(write_scene("mis_" + integrator, text));
+        return mean_y(pr::render_xyz(l->scene, 0, true));
+    };
+    const double mis = with("mis"), bsdf = with("bsdf");
+    EXPECT_GT(mis, 0.05);
+    EXPECT_NEAR(mis, bsdf, 0.02 * mis);
+}
