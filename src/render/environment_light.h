@@ -78,9 +78,10 @@ public:
     bool is_infinite() const override { return true; }
     SampledSpectrum escaped_radiance(const Imath::V3f& dir,
                                      const PatinaWavelengths& wl) const override;
-    /// intensity * ∫ Y(ω) dω over the sphere, Y the working-space luminance of the texels
-    /// (so a constant environment of luminance 1 has power 4 pi).
-    float power() const override { return power_; }
+    /// Emitted power through a scene of bounding radius r (pbrt-v4 ImageInfiniteLight::Phi):
+    /// π r² × intensity × ∫ Y dω (Y the texels' working-space luminance), comparable with the sun's and the area lights' power.
+    float power() const override { return kPi * scene_radius_ * scene_radius_ * power_; }
+    void set_scene_radius(float radius) { scene_radius_ = radius; }
 
     /// The map's (u, v) (see the header comment) seen along world direction `dir` (any
     /// non-zero length), rotation included.
@@ -108,7 +109,9 @@ private:
     float intensity_ = 1.0f;
     float rotation_deg_ = 0.0f;
     float cos_rot_ = 1.0f, sin_rot_ = 0.0f;
-    float power_ = 0.0f;
+    float power_ = 0.0f;  ///< intensity × ∫ Y dω
+    float scene_radius_ = 1.0f;
+    static constexpr float kPi = 3.14159265358979f;
     std::vector<PatinaRgbSpectrum> texels_; ///< row-major, row 0 = the top (zenith) row
     Distribution2D distribution_;           ///< over (u, v), density ∝ luminance * sin theta
 };

@@ -398,6 +398,8 @@ Scene build_scene(const SceneFile& file, const PluginRegistry& registry, const H
         for (auto& light : lights)
             if (auto* sun = dynamic_cast<DistantLight*>(light.get()))
                 sun->set_scene_radius(radius);
+            else if (auto* env = dynamic_cast<EnvironmentLight*>(light.get()))
+                env->set_scene_radius(radius);
     }
 
     // Every mesh of an object with an emitter is an area light.

@@ -110,7 +110,8 @@ TEST(EnvironmentLight, ConstantMapIsScaledD65White)
     }
     EXPECT_TRUE(light.is_infinite());
     // power = intensity * ∫ Y dω = 2 * 0.5 * 4π.
-    EXPECT_NEAR(light.power(), 4.0 * kPi, 1e-3 * 4.0 * kPi);
+    // π r² × ∫ Y dω with r = 1 and Y = 1 over the sphere (pbrt-v4 ImageInfiniteLight::Phi).
+    EXPECT_NEAR(light.power(), kPi * 4.0 * kPi, 1e-3 * kPi * 4.0 * kPi);
 }
 
 TEST(EnvironmentLight, ConstantColourMatchesItsUplift)
