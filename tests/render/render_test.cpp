@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <cstring>
 #include <fstream>
+#include <set>
 
 namespace fs = std::filesystem;
 namespace pr = patina::render;
@@ -375,4 +376,47 @@ emitter = "lamp"
     const double mis = with("mis"), bsdf = with("bsdf");
     EXPECT_GT(mis, 0.05);
     EXPECT_NEAR(mis, bsdf, 0.02 * mis);
+}
+
+// Meshes bind to shaders by their material names; a transform moves, turns and scales them.
+TEST(Render, MaterialNamesBindShadersAndTransformsPlaceMeshes)
+{
+    const fs::path dir = fs::path(PATINA_TEST_BUILD_DIR) / "render_scenes";
+    fs::create_directories(dir);
+    std::ofstream(dir / "two.mtl") << "newmtl bronze\nKd 0.5 0.3 0.1\nnewmtl stone\nKd 0.5 0.5 0.5\n";
+    std::ofstream(dir / "two.obj") << "mtllib two.mtl\n"
+                                      "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 2 0 0\nv 3 0 0\nv 3 1 0\n"
+                                      "usemtl bronze\nf 1 2 3\nusemtl stone\nf 4 5 6\n";
+    const std::string head = R"(
+[[shader]]
+name = "metal"
+type = "conductor"
+[[shader]]
+name = "rock"
+type = "lambert"
+[[object]]
+mesh = "two.obj"
+)";
+    auto l = load(write_scene("materials", head + R"(
+materials = { bronze = "metal", stone = "rock" }
+transform = { scale = 2.0, rotate_deg = [0, 90, 0], translate = [0, 0, 5] }
+)"));
+    ASSERT_EQ(l->scene.objects.size(), 2u);
+    std::set<std::string> bound;
+    for (const auto& o : l->scene.objects)
+        bound.insert(o.bsdf->desc().name);
+    EXPECT_EQ(bound, (std::set<std::string>{"conductor", "lambert"}));
+    // The first triangle's vertex (1, 0, 0): scaled to (2, 0, 0), turned 90° about +y to
+    // (0, 0, -2) (right-handed: +x goes to -z), moved to (0, 0, 3). The triangle now spans
+    // z in [3, 5] in the plane x = 0: a ray down the -x axis from (5, 0.1, 3.2) finds it at
+    // distance 5, one from (5, 0.1, 6) misses.
+    const auto hit = l->scene.geometry->intersect({5.0f, 0.1f, 3.2f}, {-1.0f, 0.0f, 0.0f});
+    EXPECT_FALSE(l->scene.geometry->intersect({5.0f, 0.1f, 6.0f}, {-1.0f, 0.0f, 0.0f}).has_value());
+    ASSERT_TRUE(hit.has_value());
+    EXPECT_NEAR(hit->t, 5.0f, 1e-4f);
+
+    EXPECT_NE(error_of("nomat", head).find("has material"), std::string::npos);
+    EXPECT_NE(error_of("typomat", head + "materials = { bronse = \"metal\", stone = \"rock\" }\n")
+                  .find("no material named 'bronse'"),
+              std::string::npos);
 }
