@@ -1,11 +1,15 @@
 #include "core/texture_access.h"
 
+#include "core/texture_conversion.h"
+
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <stdexcept>
 
 namespace patina {
+
+namespace fs = std::filesystem;
 
 TextureAccess::TextureAccess(const ColorManager& colors, const Options& options)
     : colors_(&colors), options_(options)
@@ -42,18 +46,23 @@ TextureAccess::Handle* TextureAccess::open(const std::filesystem::path& filename
     auto handle = std::make_unique<Handle>();
     handle->filename = filename;
     handle->colorspace = std::string(colorspace);
+    fs::path file = filename;
     try {
         handle->is_data = colors_->is_data(colorspace);
-        if (!handle->is_data)
-            handle->to_working = colors_->conversion(colorspace, colors_->working_space());
+        // Colour textures are converted once, at load, to a cached working-space texture;
+        // lookups then filter linear working-space values and convert nothing.
+        if (!handle->is_data &&
+            !colors_->conversion(colorspace, colors_->working_space()).is_identity())
+            file = converted_texture(filename, colorspace, *colors_);
     } catch (const std::exception& e) {
-        throw fail(e.what());
+        const std::string what = e.what();
+        throw what.rfind("texture '", 0) == 0 ? std::runtime_error(what) : fail(what);
     }
 
     // Resolve the handle and read the header now, so a bad file fails at open, not
     // silently (black) at the first lookup.
     OIIO::TextureSystem::Perthread* thread = ts_->get_perthread_info();
-    handle->oiio = ts_->get_texture_handle(OIIO::ustring(filename.string()), thread);
+    handle->oiio = ts_->get_texture_handle(OIIO::ustring(file.string()), thread);
     OIIO::ImageSpec spec;
     if (!handle->oiio || !ts_->get_imagespec(handle->oiio, thread, 0, spec) ||
         !ts_->good(handle->oiio)) {

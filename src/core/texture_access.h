@@ -20,11 +20,9 @@ namespace patina {
 /// Owns a TextureSystem (not OIIO's process-wide shared one, so independent users and tests
 /// do not see each other's cache) and the textures opened through it.
 ///
-/// Colour: a texture declares its colour space when opened. Lookups filter the stored
-/// values first and convert the filtered result to the working space afterwards. For linear
-/// encodings that is exact; for non-linear ones (e.g. "srgb_texture") filtering happens on
-/// encoded values, which is slightly wrong (darkens across edges, shifts mip averages), so
-/// bake colour maps linear (make_texture with the working space) when accuracy matters.
+/// Colour: a texture declares its colour space when opened. One in a colour space other
+/// than the working space is converted once, at open, into a cached working-space texture
+/// (core/texture_conversion.h), so lookups filter and mip-map linear working-space values.
 /// Data maps declare "raw" (any `isdata` space) and are never converted.
 ///
 /// Channels 0-2 of a texture are its RGB; a 1- or 2-channel texture in a colour space

@@ -1,0 +1,46 @@
+// Colour textures are converted once, at load, into a cached working-space texture.
+#include "core/color_management.h"
+#include "core/image_io.h"
+#include "core/texture_conversion.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <thread>
+
+namespace fs = std::filesystem;
+
+TEST(TextureConversion, ConvertsOnceAndRemakesWhenTheSourceChanges)
+{
+    const fs::path dir = fs::path(PATINA_TEST_BUILD_DIR) / "texture_conversion";
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    setenv("PATINA_TEXTURE_CACHE", (dir / "cache").c_str(), 1);
+    const patina::ColorManager colors(fs::path(PATINA_SOURCE_DIR) / "ocio" / "config.ocio");
+    const fs::path src = dir / "grey.png";
+    const float half_grey[3] = {0.5f, 0.5f, 0.5f};
+    patina::write_image_atomic(src, half_grey, 1, 1, 3, {}, OIIO::TypeDesc::UINT8);
+
+    const fs::path a = patina::converted_texture(src, "srgb_texture", colors);
+    EXPECT_EQ(a.parent_path(), dir / "cache");
+    const auto written = fs::last_write_time(a);
+    // sRGB-encoded 128/255 is linear 0.21586 (IEC 61966-2-1); a grey keeps R = G = B in
+    // ACEScg (same white after Bradford adaptation).
+    const patina::ImageData img = patina::read_image(a);
+    for (int c = 0; c < 3; ++c)
+        EXPECT_NEAR(img.at(0, 0, c), 0.215861f, 2e-5f);
+
+    // The second open reuses the cache entry untouched.
+    EXPECT_EQ(patina::converted_texture(src, "srgb_texture", colors), a);
+    EXPECT_EQ(fs::last_write_time(a), written);
+    // Another colour space, or a changed source, is another entry.
+    EXPECT_NE(patina::converted_texture(src, "lin_rec709", colors), a);
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    const float white[3] = {1.0f, 1.0f, 1.0f};
+    patina::write_image_atomic(src, white, 1, 1, 3, {}, OIIO::TypeDesc::UINT8);
+    const fs::path b = patina::converted_texture(src, "srgb_texture", colors);
+    EXPECT_NE(b, a);
+    EXPECT_NEAR(patina::read_image(b).at(0, 0, 0), 1.0f, 1e-4f);
+    unsetenv("PATINA_TEXTURE_CACHE");
+}
