@@ -2,6 +2,7 @@
 
 #include "render/area_light.h"
 #include "render/light_sampler.h"
+#include "render/transmittance.h"
 
 #include <algorithm>
 #include <cmath>
@@ -11,29 +12,59 @@ namespace patina::render {
 
 namespace {
 
+    constexpr float kInf = std::numeric_limits<float>::infinity();
+    // Index-matched boundaries crossed without scattering do not count as bounces; this
+    // bounds them so a degenerate mesh cannot loop forever.
+    constexpr int kMaxPassThrough = 256;
+
     PatinaVec3 to_abi(const Imath::V3f& v) { return {v.x, v.y, v.z}; }
     Imath::V3f from_abi(const PatinaVec3& v) { return {v.x, v.y, v.z}; }
 
-    // What the previous vertex of the path knows, for MIS weights of emission found by BSDF
-    // sampling (pbrt-v4 §13.4, PathIntegrator).
+    // What the previous scattering vertex knows, for MIS weights of emission found by BSDF
+    // or phase sampling (pbrt-v4 §13.4 and §14.2, VolPathIntegrator).
     struct PrevVertex {
         Imath::V3f P{0, 0, 0};
-        float bsdf_pdf = 0.0f;
-        bool specular = true;  // the camera ray and delta lobes: no light sampling competed
+        float pdf = 0.0f;      // solid-angle pdf of the direction it sampled
+        bool specular = true;  // camera ray or delta lobe: no light sampling competed
     };
 
-    // Weight of a BSDF-sampled path that found emission whose light-sampling density is
-    // light_pdf (already multiplied by the light's selection probability).
-    float bsdf_mis_weight(const Scene& scene, const PrevVertex& prev, float light_pdf)
+    float emission_mis_weight(const Scene& scene, const PrevVertex& prev, float light_pdf)
     {
         if (prev.specular || !scene.film.mis)
             return 1.0f;
-        return power_heuristic(1, prev.bsdf_pdf, 1, light_pdf);
+        return power_heuristic(1, prev.pdf, 1, light_pdf);
     }
 
-    // Next-event estimation: one light chosen by power, one direction on it, a shadow ray.
-    SampledSpectrum sample_direct(const Scene& scene, const ShadingFrame& frame,
-                                  const SurfacePoint& sp, const SceneObject& obj, PatinaVec3 wo,
+    // How a scattering vertex (a surface BSDF or a medium's phase function) answers NEE.
+    struct Scatterer {
+        const ShaderInstance* shader;
+        const PatinaShadingContext* ctx;
+        const ShadingFrame* frame;  // null for a medium point (world-space directions)
+        PatinaVec3 wo;
+
+        // Value (times |cos| on surfaces) and pdf of scattering towards world direction wi.
+        float eval(const Imath::V3f& wi, const PatinaWavelengths& wl, SampledSpectrum& f) const
+        {
+            float v[PATINA_MAX_WAVELENGTHS] = {};
+            if (frame) {
+                const PatinaVec3 wl_i = to_abi(frame->to_local(wi));
+                shader->bsdf()->eval(shader->get(), ctx, wo, wl_i, &wl, v);
+                f = SampledSpectrum::from_array(wl.count, v) * std::abs(wl_i.z);
+                return shader->bsdf()->pdf(shader->get(), ctx, wo, wl_i, &wl);
+            }
+            const float pdf = shader->medium()->phase_eval(shader->get(), ctx, wo, to_abi(wi), &wl, v);
+            f = SampledSpectrum::from_array(wl.count, v);
+            return pdf;
+        }
+    };
+
+    // Next-event estimation: one light chosen by power, one direction on it, transmittance
+    // to it through the media on the way.
+    // `sp` is the surface point (null at a medium point) and `obj` its object; `medium` is
+    // the one the path arrived in, along `incoming`.
+    SampledSpectrum sample_direct(const Scene& scene, const Scatterer& at, const Imath::V3f& P,
+                                  const SurfacePoint* sp, const SceneObject* obj,
+                                  const Imath::V3f& incoming, const ShaderInstance* medium,
                                   const PatinaWavelengths& wl, Pcg32& rng)
     {
         SampledSpectrum none(wl.count, 0.0f);
@@ -42,28 +73,58 @@ namespace {
         const auto chosen = scene.lights.sample(u_light);
         if (!chosen)
             return none;
-        const auto ls = chosen->light->sample(sp.P, u, wl);
+        const auto ls = chosen->light->sample(P, u, wl);
         if (!ls || !(ls->pdf > 0.0f) || ls->L.is_black())
             return none;
-        const PatinaVec3 wi = to_abi(frame.to_local(ls->wi));
-        float f[PATINA_MAX_WAVELENGTHS] = {};
-        obj.bsdf->bsdf()->eval(obj.bsdf->get(), &frame.ctx, wo, wi, &wl, f);
-        const SampledSpectrum fs = SampledSpectrum::from_array(wl.count, f);
-        if (fs.is_black())
+        SampledSpectrum f;
+        const float scatter_pdf = at.eval(ls->wi, wl, f);
+        if (f.is_black())
             return none;
-        // Shadow ray to the light, stopping just short of a sampled point on it.
-        const Imath::V3f origin = offset_ray_origin(sp, ls->wi);
-        const float t_max = std::isinf(ls->distance) ? std::numeric_limits<float>::infinity()
-                                                     : ls->distance * (1.0f - 1e-4f);
-        if (scene.geometry->occluded(origin, ls->wi, 0.0f, t_max))
+        // Leaving a surface, the shadow ray starts on the side it goes to, in the medium of
+        // that side (the interior when it passes through); from a medium point it starts
+        // where it is.
+        Imath::V3f origin = P;
+        const ShaderInstance* start_medium = medium;
+        if (sp) {
+            origin = offset_ray_origin(*sp, ls->wi);
+            if (ls->wi.dot(sp->Ng) * incoming.dot(sp->Ng) > 0.0f)
+                start_medium = medium_after_crossing(*obj, sp->Ng, ls->wi, medium);
+        }
+        const float distance = std::isinf(ls->distance) ? kInf : ls->distance * (1.0f - 1e-4f);
+        const SampledSpectrum tr =
+            transmittance_along(scene, origin, ls->wi, distance, start_medium, wl, rng);
+        if (tr.is_black())
             return none;
         const float light_pdf = chosen->pmf * ls->pdf;
-        float weight = 1.0f;
-        if (!ls->is_delta) {
-            const float bsdf_pdf = obj.bsdf->bsdf()->pdf(obj.bsdf->get(), &frame.ctx, wo, wi, &wl);
-            weight = power_heuristic(1, light_pdf, 1, bsdf_pdf);
+        const float weight = ls->is_delta ? 1.0f : power_heuristic(1, light_pdf, 1, scatter_pdf);
+        return f * tr * ls->L * (weight / light_pdf);
+    }
+
+    SampledSpectrum escaped(const Scene& scene, const Ray& ray, const PrevVertex& prev,
+                            const PatinaWavelengths& wl)
+    {
+        SampledSpectrum L(wl.count, 0.0f);
+        for (const Light* light : scene.lights.infinite_lights()) {
+            const SampledSpectrum Le = light->escaped_radiance(ray.dir, wl);
+            if (Le.is_black())
+                continue;
+            const float light_pdf = scene.lights.pmf(light) * light->pdf(prev.P, ray.dir);
+            L += Le * emission_mis_weight(scene, prev, light_pdf);
         }
-        return fs * ls->L * (std::abs(wi.z) * weight / light_pdf);
+        return L;
+    }
+
+    // Russian roulette once the path has some length (pbrt-v4 §13.3: on the largest
+    // throughput component, so bright paths survive). False ends the path.
+    bool survive_roulette(int depth, SampledSpectrum& beta, Pcg32& rng)
+    {
+        if (depth < 3)
+            return true;
+        const float q = std::max(0.05f, 1.0f - beta.max_value());
+        if (rng.uniform_float() < q)
+            return false;
+        beta /= 1.0f - q;
+        return true;
     }
 
 }  // namespace
@@ -74,23 +135,67 @@ SampledSpectrum trace_path(const Scene& scene, Ray ray, const PatinaWavelengths&
     SampledSpectrum L(wl.count, 0.0f), beta(wl.count, 1.0f);
     bool secondaries_terminated = false;
     PrevVertex prev;
-    for (int depth = 0;; ++depth) {
-        // Find the next surface; paths that escape see the infinite lights.
-        const auto hit = scene.geometry->intersect(ray.origin, ray.dir, 0.0f,
-                                                   std::numeric_limits<float>::infinity());
-        if (!hit) {
-            for (const Light* light : scene.lights.infinite_lights()) {
-                const SampledSpectrum Le = light->escaped_radiance(ray.dir, wl);
-                if (Le.is_black())
-                    continue;
-                const float light_pdf = scene.lights.pmf(light) * light->pdf(prev.P, ray.dir);
-                L += beta * Le * bsdf_mis_weight(scene, prev, light_pdf);
+    const ShaderInstance* medium = nullptr;  // the camera is in vacuum
+    int pass_through = 0;
+    for (int depth = 0;;) {
+        const auto hit = scene.geometry->intersect(ray.origin, ray.dir, 0.0f, kInf);
+
+        // In a medium: a free flight up to the next surface, maybe ending in a scattering.
+        if (medium) {
+            PatinaShadingContext mctx{};
+            mctx.P = to_abi(ray.origin);
+            float t = 0.0f, weight[PATINA_MAX_WAVELENGTHS] = {};
+            const int scattered = medium->medium()->sample_distance(
+                medium->get(), &mctx, mctx.P, to_abi(ray.dir), hit ? hit->t : kInf,
+                rng.uniform_float(), &wl, &t, weight);
+            beta *= SampledSpectrum::from_array(wl.count, weight);
+            if (beta.is_black())
+                break;
+            if (scattered) {
+                const Imath::V3f P = ray.origin + t * ray.dir;
+                if (depth >= scene.film.max_depth)
+                    break;
+                mctx.P = to_abi(P);
+                const PatinaVec3 wo = to_abi(-ray.dir);
+                const Scatterer phase{medium, &mctx, nullptr, wo};
+                if (scene.film.mis)
+                    L += beta * sample_direct(scene, phase, P, nullptr, nullptr, ray.dir, medium,
+                                              wl, rng);
+                PatinaVec3 wi{};
+                float p[PATINA_MAX_WAVELENGTHS] = {};
+                const Imath::V2f u{rng.uniform_float(), rng.uniform_float()};
+                const float phase_pdf = medium->medium()->phase_sample(
+                    medium->get(), &mctx, wo, {u.x, u.y}, &wl, &wi, p);
+                if (!(phase_pdf > 0.0f))
+                    break;
+                beta *= SampledSpectrum::from_array(wl.count, p) / phase_pdf;
+                prev = {P, phase_pdf, false};
+                ++depth;
+                if (beta.is_black() || !survive_roulette(depth, beta, rng))
+                    break;
+                ray = {P, from_abi(wi).normalized()};
+                continue;
             }
+        }
+
+        // Paths that escape see the infinite lights.
+        if (!hit) {
+            L += beta * escaped(scene, ray, prev, wl);
             break;
         }
         const SurfacePoint sp = scene.geometry->interpolate(*hit, ray.origin, ray.dir);
         const SceneObject& obj =
             scene.objects[static_cast<size_t>(scene.mesh_object[static_cast<size_t>(hit->mesh_id)])];
+
+        // An index-matched medium boundary: cross it without scattering.
+        if (!obj.bsdf && obj.interior && !obj.emitter) {
+            if (++pass_through > kMaxPassThrough)
+                break;
+            medium = medium_after_crossing(obj, sp.Ng, ray.dir, medium);
+            ray.origin = offset_ray_origin(sp, ray.dir);
+            continue;
+        }
+
         const ShadingFrame frame = make_shading_frame(sp);
         const PatinaVec3 wo = to_abi(frame.to_local(-ray.dir));
         if (depth == 0 && aovs) {
@@ -116,15 +221,18 @@ SampledSpectrum trace_path(const Scene& scene, Ray ray, const PatinaWavelengths&
                     const LightHit lh{sp.P, sp.Ng, hit->prim_id};
                     light_pdf = scene.lights.pmf(area) * area->pdf(prev.P, ray.dir, &lh);
                 }
-                L += beta * Le * bsdf_mis_weight(scene, prev, light_pdf);
+                L += beta * Le * emission_mis_weight(scene, prev, light_pdf);
             }
         }
         if (!obj.bsdf || depth >= scene.film.max_depth)
             break;
 
-        // Light sampling at this vertex.
-        if (scene.film.mis)
-            L += beta * sample_direct(scene, frame, sp, obj, wo, wl, rng);
+        // Light sampling at this vertex. The shadow ray leaves on the light's side: the
+        // medium there is this one unless it crosses into the object's interior.
+        if (scene.film.mis) {
+            const Scatterer surface{obj.bsdf.get(), &frame.ctx, &frame, wo};
+            L += beta * sample_direct(scene, surface, sp.P, &sp, &obj, ray.dir, medium, wl, rng);
+        }
 
         // Sample the BSDF for the next direction.
         PatinaBsdfSample bs{};
@@ -144,20 +252,15 @@ SampledSpectrum trace_path(const Scene& scene, Ray ray, const PatinaWavelengths&
             pdf[0] /= static_cast<float>(wl.count);
             secondaries_terminated = true;
         }
-        if (beta.is_black())
-            break;
         prev = {sp.P, bs.pdf, (bs.lobe & PATINA_LOBE_SPECULAR) != 0};
-
-        // Russian roulette once the path has some length (pbrt-v4 §13.3: on the largest
-        // throughput component, so bright paths survive).
-        if (depth >= 3) {
-            const float q = std::max(0.05f, 1.0f - beta.max_value());
-            if (rng.uniform_float() < q)
-                break;
-            beta /= 1.0f - q;
-        }
+        ++depth;
+        if (beta.is_black() || !survive_roulette(depth, beta, rng))
+            break;
 
         const Imath::V3f wi_world = frame.to_world(from_abi(bs.wi)).normalized();
+        // Transmission through the surface moves the path into or out of the interior.
+        if (wi_world.dot(sp.Ng) * ray.dir.dot(sp.Ng) > 0.0f)
+            medium = medium_after_crossing(obj, sp.Ng, wi_world, medium);
         ray.origin = offset_ray_origin(sp, wi_world);
         ray.dir = wi_world;
     }

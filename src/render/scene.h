@@ -48,6 +48,9 @@ struct SceneObject {
     std::string label;                        ///< for messages: "object 2 (sphere)"
     std::shared_ptr<ShaderInstance> bsdf;     ///< may be null: a pure emitter / black
     std::shared_ptr<ShaderInstance> emitter;  ///< may be null
+    /// The medium inside the (closed) mesh, or null. With no bsdf the boundary is
+    /// index-matched: rays pass straight through it into and out of the medium.
+    std::shared_ptr<ShaderInstance> interior;
 };
 
 /// The first phase of loading: the parsed file and the plugin folders it names, so the
@@ -69,6 +72,7 @@ struct Scene {
     std::vector<SceneObject> objects;
     std::vector<int> mesh_object;      ///< Embree geometry id -> index into objects
     std::unique_ptr<EmbreeScene> geometry;
+    bool has_media = false;            ///< some object has an interior medium
 };
 
 /// Second phase: bind shaders through `registry`, build meshes and the Embree scene.

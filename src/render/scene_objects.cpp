@@ -130,7 +130,10 @@ void add_objects(const TomlReader& w, const toml::table& root, const fs::path& b
     for (const toml::node& e : *list) {
         const toml::table& t = *e.as_table();
         w.check_keys(t, "object", {"shape", "mesh", "center", "radius", "size", "transform",
-                                   "bsdf", "emitter", "materials"});
+                                   "bsdf", "emitter", "materials", "interior"});
+        const auto interior = shader_named(w, scene, t.get("interior"), "interior", PATINA_SHADER_MEDIUM);
+        if (interior)
+            scene.has_media = true;
         const auto bsdf = shader_named(w, scene, t.get("bsdf"), "bsdf", PATINA_SHADER_BSDF);
         const auto emitter = shader_named(w, scene, t.get("emitter"), "emitter", PATINA_SHADER_EMITTER);
         // materials = { "<mesh material name>" = "<shader>" } overrides `bsdf` per material.
@@ -160,9 +163,10 @@ void add_objects(const TomlReader& w, const toml::table& root, const fs::path& b
             SceneObject obj;
             obj.emitter = emitter;
             obj.bsdf = bsdf;
+            obj.interior = interior;
             if (auto it = by_material.find(m.material_name); it != by_material.end()) {
                 obj.bsdf = it->second;
-            } else if (!bsdf && !emitter) {
+            } else if (!bsdf && !emitter && !interior) {
                 w.fail(&e, fmt::format("mesh '{}' has material '{}', which neither 'materials' "
                                        "nor a 'bsdf' binds to a shader",
                                        m.name, m.material_name));
