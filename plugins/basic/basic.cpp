@@ -1,6 +1,6 @@
 // The "basic" plugin: the ABI entry points and the table of its shaders (lambert,
-// conductor, dielectric, emitter). Each shader lives in its own source file, documented at
-// its top; README.md lists their parameters with the same text as the metadata.
+// conductor, dielectric, emitter, homogeneous). Each shader lives in its own source file,
+// documented at its top; README.md lists their parameters with the same text as the metadata.
 #include "basic.h"
 
 extern "C" {
@@ -20,6 +20,7 @@ const PatinaPluginInfo* patina_plugin_entry(const PatinaHost* /*host*/)
         patina::basic::conductor_shader(),
         patina::basic::dielectric_shader(),
         patina::basic::emitter_shader(),
+        patina::basic::homogeneous_shader(),
     };
     static const PatinaPluginInfo info = {
         "basic", "0.1.0", static_cast<int>(sizeof shaders / sizeof shaders[0]), shaders};

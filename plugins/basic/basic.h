@@ -14,6 +14,7 @@ PatinaShaderDesc lambert_shader();
 PatinaShaderDesc conductor_shader();
 PatinaShaderDesc dielectric_shader();
 PatinaShaderDesc emitter_shader();
+PatinaShaderDesc homogeneous_shader();
 
 /// Roughness below which a BSDF becomes a delta lobe (documented in each shader).
 inline constexpr float kSmoothRoughness = 1e-3f;
