@@ -269,6 +269,73 @@ private:
     PatinaWavelengths wl_{};
 };
 
+/// A medium instance with the calls spelled as in the math: Tr(t), sample_distance, p(wo, wi)
+/// and phase sampling. Positions and directions are world space; a homogeneous medium
+/// ignores them, so they default to a ray from the origin along +z.
+class Medium {
+public:
+    using Spectrum = std::array<float, PATINA_MAX_WAVELENGTHS>;
+
+    /// What sample_distance returned.
+    struct Distance {
+        bool scattered = false;
+        float t = 0.0f;
+        Spectrum weight{};
+    };
+
+    Medium(const char* name, const ParamSet& params)
+        : instance_(shader(name), params), funcs_(shader(name).medium)
+    {
+        wl_ = wavelengths();
+    }
+
+    explicit operator bool() const { return static_cast<bool>(instance_); }
+    void set_wavelengths(const PatinaWavelengths& wl) { wl_ = wl; }
+    const PatinaWavelengths& wl() const { return wl_; }
+
+    Spectrum transmittance(float t, float u = 0.5f) const
+    {
+        Spectrum tr{};
+        funcs_->transmittance(instance_.get(), &ctx_, origin_, dir_, t, u, &wl_, tr.data());
+        return tr;
+    }
+    Distance sample_distance(float t_max, float u) const
+    {
+        Distance d;
+        d.t = -1.0f;
+        d.scattered = funcs_->sample_distance(instance_.get(), &ctx_, origin_, dir_, t_max, u, &wl_,
+                                              &d.t, d.weight.data()) != 0;
+        return d;
+    }
+    /// p(wo, wi) per wavelength; *pdf receives the returned pdf when not null.
+    Spectrum phase(Vec3 wo, Vec3 wi, float* pdf = nullptr) const
+    {
+        Spectrum p{};
+        const float q = funcs_->phase_eval(instance_.get(), &ctx_, wo, wi, &wl_, p.data());
+        if (pdf)
+            *pdf = q;
+        return p;
+    }
+    float phase0(Vec3 wo, Vec3 wi) const { return phase(wo, wi)[0]; }
+    /// Samples wi; returns the pdf (0 on failure) and fills p(wo, wi).
+    float phase_sample(Vec3 wo, Vec2 u, Vec3* wi, Spectrum* p) const
+    {
+        PatinaVec3 w{};
+        *p = Spectrum{};
+        const float pdf = funcs_->phase_sample(instance_.get(), &ctx_, wo, u, &wl_, &w, p->data());
+        *wi = w;
+        return pdf;
+    }
+
+private:
+    Instance instance_;
+    const PatinaMediumFuncs* funcs_;
+    PatinaShadingContext ctx_{};
+    PatinaWavelengths wl_{};
+    PatinaVec3 origin_{0.0f, 0.0f, 0.0f};
+    PatinaVec3 dir_{0.0f, 0.0f, 1.0f};
+};
+
 /// Unit direction from spherical coordinates in the local frame.
 inline Vec3 direction(float theta, float phi)
 {
