@@ -25,12 +25,14 @@
  *                                      p̄ = (1/n) Σ_j σt_j Tr_j(t)
  *     t ≥ t_max (pass, returns 0):     weight_i = Tr_i(t_max) / P̄,
  *                                      P̄ = (1/n) Σ_j Tr_j(t_max), and *t = t_max
+ *                                      (t_max < 0 or NaN counts as 0)
  *
  * p̄ and P̄ are the densities of the sampled event averaged over the n wavelengths, each
  * of which is equally likely to be the hero. A hero with σt = 0 never scatters: the ray
  * passes, with the same average weights (exactly 1 when every σt is 0). Weights are finite
- * and at most n. Unbiased per event when the hero is uniform over the path's wavelengths;
- * see the note in the plugin README on paths with several medium events.
+ * and at most n. Unbiased per event when the hero is uniform over the path's wavelengths,
+ * but a host that multiplies these weights over several medium events sampled with the
+ * same hero is biased (README: conventions of the medium).
  *
  * Phase function: Henyey-Greenstein with one g for every wavelength (patina/shading/phase.h).
  * Both wo and wi point away from the scattering point: wo towards the previous vertex (the
