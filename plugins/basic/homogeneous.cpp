@@ -17,22 +17,20 @@
  *
  *     Tr(λ, t) = exp(−σt(λ) t).
  *
- * sample_distance — free-flight sampling with the hero wavelength λ0 and one-sample spectral
- * MIS over the path's wavelengths (balance heuristic; pbrt-v4 §14.1.3, Wilkie et al. 2014):
+ * sample_distance — free-flight sampling from the mixture of the path's wavelengths
+ * (one-sample MIS with the balance heuristic; pbrt-v4 §14.1.3, Wilkie et al. 2014):
  *
- *     t = −ln(1 − u) / σt(λ0)
+ *     j = ⌊u n⌋, u' = u n − j,  t = −ln(1 − u') / σt(λj)
  *     t < t_max (scatter, returns 1):  weight_i = Tr_i(t) σs_i / p̄,
  *                                      p̄ = (1/n) Σ_j σt_j Tr_j(t)
  *     t ≥ t_max (pass, returns 0):     weight_i = Tr_i(t_max) / P̄,
  *                                      P̄ = (1/n) Σ_j Tr_j(t_max), and *t = t_max
  *                                      (t_max < 0 or NaN counts as 0)
  *
- * p̄ and P̄ are the densities of the sampled event averaged over the n wavelengths, each
- * of which is equally likely to be the hero. A hero with σt = 0 never scatters: the ray
- * passes, with the same average weights (exactly 1 when every σt is 0). Weights are finite
- * and at most n. Unbiased per event when the hero is uniform over the path's wavelengths,
- * but a host that multiplies these weights over several medium events sampled with the
- * same hero is biased (README: conventions of the medium).
+ * p̄ and P̄ are exactly the densities of the mixture the distance was drawn from, so each
+ * event's weight is its integrand over its own density and the product of weights along a
+ * whole path is unbiased at every wavelength (a component with σt = 0 never interacts: the
+ * ray passes). Weights are finite and at most n.
  *
  * Phase function: Henyey-Greenstein with one g for every wavelength (patina/shading/phase.h).
  * Both wo and wi point away from the scattering point: wo towards the previous vertex (the
@@ -176,11 +174,18 @@ namespace {
         const Coefficients c = coefficients(m, *wl);
         const double t_end = t_max > 0.0f ? static_cast<double>(t_max) : 0.0; // NaN -> 0
 
-        // Free-flight distance with the hero's extinction, t = −ln(1 − u)/σt(λ0):
-        // pbrt-v4 §11.2.2 (SampleExponential); a hero with σt = 0 never interacts
-        if (n > 0 && c.sigma_t[0] > 0.0) {
-            const double ud = std::clamp(static_cast<double>(u), 0.0, 1.0 - 0x1p-53);
-            const float ts = static_cast<float>(-std::log1p(-ud) / c.sigma_t[0]);
+        // Free-flight distance from the mixture (1/n) Σ_j σt_j e^{−σt_j t} of the path's
+        // wavelengths: u picks the component j, and its remainder the distance
+        // t = −ln(1 − u')/σt_j (pbrt-v4 §11.2.2, SampleExponential). The density of the
+        // event is then the mixture whatever the hero, so the weights below (integrand over
+        // that density) stay unbiased multiplied along a whole path; a component with
+        // σt_j = 0 never interacts and the ray passes.
+        const double uc = std::isnan(u) ? 0.0 : std::clamp(static_cast<double>(u), 0.0, 1.0 - 0x1p-53);
+        const double un = uc * n;
+        const int j = std::clamp(static_cast<int>(un), 0, std::max(n - 1, 0));
+        if (n > 0 && c.sigma_t[j] > 0.0) {
+            const double ud = std::clamp(un - j, 0.0, 1.0 - 0x1p-53);
+            const float ts = static_cast<float>(-std::log1p(-ud) / c.sigma_t[j]);
             if (ts < t_max) {
                 // Scatter: Tr σs over the wavelength-averaged density σt Tr (balance
                 // heuristic, one sample: pbrt-v4 §14.1.3; Wilkie et al. 2014 §4)

@@ -112,30 +112,37 @@ namespace {
         EXPECT_EQ(dlsym(p.handle, "_ZN6patina5basic14lambert_shaderEv"), nullptr);
     }
 
-    TEST(BasicPlugin, DeclaresFourShadersWithTheirFunctionTables)
+    TEST(BasicPlugin, DeclaresItsShadersWithTheirFunctionTables)
     {
         const LoadedPlugin& p = basic_plugin();
         ASSERT_TRUE(p.info) << p.error;
-        ASSERT_EQ(p.info->shader_count, 4);
+        ASSERT_EQ(p.info->shader_count, 5);
         const std::pair<const char*, PatinaShaderKind> expected[] = {
             {"lambert", PATINA_SHADER_BSDF},
             {"conductor", PATINA_SHADER_BSDF},
             {"dielectric", PATINA_SHADER_BSDF},
-            {"emitter", PATINA_SHADER_EMITTER}};
+            {"emitter", PATINA_SHADER_EMITTER},
+            {"homogeneous", PATINA_SHADER_MEDIUM}};
         for (const auto& [name, kind] : expected) {
             const PatinaShaderDesc& s = shader(name);
             EXPECT_EQ(s.kind, kind) << name;
             EXPECT_TRUE(s.help && *s.help) << name;
             EXPECT_TRUE(s.create && s.destroy) << name;
-            EXPECT_EQ(s.medium, nullptr) << name;
             EXPECT_EQ(s.texture, nullptr) << name;
-            if (kind == PATINA_SHADER_BSDF) {
-                ASSERT_TRUE(s.bsdf) << name;
+            // Exactly the table of its kind is set.
+            EXPECT_EQ(s.bsdf != nullptr, kind == PATINA_SHADER_BSDF) << name;
+            EXPECT_EQ(s.emitter != nullptr, kind == PATINA_SHADER_EMITTER) << name;
+            EXPECT_EQ(s.medium != nullptr, kind == PATINA_SHADER_MEDIUM) << name;
+            if (s.bsdf) {
                 EXPECT_TRUE(s.bsdf->eval && s.bsdf->pdf && s.bsdf->sample) << name;
-                EXPECT_EQ(s.emitter, nullptr) << name;
-            } else {
-                ASSERT_TRUE(s.emitter && s.emitter->emit) << name;
-                EXPECT_EQ(s.bsdf, nullptr) << name;
+            }
+            if (s.emitter) {
+                EXPECT_TRUE(s.emitter->emit) << name;
+            }
+            if (s.medium) {
+                EXPECT_TRUE(s.medium->sample_distance && s.medium->transmittance &&
+                            s.medium->phase_eval && s.medium->phase_sample)
+                    << name;
             }
         }
     }
