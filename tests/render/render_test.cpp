@@ -423,7 +423,8 @@ transform = { scale = 2.0, rotate_deg = [0, 90, 0], translate = [0, 0, 5] }
 
 // A closed sphere of a scattering, non-absorbing medium behind an index-matched boundary
 // inside a uniform white environment is invisible: every path leaves with weight 1 in
-// expectation (the volumetric white furnace).
+// expectation (the volumetric white furnace). The scattering coefficient varies six-fold
+// over the spectrum, so paths of many medium events must stay unbiased at every wavelength.
 TEST(Render, ScatteringMediumFurnace)
 {
     auto l = load(write_scene("medium_furnace", R"(
@@ -442,7 +443,7 @@ color = [1, 1, 1]
 name = "cloud"
 type = "homogeneous"
 sigma_a = 0.0
-sigma_s = 4.0
+sigma_s = [[400.0, 1.0], [700.0, 6.0]]
 g = 0.5
 [[object]]
 shape = "sphere"
