@@ -10,7 +10,7 @@ packages=(
   libopencolorio-dev opencolorio-tools
   libopenexr-dev libimath-dev
   libembree-dev libtbb-dev libassimp-dev
-  libgtest-dev libgmock-dev libbenchmark-dev
+  libgtest-dev libgmock-dev libbenchmark-dev embree-tools
   libcli11-dev libfmt-dev libspdlog-dev libtomlplusplus-dev
   colord-data
 )
