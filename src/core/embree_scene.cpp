@@ -47,11 +47,6 @@ namespace {
         b = n.cross(t);
     }
 
-    float next_float_away(float x, float direction)
-    {
-        return direction > 0 ? std::nextafter(x, INFINITY) : direction < 0 ? std::nextafter(x, -INFINITY) : x;
-    }
-
     // Bound on the rounding error of P = b0 p0 + b1 p1 + b2 p2 in floats: pbrt-v4's
     // gamma(7) * sum |bi pi| (§6.8.5), times 8 because Embree computes the barycentrics
     // with its own (unpublished) error instead of pbrt's exact edge functions.
@@ -72,20 +67,18 @@ Imath::V3f offset_ray_origin(const Imath::V3f& P, const Imath::V3f& Ng, const Im
 
 Imath::V3f offset_ray_origin(const SurfacePoint& sp, const Imath::V3f& dir)
 {
-    // Offset along Ng by the error box's extent in that direction (pbrt-v4 OffsetRayOrigin),
-    // then round each component away from P so the rounding of the sum cannot undo it.
+    // Offset along Ng by the error box's extent in that direction (pbrt-v4 OffsetRayOrigin).
     // pbrt's own triangle test also rejects hits closer than its t error bound; Embree
     // accepts t = 0, so a point computed exactly (error 0, e.g. on the plane y = 0) would
-    // hit its own triangle again: never offset by less than the scaled epsilon.
+    // hit its own triangle again: never offset by less than the scaled epsilon. That floor,
+    // 2^-16 of the largest coordinate, is 2^8 ulps of it, so the rounding of the sum below
+    // cannot undo the offset (pbrt's extra next-float step is not needed).
     const float scale = std::max({std::abs(sp.P.x), std::abs(sp.P.y), std::abs(sp.P.z)});
     const float d = std::max(abs(sp.Ng).dot(sp.p_error), kRelativeOffset * scale + kAbsoluteOffset);
     Imath::V3f offset = d * sp.Ng;
     if (sp.Ng.dot(dir) < 0.0f)
         offset = -offset;
-    Imath::V3f po = sp.P + offset;
-    for (int i = 0; i < 3; ++i)
-        po[i] = next_float_away(po[i], offset[i]);
-    return po;
+    return sp.P + offset;
 }
 
 EmbreeScene::EmbreeScene()

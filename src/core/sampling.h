@@ -52,9 +52,9 @@ inline uint64_t hash_values(uint64_t a, uint64_t b, uint64_t c = 0, uint64_t d =
     return hash_values(v);
 }
 
-/// The generator for one pixel sample: a stream per pixel (from seed, x, y) advanced by
-/// sample_index * 65536 (pbrt-v4's IndependentSampler), so a pixel's samples are the same
-/// whichever thread or tile draws them and do not overlap for up to 65536 draws each.
+/// The generator for one pixel sample: a stream per pixel (from seed, x, y) started at a
+/// state hashed from the sample index, so a pixel's samples are the same whichever thread
+/// or tile draws them.
 Pcg32 pixel_sample_rng(uint64_t seed, int x, int y, uint64_t sample_index);
 
 /// A piecewise-constant density over [min, max] proportional to |f| (pbrt-v4's

@@ -176,16 +176,17 @@ float visible_wavelength_pdf(float lambda_nm)
 {
     if (!(lambda_nm >= kLambdaMinNm && lambda_nm <= kLambdaMaxNm))
         return 0.0f;
-    const double c = std::cosh(kVisK * (lambda_nm - 538.0));
-    return static_cast<float>(kVisA / (c * c));
+    // 1/cosh² = 1 − tanh², in float: this runs for every wavelength of every sample.
+    const float t = std::tanh(static_cast<float>(kVisK) * (lambda_nm - 538.0f));
+    return static_cast<float>(kVisA) * (1.0f - t * t);
 }
 
 float sample_visible_wavelength(float u)
 {
     // Invert the CDF above: λ = 538 + atanh(T0 + u (T1 − T0)) / k.
-    const double t = kVisT0 + static_cast<double>(u) * kVisT1MinusT0;
-    const double l = 538.0 + std::atanh(t) / kVisK;
-    return std::clamp(static_cast<float>(l), kLambdaMinNm, kLambdaMaxNm);
+    const float t = static_cast<float>(kVisT0) + u * static_cast<float>(kVisT1MinusT0);
+    const float l = 538.0f + std::atanh(t) / static_cast<float>(kVisK);
+    return std::clamp(l, kLambdaMinNm, kLambdaMaxNm);
 }
 
 PatinaWavelengths sample_wavelengths_visible(float u, int count)
@@ -317,11 +318,16 @@ Xyz xyz_from_samples(const SampledSpectrum& L, const PatinaWavelengths& wl,
     for (int i = 0; i < L.count; ++i) {
         if (pdf.v[i] == 0.0f)
             continue;
-        const float l = wl.lambda_nm[i];
+        // One table position for the three matching functions (0 outside the tables).
+        if (!(wl.lambda_nm[i] >= kLambdaMinNm && wl.lambda_nm[i] <= kLambdaMaxNm))
+            continue;
+        const float x = (wl.lambda_nm[i] - kLambdaMinNm) / kCieStepNm;
+        const int k = std::min(static_cast<int>(x), kCieSamples - 2);
+        const float f = x - static_cast<float>(k);
         const double w = static_cast<double>(L.v[i]) / pdf.v[i];
-        xyz[0] += w * cie_x(l);
-        xyz[1] += w * cie_y(l);
-        xyz[2] += w * cie_z(l);
+        xyz[0] += w * (kCieX[k] + f * (kCieX[k + 1] - kCieX[k]));
+        xyz[1] += w * (kCieY[k] + f * (kCieY[k + 1] - kCieY[k]));
+        xyz[2] += w * (kCieZ[k] + f * (kCieZ[k + 1] - kCieZ[k]));
     }
     for (double& c : xyz)
         c /= static_cast<double>(L.count) * kCieYIntegral;

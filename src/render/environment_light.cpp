@@ -297,6 +297,18 @@ SampledSpectrum EnvironmentLight::radiance_of(const PatinaRgbSpectrum& s,
 std::optional<LightSample> EnvironmentLight::sample(const Imath::V3f&, Imath::V2f u,
                                                     const PatinaWavelengths& wl) const
 {
+    if (is_constant()) {
+        // A uniform sky: uniform directions over the sphere (pbrt-v4 SampleUniformSphere).
+        const float z = 1.0f - 2.0f * u.x;
+        const float r = std::sqrt(std::max(0.0f, 1.0f - z * z));
+        const float phi = 2.0f * kPiF * u.y;
+        LightSample ls;
+        ls.wi = Imath::V3f(r * std::cos(phi), z, r * std::sin(phi));
+        ls.distance = std::numeric_limits<float>::infinity();
+        ls.L = radiance_of(texels_[0], wl);
+        ls.pdf = 1.0f / (4.0f * kPiF);
+        return ls;
+    }
     // Choose (u, v) by the luminance distribution, then map it to a direction.
     const Distribution2D::Sample s = distribution_.sample(u.x, u.y);
     const float sin_theta = std::sin(kPiF * s.v);
@@ -316,6 +328,8 @@ float EnvironmentLight::pdf(const Imath::V3f&, const Imath::V3f& wi, const Light
     const float len = wi.length();
     if (!(len > 0.0f) || !std::isfinite(len))
         return 0.0f;
+    if (is_constant())
+        return 1.0f / (4.0f * kPiF);
     const Imath::V2f uv = direction_to_uv(wi);
     // sin θ from the direction itself (the rotation about +y leaves it unchanged).
     const float sin_theta = std::sqrt(wi.x * wi.x + wi.z * wi.z) / len;
@@ -331,6 +345,8 @@ SampledSpectrum EnvironmentLight::escaped_radiance(const Imath::V3f& dir,
     if (!std::isfinite(dir.x) || !std::isfinite(dir.y) || !std::isfinite(dir.z) ||
         dir.length2() == 0.0f)
         return SampledSpectrum(wl.count, 0.0f);
+    if (is_constant())
+        return radiance_of(texels_[0], wl);
     const Imath::V2f uv = direction_to_uv(dir);
     return radiance_of(texel_at(uv.x, uv.y), wl);
 }

@@ -89,6 +89,8 @@ public:
     /// The unit world direction of map coordinates (u, v), rotation included.
     Imath::V3f uv_to_direction(float u, float v) const;
 
+    /// A 1x1 map: a uniform sky, sampled uniformly over the sphere without the 2D table.
+    bool is_constant() const { return width_ == 1 && height_ == 1; }
     int width() const { return width_; }
     int height() const { return height_; }
     float intensity() const { return intensity_; }
