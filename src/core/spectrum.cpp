@@ -199,6 +199,24 @@ PatinaWavelengths sample_wavelengths_visible(float u, int count)
     return wl;
 }
 
+PatinaWavelengths sample_wavelengths_visible(float u, int count, SampledSpectrum& pdf)
+{
+    assert(count >= 1 && count <= PATINA_MAX_WAVELENGTHS);
+    PatinaWavelengths wl{};
+    wl.count = count;
+    pdf = SampledSpectrum(count, 0.0f);
+    for (int i = 0; i < count; ++i) {
+        // λ = 538 + atanh(t)/k, so tanh(k(λ − 538)) = t and the pdf A/cosh² is A(1 − t²):
+        // no tanh needed.
+        const float t =
+            static_cast<float>(kVisT0) + rotate_u(u, i, count) * static_cast<float>(kVisT1MinusT0);
+        const float l = 538.0f + std::atanh(t) / static_cast<float>(kVisK);
+        wl.lambda_nm[i] = std::clamp(l, kLambdaMinNm, kLambdaMaxNm);
+        pdf.v[i] = static_cast<float>(kVisA) * (1.0f - t * t);
+    }
+    return wl;
+}
+
 float uniform_wavelength_pdf(float lambda_nm)
 {
     if (!(lambda_nm >= kLambdaMinNm && lambda_nm <= kLambdaMaxNm))

@@ -60,6 +60,11 @@ float sample_visible_wavelength(float u);
 /// distributed by visible_wavelength_pdf; lambda_nm[0] is the hero wavelength.
 PatinaWavelengths sample_wavelengths_visible(float u, int count);
 
+struct SampledSpectrum;
+/// As above, and the pdf of each wavelength into `pdf` (from the sampling step itself,
+/// cheaper than visible_wavelength_pdf).
+PatinaWavelengths sample_wavelengths_visible(float u, int count, SampledSpectrum& pdf);
+
 /// Uniform density 1/(830 − 360) over 360-830 nm; 0 outside.
 float uniform_wavelength_pdf(float lambda_nm);
 /// As sample_wavelengths_visible, with uniformly distributed wavelengths.

@@ -139,9 +139,9 @@ FilmResult render_region(const Scene& scene, const Region& region, const RenderC
                         const float fy = (static_cast<float>(y) + rng.uniform_float()) /
                                          static_cast<float>(film.height);
                         const Imath::V2f lens{rng.uniform_float(), rng.uniform_float()};
+                        SampledSpectrum pdf;
                         const PatinaWavelengths wl =
-                            sample_wavelengths_visible(rng.uniform_float(), film.wavelengths);
-                        SampledSpectrum pdf = visible_wavelength_pdf(wl);
+                            sample_wavelengths_visible(rng.uniform_float(), film.wavelengths, pdf);
                         PathAovs aov;
                         const SampledSpectrum L = trace_path(
                             scene, scene.camera.generate(fx, fy, lens), wl, pdf, rng,

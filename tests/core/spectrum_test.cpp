@@ -301,3 +301,20 @@ namespace {
 
 } // namespace
 } // namespace patina
+
+// The pdf returned with the sampled wavelengths is the density visible_wavelength_pdf gives.
+TEST(SpectrumTest, SampledWavelengthPdfMatchesTheDensity)
+{
+    for (float u : {0.0f, 0.13f, 0.5f, 0.77f, 0.999f})
+        for (int n : {1, 4, 8}) {
+            patina::SampledSpectrum pdf;
+            const PatinaWavelengths wl = patina::sample_wavelengths_visible(u, n, pdf);
+            const PatinaWavelengths ref = patina::sample_wavelengths_visible(u, n);
+            ASSERT_EQ(pdf.count, n);
+            for (int i = 0; i < n; ++i) {
+                EXPECT_NEAR(wl.lambda_nm[i], ref.lambda_nm[i], 1e-3f);
+                const float expected = patina::visible_wavelength_pdf(wl.lambda_nm[i]);
+                EXPECT_NEAR(pdf[i], expected, 1e-4f * expected) << wl.lambda_nm[i];
+            }
+        }
+}
