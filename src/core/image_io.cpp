@@ -4,6 +4,8 @@
 #include <OpenImageIO/imageio.h>
 #include <fmt/format.h>
 
+#include <cmath>
+
 #include <unistd.h>
 
 #include <atomic>
@@ -199,6 +201,33 @@ ImageData read_image(const std::filesystem::path& path)
         throw std::runtime_error(fmt::format("cannot read image '{}': {}", path.string(),
                                              oiio_error(in->geterror())));
     return image;
+}
+
+void check_finite_texels(const std::filesystem::path& path, const char* what)
+{
+    OIIO::ImageBuf buf(path.string());
+    if (!buf.read(0, 0, true, OIIO::TypeDesc::FLOAT))
+        throw std::runtime_error(fmt::format("{} '{}': {}", what, path.string(), buf.geterror()));
+    const OIIO::ImageBufAlgo::PixelStats stats = OIIO::ImageBufAlgo::computePixelStats(buf);
+    uint64_t bad = 0;
+    for (size_t c = 0; c < stats.nancount.size(); ++c)
+        bad += stats.nancount[c] + stats.infcount[c];
+    if (bad == 0)
+        return;
+    // Name the first bad texel (top-left origin, as image viewers show it).
+    const OIIO::ImageSpec& spec = buf.spec();
+    std::vector<float> px(static_cast<size_t>(spec.nchannels));
+    for (int y = spec.y; y < spec.y + spec.height; ++y)
+        for (int x = spec.x; x < spec.x + spec.width; ++x) {
+            buf.getpixel(x, y, px.data(), spec.nchannels);
+            for (int c = 0; c < spec.nchannels; ++c)
+                if (!std::isfinite(px[static_cast<size_t>(c)]))
+                    throw std::runtime_error(fmt::format(
+                        "{} '{}': texel ({}, {}) channel {} is {} ({} non-finite values)", what,
+                        path.string(), x, y, spec.channel_name(c),
+                        std::isnan(px[static_cast<size_t>(c)]) ? "NaN" : "infinite", bad));
+        }
+    throw std::runtime_error(fmt::format("{} '{}': {} non-finite values", what, path.string(), bad));
 }
 
 }  // namespace patina

@@ -93,6 +93,11 @@ void make_texture_atomic(const std::filesystem::path& path, const float* pixels,
                          const std::vector<std::string>& channel_names,
                          const TextureOptions& options = {});
 
+/// Throw std::runtime_error "<what> '<file>': texel (x, y) channel c is NaN (n non-finite
+/// values)" when the top level of `path` holds a NaN or an infinity; a bad texel must not
+/// turn into a plausible-looking render.
+void check_finite_texels(const std::filesystem::path& path, const char* what = "texture");
+
 /// Read the first subimage (top mip level) of any OIIO-readable file as floats. Throws
 /// std::runtime_error naming the file when it is missing or unreadable.
 ImageData read_image(const std::filesystem::path& path);

@@ -1,5 +1,6 @@
 #include "core/texture_access.h"
 
+#include "core/image_io.h"
 #include "core/texture_conversion.h"
 
 #include <fmt/format.h>
@@ -47,6 +48,9 @@ TextureAccess::Handle* TextureAccess::open(const std::filesystem::path& filename
     handle->filename = filename;
     handle->colorspace = std::string(colorspace);
     fs::path file = filename;
+    // A NaN or infinite texel is refused here, naming it, rather than rendering as black or
+    // white speckles.
+    check_finite_texels(filename);
     try {
         handle->is_data = colors_->is_data(colorspace);
         // Colour textures are converted once, at load, to a cached working-space texture;

@@ -7,7 +7,9 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <limits>
 #include <thread>
+#include <vector>
 
 namespace fs = std::filesystem;
 
@@ -43,4 +45,27 @@ TEST(TextureConversion, ConvertsOnceAndRemakesWhenTheSourceChanges)
     EXPECT_NE(b, a);
     EXPECT_NEAR(patina::read_image(b).at(0, 0, 0), 1.0f, 1e-4f);
     unsetenv("PATINA_TEXTURE_CACHE");
+}
+
+// A NaN texel in a texture is refused when it is opened, naming the file and the texel.
+TEST(TextureConversion, NonFiniteTexelIsNamed)
+{
+    const fs::path dir = fs::path(PATINA_TEST_BUILD_DIR) / "texture_nan";
+    fs::create_directories(dir);
+    const fs::path file = dir / "thickness.exr";
+    std::vector<float> pixels(4 * 3, 0.25f);
+    pixels[(1 * 2 + 0) * 1 + 0] = std::numeric_limits<float>::quiet_NaN();  // texel (0, 1)
+    patina::write_image_atomic(file, pixels.data(), 2, 3, 1, {"Y"}, OIIO::TypeDesc::FLOAT);
+    try {
+        patina::check_finite_texels(file);
+        FAIL() << "a NaN texel was accepted";
+    } catch (const std::runtime_error& e) {
+        const std::string msg = e.what();
+        EXPECT_NE(msg.find("thickness.exr"), std::string::npos) << msg;
+        EXPECT_NE(msg.find("texel (0, 1)"), std::string::npos) << msg;
+        EXPECT_NE(msg.find("NaN"), std::string::npos) << msg;
+    }
+    const float fine[4] = {0.1f, 0.2f, 0.3f, 0.4f};
+    patina::write_image_atomic(dir / "fine.exr", fine, 2, 2, 1, {"Y"}, OIIO::TypeDesc::FLOAT);
+    EXPECT_NO_THROW(patina::check_finite_texels(dir / "fine.exr"));
 }
