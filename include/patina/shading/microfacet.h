@@ -50,6 +50,7 @@
 #include <patina/shading/sampling.h>
 #include <patina/shading/vec.h>
 
+#include <algorithm>
 #include <limits>
 
 namespace patina::shading {
@@ -129,13 +130,15 @@ namespace detail {
 } // namespace detail
 
 // ---------------------------------------------------------------------------------------
-// Trowbridge-Reitz (GGX)
+// Widths shared by both distributions
 // ---------------------------------------------------------------------------------------
 
-class TrowbridgeReitz {
+/// The anisotropic widths (alpha_x along the tangent, alpha_y along the bitangent) that
+/// GGX and Beckmann are both parametrised by.
+class MicrofacetWidths {
 public:
-    TrowbridgeReitz() = default;
-    TrowbridgeReitz(float alpha_x, float alpha_y) : alpha_x_(alpha_x), alpha_y_(alpha_y) {}
+    MicrofacetWidths() = default;
+    MicrofacetWidths(float alpha_x, float alpha_y) : alpha_x_(alpha_x), alpha_y_(alpha_y) {}
 
     /// alpha = roughness²: Burley 2012, "Physically-Based Shading at Disney", "Specular D"
     static float roughness_to_alpha(float roughness) { return roughness * roughness; }
@@ -147,6 +150,19 @@ public:
     {
         return std::max(alpha_x_, alpha_y_) < alpha_threshold;
     }
+
+protected:
+    float alpha_x_ = 1.0f;
+    float alpha_y_ = 1.0f;
+};
+
+// ---------------------------------------------------------------------------------------
+// Trowbridge-Reitz (GGX)
+// ---------------------------------------------------------------------------------------
+
+class TrowbridgeReitz : public MicrofacetWidths {
+public:
+    using MicrofacetWidths::MicrofacetWidths;
 
     /// D(wm), zero below the surface.
     float d(Vec3 wm) const
@@ -211,29 +227,15 @@ public:
         return normalize(Vec3(alpha_x_ * nh.x, alpha_y_ * nh.y, std::max(1e-6f, nh.z)));
     }
 
-private:
-    float alpha_x_ = 1.0f;
-    float alpha_y_ = 1.0f;
 };
 
 // ---------------------------------------------------------------------------------------
 // Beckmann
 // ---------------------------------------------------------------------------------------
 
-class Beckmann {
+class Beckmann : public MicrofacetWidths {
 public:
-    Beckmann() = default;
-    Beckmann(float alpha_x, float alpha_y) : alpha_x_(alpha_x), alpha_y_(alpha_y) {}
-
-    /// alpha = roughness²: Burley 2012, "Physically-Based Shading at Disney", "Specular D"
-    static float roughness_to_alpha(float roughness) { return roughness * roughness; }
-
-    float alpha_x() const { return alpha_x_; }
-    float alpha_y() const { return alpha_y_; }
-    bool effectively_smooth(float alpha_threshold) const
-    {
-        return std::max(alpha_x_, alpha_y_) < alpha_threshold;
-    }
+    using MicrofacetWidths::MicrofacetWidths;
 
     /// D(wm), zero below the surface.
     float d(Vec3 wm) const
@@ -374,8 +376,6 @@ private:
             *sy = 0.0;
     }
 
-    float alpha_x_ = 1.0f;
-    float alpha_y_ = 1.0f;
 };
 
 } // namespace patina::shading
