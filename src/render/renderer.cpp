@@ -2,7 +2,7 @@
 
 #include "render/film_output.h"
 #include "render/integrator.h"
-#include "render/progress.h"
+#include "core/progress.h"
 #include "render/scene.h"
 
 #include "core/host.h"

@@ -1,0 +1,42 @@
+#include "core/progress.h"
+
+#include <algorithm>
+#include <cstdio>
+
+namespace patina {
+
+Progress::Progress(size_t total, bool quiet, std::string label)
+    : total_(total), quiet_(quiet), label_(std::move(label)), start_(clock::now())
+{
+}
+
+void Progress::step(size_t units)
+{
+    const size_t done = done_ += units;
+    if (quiet_ || total_ == 0)
+        return;
+    std::lock_guard lock(mutex_);
+    const double elapsed = seconds();
+    if (done < total_ && elapsed - last_ < 0.5)
+        return;
+    last_ = elapsed;
+    const size_t clamped = std::min(done, total_);
+    const double eta = elapsed / static_cast<double>(std::max<size_t>(clamped, 1)) *
+                       static_cast<double>(total_ - clamped);
+    std::fprintf(stderr, "\r%s: %5.1f%%  elapsed %.1fs  ETA %.1fs   ", label_.c_str(),
+                 100.0 * static_cast<double>(clamped) / static_cast<double>(total_), elapsed, eta);
+    printed_ = true;
+}
+
+void Progress::finish()
+{
+    if (!quiet_ && printed_)
+        std::fprintf(stderr, "\n");
+}
+
+double Progress::seconds() const
+{
+    return std::chrono::duration<double>(clock::now() - start_).count();
+}
+
+}  // namespace patina

@@ -1,0 +1,35 @@
+// patina-texgen: bakes per-texel maps (accessibility, exposure, wetness, ...) onto UV-mapped
+// meshes, as tiled mip-mapped EXR texture stacks.
+#include "texgen/cli/commands.h"
+
+#include "core/cancel.h"
+
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <exception>
+
+int main(int argc, char** argv)
+{
+    namespace pt = patina::texgen;
+    CLI::App app{"patina-texgen: bake weathering maps onto UV-mapped meshes"};
+    app.set_version_flag("--version", std::string("patina-texgen ") + PATINA_VERSION_STRING);
+    app.require_subcommand(1);
+
+    // Keep this list in the order of `patina-texgen --help`.
+    // (commands are added here as they land)
+
+    patina::install_cancel_handler();
+    try {
+        app.parse(argc, argv);
+        return 0;
+    } catch (const CLI::ParseError& e) {
+        return app.exit(e);
+    } catch (const patina::Cancelled& e) {
+        std::fprintf(stderr, "\npatina-texgen: %s; no output was written\n", e.what());
+        return 130;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "patina-texgen: error: %s\n", e.what());
+        return 1;
+    }
+}
