@@ -9,10 +9,10 @@ function(expect_failure message_part)
     message(FATAL_ERROR "stderr of ${ARGN} lacks '${message_part}':\n${err}")
   endif()
   # One clear message: the error is reported once, on one line that starts with the tool.
-  string(REGEX MATCHALL "patina-render: error" hits "${err}")
+  string(REGEX MATCHALL "patina-[a-z]+: error" hits "${err}")
   list(LENGTH hits n)
   if(NOT n EQUAL 1)
-    message(FATAL_ERROR "expected exactly one 'patina-render: error' line, got ${n}:\n${err}")
+    message(FATAL_ERROR "expected exactly one 'patina-<tool>: error' line, got ${n}:\n${err}")
   endif()
 endfunction()
 
