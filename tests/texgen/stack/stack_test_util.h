@@ -43,6 +43,7 @@ inline TexelGrid rect_grid(int width, int height, const std::vector<TexelRect>& 
             SurfaceSample s;
             s.P = Imath::V3f(x + 0.5f, y + 0.5f, 0.0f);
             s.N = s.Ng = Imath::V3f(0, 0, 1);
+            s.uv = Imath::V2f((x + 0.5f) / width, 1.0f - (y + 0.5f) / height);
             grid.groups.add_group({s});
         }
     return grid;

@@ -1,0 +1,217 @@
+#include "texgen/stack/manifest.h"
+
+#include "texgen/stack/map_output.h"
+
+#include <fmt/format.h>
+#include <toml++/toml.h>
+
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+// The library is built without the project version when texgen/CMakeLists.txt does not
+// pass it; the manifest then says so rather than guessing.
+#ifndef PATINA_VERSION_STRING
+#define PATINA_VERSION_STRING "(unknown version)"
+#endif
+
+namespace patina::texgen {
+
+namespace fs = std::filesystem;
+
+fs::path manifest_path(const fs::path& out_dir) { return out_dir / "stack.toml"; }
+
+std::string map_file_name(const std::string& name, int udim, bool lone_1001_tile)
+{
+    if (lone_1001_tile)
+        return name + ".exr";
+    return fmt::format("{}.{}.exr", name, udim);
+}
+
+std::string map_file_pattern(const std::string& name) { return name + ".<UDIM>.exr"; }
+
+namespace {
+
+    /// Write `text` to `path` through a temporary name and a rename, so a reader never sees
+    /// half a manifest and a failed write leaves the old one.
+    void write_text_atomic(const fs::path& path, const std::string& text)
+    {
+        const fs::path tmp = temporary_path_for(path);
+        bool ok = false;
+        {
+            std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+            if (out) {
+                out.write(text.data(), static_cast<std::streamsize>(text.size()));
+                out.flush();
+                ok = static_cast<bool>(out);
+            }
+        }
+        std::error_code ec;
+        if (ok)
+            fs::rename(tmp, path, ec);
+        if (!ok || ec) {
+            fs::remove(tmp, ec);
+            throw std::runtime_error(fmt::format("cannot write manifest '{}': {}", path.string(),
+                                                 ok ? "rename failed" : "write failed"));
+        }
+    }
+
+    /// `file` relative to the folder of the manifest, with '/' separators.
+    fs::path relative_to(const fs::path& file, const fs::path& out_dir)
+    {
+        std::error_code ec;
+        fs::path rel = fs::relative(file, out_dir, ec);
+        if (ec || rel.empty())
+            return file;
+        return rel;
+    }
+
+    /// A float parameter as the double that prints like the float (0.1f -> 0.1, not
+    /// 0.10000000149011612): fmt prints the shortest text that reads back as the same float.
+    double as_shortest_double(float v) { return std::strtod(fmt::format("{}", v).c_str(), nullptr); }
+
+    toml::table parameters_table(const MapDescription& map)
+    {
+        toml::table params;
+        for (const auto& [key, value] : map.parameters) {
+            const std::string k = key.rfind("patina:", 0) == 0 ? key.substr(7) : key;
+            std::visit(
+                [&, &k = k](const auto& v) {
+                    using T = std::decay_t<decltype(v)>;
+                    if constexpr (std::is_same_v<T, int>)
+                        params.insert_or_assign(k, static_cast<int64_t>(v));
+                    else if constexpr (std::is_same_v<T, float>)
+                        params.insert_or_assign(k, as_shortest_double(v));
+                    else
+                        params.insert_or_assign(k, v);
+                },
+                value);
+        }
+        return params;
+    }
+
+    /// The existing manifest, or an empty table when there is none. A manifest that does
+    /// not parse is an error: rewriting it would lose the entries of other maps.
+    toml::table read_manifest(const fs::path& path)
+    {
+        std::error_code ec;
+        if (!fs::exists(path, ec))
+            return {};
+        if (!fs::is_regular_file(path, ec))
+            throw std::runtime_error(fmt::format("manifest '{}' is not a file", path.string()));
+        toml::table root;
+        try {
+            root = toml::parse_file(path.string());
+        } catch (const toml::parse_error& e) {
+            throw std::runtime_error(fmt::format(
+                "cannot update manifest {}:{}:{}: {} (fix or remove the file; it was left unchanged)",
+                path.string(), e.source().begin.line, e.source().begin.column, e.description()));
+        }
+        auto fail = [&](const toml::node* node, const std::string& what) {
+            const toml::source_region& where = node->source();
+            throw std::runtime_error(fmt::format(
+                "cannot update manifest {}:{}:{}: {} (fix or remove the file; it was left unchanged)",
+                path.string(), where.begin.line, where.begin.column, what));
+        };
+        if (const toml::node* stack = root.get("stack")) {
+            if (!stack->is_table())
+                fail(stack, "'stack' must be a table");
+            if (const toml::node* format = stack->as_table()->get("format")) {
+                if (!format->is_integer())
+                    fail(format, "[stack] format must be an integer");
+                if (**format->as_integer() > kStackFormatVersion)
+                    fail(format, fmt::format("stack format {} is newer than this patina-texgen's {}",
+                                             **format->as_integer(), kStackFormatVersion));
+            }
+        }
+        if (const toml::node* maps = root.get("maps"); maps && !maps->is_table())
+            fail(maps, "'maps' must be a table of maps");
+        return root;
+    }
+
+}  // namespace
+
+void record_in_manifest(const fs::path& out_dir, const MapDescription& map,
+                        const std::vector<fs::path>& files, const std::vector<TexelGrid>& tiles)
+{
+    const fs::path path = manifest_path(out_dir);
+    if (map.name.empty())
+        throw std::runtime_error(fmt::format("manifest '{}': a map needs a name", path.string()));
+    if (files.empty())
+        throw std::runtime_error(fmt::format("manifest '{}': map '{}' has no files", path.string(), map.name));
+
+    toml::table entry;
+    if (tiles.empty()) {
+        // The per-vertex mode: one PLY, no texels.
+        if (files.size() != 1)
+            throw std::runtime_error(fmt::format("manifest '{}': per-vertex map '{}' must be one file, not {}",
+                                                 path.string(), map.name, files.size()));
+        entry.insert_or_assign("file", relative_to(files[0], out_dir).generic_string());
+        entry.insert_or_assign("domain", "vertex");
+    } else {
+        if (files.size() != tiles.size())
+            throw std::runtime_error(fmt::format("manifest '{}': map '{}' has {} files for {} tiles",
+                                                 path.string(), map.name, files.size(), tiles.size()));
+        const bool lone = tiles.size() == 1 && tiles[0].udim == 1001;
+        if (lone) {
+            entry.insert_or_assign("file", relative_to(files[0], out_dir).generic_string());
+        } else {
+            // The pattern must describe every file, or a renderer would look for other names.
+            const fs::path folder = relative_to(files[0], out_dir).parent_path();
+            toml::array udims;
+            for (size_t i = 0; i < tiles.size(); ++i) {
+                const fs::path expected = folder / map_file_name(map.name, tiles[i].udim, false);
+                if (relative_to(files[i], out_dir) != expected)
+                    throw std::runtime_error(fmt::format(
+                        "manifest '{}': file '{}' of map '{}' should be '{}' for tile {}",
+                        path.string(), files[i].string(), map.name, expected.generic_string(),
+                        tiles[i].udim));
+                udims.push_back(static_cast<int64_t>(tiles[i].udim));
+            }
+            entry.insert_or_assign("pattern", (folder / map_file_pattern(map.name)).generic_string());
+            entry.insert_or_assign("tiles", std::move(udims));
+        }
+        entry.insert_or_assign("domain", "texel");
+    }
+    toml::array channels;
+    for (const std::string& c : map.channels)
+        channels.push_back(c);
+    entry.insert_or_assign("channels", std::move(channels));
+    entry.insert_or_assign("units", map.units);
+    entry.insert_or_assign("colorspace", "raw");
+    entry.insert_or_assign("baker", map.baker);
+    entry.insert_or_assign("description", map.description);
+    if (!tiles.empty()) {
+        for (const TexelGrid& t : tiles)
+            if (t.width != tiles[0].width || t.height != tiles[0].height)
+                throw std::runtime_error(fmt::format(
+                    "manifest '{}': tiles of map '{}' differ in size ({}: {}x{}, {}: {}x{})",
+                    path.string(), map.name, tiles[0].udim, tiles[0].width, tiles[0].height,
+                    t.udim, t.width, t.height));
+        entry.insert_or_assign("resolution", toml::array{static_cast<int64_t>(tiles[0].width),
+                                                         static_cast<int64_t>(tiles[0].height)});
+    }
+    entry.insert_or_assign("parameters", parameters_table(map));
+
+    // Read (and check) the manifest before anything is written, then replace this map only.
+    toml::table root = read_manifest(path);
+    if (!root.contains("stack"))
+        root.insert_or_assign("stack", toml::table{});
+    toml::table& stack = *root["stack"].as_table();
+    stack.insert_or_assign("format", static_cast<int64_t>(kStackFormatVersion));
+    stack.insert_or_assign("generator", std::string("patina-texgen ") + PATINA_VERSION_STRING);
+    if (!root.contains("maps"))
+        root.insert_or_assign("maps", toml::table{});
+    root["maps"].as_table()->insert_or_assign(map.name, std::move(entry));
+
+    std::ostringstream text;
+    text << "# Texture stack written by patina-texgen: every map of this folder, its channels,\n"
+            "# units and colour space. Maps are data (colour space raw), never colour.\n"
+         << root << "\n";
+    std::error_code ec;
+    fs::create_directories(out_dir, ec);
+    write_text_atomic(path, text.str());
+}
+
+}  // namespace patina::texgen

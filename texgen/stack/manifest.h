@@ -1,0 +1,39 @@
+// The texture stack of an output folder: the file names of its maps and `stack.toml`, the
+// manifest that lists them (record_in_manifest, declared in map_output.h, writes it).
+//
+//   [stack]
+//   format = 1
+//   generator = "patina-texgen 0.1.0"
+//
+//   [maps.ao]
+//   file = "ao.exr"                 # or: pattern = "ao.<UDIM>.exr" and tiles = [1001, 1002]
+//   domain = "texel"                # "vertex" for the PLY of the per-vertex mode
+//   channels = ["ao"]
+//   units = "1"
+//   colorspace = "raw"
+//   baker = "ao"
+//   description = "..."
+//   resolution = [1024, 1024]       # texels per tile (texel maps only)
+//   [maps.ao.parameters]
+//   samples = 64
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+namespace patina::texgen {
+
+/// Version of the stack.toml layout; a manifest of a newer version is not rewritten.
+inline constexpr int kStackFormatVersion = 1;
+
+/// `<out_dir>/stack.toml`.
+std::filesystem::path manifest_path(const std::filesystem::path& out_dir);
+
+/// The file of one tile of a texel map: "<name>.exr" when the map is the lone tile 1001,
+/// else "<name>.<udim>.exr".
+std::string map_file_name(const std::string& name, int udim, bool lone_1001_tile);
+
+/// The UDIM file pattern of a map, as renderers spell it: "<name>.<UDIM>.exr".
+std::string map_file_pattern(const std::string& name);
+
+}  // namespace patina::texgen
