@@ -1,0 +1,121 @@
+#include "texgen/exposure/exposure_baker.h"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace patina::texgen {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// A unit direction uniformly distributed in the cone of half-angle acos(cos_max) about the
+// unit vector `axis` (pbrt-v4 §A.5.4, uniform cone sampling).
+Imath::V3f sample_cone(const Imath::V3f& axis, float cos_max, float u0, float u1)
+{
+    const float cos_theta = 1.0f - u0 * (1.0f - cos_max);
+    const float sin_theta = std::sqrt(std::max(0.0f, 1.0f - cos_theta * cos_theta));
+    const float phi = static_cast<float>(2.0 * kPi) * u1;
+    // Orthonormal basis about the axis (Duff et al. 2017, "Building an Orthonormal Basis,
+    // Revisited").
+    const float sign = std::copysign(1.0f, axis.z);
+    const float a = -1.0f / (sign + axis.z);
+    const float b = axis.x * axis.y * a;
+    const Imath::V3f t(1.0f + sign * axis.x * axis.x * a, sign * b, -sign * axis.x);
+    const Imath::V3f bt(b, sign + axis.y * axis.y * a, -axis.y);
+    Imath::V3f w = axis * cos_theta + (t * std::cos(phi) + bt * std::sin(phi)) * sin_theta;
+    return w.normalize();
+}
+
+}  // namespace
+
+ExposureBaker::ExposureBaker(const EmbreeScene& scene, const ExposureSky& sky,
+                             const ExposureOptions& options)
+    : scene_(scene), sky_(sky), options_(options)
+{
+    if (!(options.max_distance > 0.0f))
+        throw std::runtime_error("--max-distance must be positive");
+    if (!(options.sun_diameter_deg >= 0.0f && options.sun_diameter_deg < 10.0f))
+        throw std::runtime_error("the sun's angular diameter must be in [0, 10) degrees");
+    if (options.average) {
+        if (!(sky.duration_s > 0.0))
+            throw std::runtime_error("--average needs a period of positive length");
+        scale_ = 1.0 / sky.duration_s;
+    }
+    cos_sun_radius_ = static_cast<float>(std::cos(0.5 * options.sun_diameter_deg * kPi / 180.0));
+}
+
+std::vector<std::string> ExposureBaker::channels() const
+{
+    std::vector<std::string> names{options_.average ? "irradiance" : "exposure"};
+    if (options_.components) {
+        names.push_back("direct");
+        names.push_back("sky");
+    }
+    return names;
+}
+
+size_t ExposureBaker::rays_per_sample(size_t group_size) const
+{
+    (void)group_size;
+    return sky_.sun_bins.size() + static_cast<size_t>(sky_.non_empty_sky_cells);
+}
+
+bool ExposureBaker::visible(const SurfaceSample& s, const Imath::V3f& dir) const
+{
+    // A direction below the facet's geometric plane would go through the surface itself.
+    if (s.Ng.dot(dir) <= 0.0f)
+        return false;
+    const Imath::V3f origin = offset_ray_origin(s.P, s.Ng, dir);
+    return !scene_.occluded(origin, dir, 0.0f, options_.max_distance);
+}
+
+void ExposureBaker::evaluate(const SurfaceSample& s, size_t group_size, Pcg32& rng,
+                             float* out) const
+{
+    (void)group_size;
+    const Imath::V3d n(s.N.x, s.N.y, s.N.z);
+
+    // Direct sun: one shadow ray per bin the surface faces, jittered over the solar disc.
+    double direct = 0.0;
+    for (const SunBin& bin : sky_.sun_bins) {
+        const double facing = n.dot(bin.weighted);
+        if (facing <= 0.0)
+            continue;
+        const float u0 = rng.uniform_float();
+        const float u1 = rng.uniform_float();
+        const Imath::V3f dir = cos_sun_radius_ < 1.0f
+                                   ? sample_cone(bin.direction, cos_sun_radius_, u0, u1)
+                                   : bin.direction;
+        if (visible(s, dir))
+            direct += facing;
+    }
+
+    // Sky: one ray per cell, uniform within the cell (stratified over the hemisphere).
+    double sky = 0.0;
+    const int res = sky_.sky_resolution;
+    for (int i = 0; i < res; ++i)
+        for (int j = 0; j < res; ++j) {
+            const double radiance_time = sky_.sky_radiance_time[static_cast<size_t>(i) * res + j];
+            if (radiance_time <= 0.0)
+                continue;
+            const double u = (j + rng.uniform_double()) / res;
+            const double v = (i + rng.uniform_double()) / res;
+            const Imath::V3d w = hemisphere_direction(u, v);
+            const double cos_n = n.dot(w);
+            if (cos_n <= 0.0)
+                continue;
+            const Imath::V3f dir(static_cast<float>(w.x), static_cast<float>(w.y),
+                                 static_cast<float>(w.z));
+            if (visible(s, dir))
+                sky += radiance_time * cos_n * sky_.cell_solid_angle;
+        }
+
+    out[0] = static_cast<float>((direct + sky) * scale_);
+    if (options_.components) {
+        out[1] = static_cast<float>(direct * scale_);
+        out[2] = static_cast<float>(sky * scale_);
+    }
+}
+
+}  // namespace patina::texgen

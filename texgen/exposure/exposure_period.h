@@ -1,0 +1,72 @@
+// The period an exposure map integrates over, as a list of time steps, each with the sun's
+// direction and the direct-normal and diffuse-horizontal irradiance during the step: from
+// the clear-sky model at a site (NREL SPA + Ineichen-Perez) or from the rows of an
+// EnergyPlus weather file.
+#pragma once
+
+#include "core/image_io.h"
+#include "texgen/sun/clear_sky.h"
+#include "texgen/sun/date_time.h"
+#include "texgen/sun/epw.h"
+#include "texgen/sun/solar_position.h"
+
+#include <Imath/ImathVec.h>
+
+#include <optional>
+#include <vector>
+
+namespace patina::texgen {
+
+struct IrradianceStep {
+    double jd_ut = 0;       ///< middle of the step (UT Julian day)
+    double duration_s = 0;  ///< length of the step
+    Imath::V3d sun;         ///< unit direction towards the sun (world: +y up, north -z)
+    double dni = 0;         ///< direct normal irradiance, W/m^2 (0 with the sun down)
+    double dhi = 0;         ///< diffuse horizontal irradiance, W/m^2
+};
+
+struct ExposurePeriod {
+    std::vector<IrradianceStep> steps;  ///< only steps with some irradiance
+    double duration_s = 0;              ///< the whole period (for average irradiance)
+    /// EPW direct-normal energy (J/m^2) of intervals during which the sun never rose above
+    /// the horizon at any sub-step (sunrise/sunset rows), which no direction can carry.
+    double dropped_direct = 0;
+    Metadata parameters;  ///< site, period, model: for the map header
+};
+
+/// Standard-atmosphere pressure at `elevation_m` (ICAO: 1013.25 (1 - 2.25577e-5 h)^5.25588),
+/// mbar; SPA's refraction uses it when no measured pressure is given.
+double standard_pressure_mbar(double elevation_m);
+
+struct ClearSkyPeriodOptions {
+    SolarSite site;
+    double timezone_hours = 0;  ///< of `start` and `end`
+    DateTime start, end;
+    double step_minutes = 10;
+    ClearSkyParameters clear_sky;  ///< its elevation_m is taken from `site`
+};
+
+/// Midpoint steps of `step_minutes` (the last one shortened to end at `end`) with the
+/// sun from the SPA and the irradiance from ineichen_perez(). Throws if end <= start or
+/// the step is not positive.
+ExposurePeriod clear_sky_period(const ClearSkyPeriodOptions& options);
+
+struct EpwPeriodOptions {
+    /// Rows whose interval lies within [start, end) by month, day and time of day (the
+    /// year is ignored: typical-year files mix years); start > end wraps over New Year.
+    std::optional<DateTime> start, end;
+    /// Sub-steps per row: each row's interval is split into steps of about this length
+    /// so the sun's direction follows its path through the hour.
+    double step_minutes = 10;
+    double delta_t_s = 69.0;
+};
+
+/// The rows of `file` in range, each split into sub-steps: the row's diffuse energy evenly
+/// over its sub-steps, its direct-normal energy evenly over the sub-steps with the sun
+/// above the horizon (so the row's energies are kept exactly). The site, time zone and
+/// elevation come from the LOCATION line; refraction uses each row's pressure and dry bulb
+/// temperature when present. Throws "file:line: ..." for a missing irradiation value in
+/// range, and if no row is in range.
+ExposurePeriod epw_period(const EpwFile& file, const EpwPeriodOptions& options);
+
+}  // namespace patina::texgen
