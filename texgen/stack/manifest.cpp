@@ -207,8 +207,18 @@ void record_in_manifest(const fs::path& out_dir, const MapDescription& map,
 
     std::ostringstream text;
     text << "# Texture stack written by patina-texgen: every map of this folder, its channels,\n"
-            "# units and colour space. Maps are data (colour space raw), never colour.\n"
-         << root << "\n";
+            "# units and colour space. Maps are data (colour space raw), never colour.\n";
+    // [stack] first for the reader (toml++ sorts keys). Only when every other top-level entry
+    // is a table: a bare key printed after [stack] would move into it.
+    toml::table rest = root;
+    rest.erase("stack");
+    bool only_tables = true;
+    for (const auto& [key, node] : rest)
+        only_tables = only_tables && node.is_table();
+    if (only_tables)
+        text << toml::table{{"stack", stack}} << "\n\n" << rest << "\n";
+    else
+        text << root << "\n";
     std::error_code ec;
     fs::create_directories(out_dir, ec);
     write_text_atomic(path, text.str());
