@@ -5,6 +5,10 @@
  *  Parameter     Type    Default          Description
  *  ------------  ------  ---------------  -----------------------------------------------
  *  reflectance   color   (0.5, 0.5, 0.5)  Diffuse reflectance R in [0, 1], scene-linear.
+ *  reflectance_scale_map
+ *                texture none             A data map (raw) whose first channel, clamped to
+ *                                         [0, 1], scales R: baked ambient occlusion,
+ *                                         accessibility or wetness shown on a surface.
  *
  * An ideal diffuse (Lambertian) reflector: light is scattered equally into every direction
  * of the hemisphere it arrived from, f(wo, wi) = R(λ) / π, so the directional albedo is
@@ -32,12 +36,18 @@ namespace {
 
     struct Lambert {
         PatinaRgbSpectrum reflectance;
+        const PatinaHost* host = nullptr;
+        const PatinaTexture* scale_map = nullptr;  // may be null
     };
 
     // clang-format off
     const PatinaParamDecl kParams[] = {
         {"reflectance", PATINA_PARAM_COLOR, {0.5f, 0.5f, 0.5f}, nullptr, nullptr, 0.0f, 1.0f,
          "scene_linear", "Diffuse reflectance (albedo) R in [0, 1]; f = R / pi."},
+        {"reflectance_scale_map", PATINA_PARAM_TEXTURE, {0.0f, 0.0f, 0.0f}, nullptr, nullptr,
+         0.0f, 0.0f, "raw",
+         "Data texture whose first channel, clamped to [0, 1], scales the reflectance (e.g. a "
+         "baked AO, accessibility or wetness map)."},
     };
     // clang-format on
 
@@ -76,7 +86,7 @@ namespace {
                          lo, hi);
             return nullptr;
         }
-        return make_instance<Lambert>(host, kName, s);
+        return make_instance<Lambert>(host, kName, s, host, values[1].texture);
     }
 
     void destroy(void* instance)
@@ -84,7 +94,19 @@ namespace {
         delete static_cast<Lambert*>(instance);
     }
 
-    void eval(const void* instance, const PatinaShadingContext*, PatinaVec3 wo, PatinaVec3 wi,
+    // The reflectance scale at the shading point: the map's first channel in [0, 1], or 1.
+    float reflectance_scale(const Lambert& lambert, const PatinaShadingContext* ctx)
+    {
+        if (!lambert.scale_map || !ctx)
+            return 1.0f;
+        float value = 1.0f;
+        if (!lambert.host->texture_lookup(lambert.host, lambert.scale_map, ctx, ctx->uv.x,
+                                          ctx->uv.y, 0, 1, &value))
+            return 1.0f;
+        return value >= 0.0f ? (value <= 1.0f ? value : 1.0f) : 0.0f;  // NaN -> 0
+    }
+
+    void eval(const void* instance, const PatinaShadingContext* ctx, PatinaVec3 wo, PatinaVec3 wi,
               const PatinaWavelengths* wl, float* f)
     {
         const auto* lambert = static_cast<const Lambert*>(instance);
@@ -93,7 +115,8 @@ namespace {
             return;
         }
         // Lambertian BRDF f = R / π: pbrt-v4 §9.2
-        store(eval_rgb(lambert->reflectance, *wl) * kInvPi, *wl, f);
+        store(eval_rgb(lambert->reflectance, *wl) * (reflectance_scale(*lambert, ctx) * kInvPi),
+              *wl, f);
     }
 
     float pdf(const void*, const PatinaShadingContext*, PatinaVec3 wo, PatinaVec3 wi,
@@ -124,10 +147,11 @@ namespace {
         return 1;
     }
 
-    void albedo(const void* instance, const PatinaShadingContext*, PatinaVec3,
+    void albedo(const void* instance, const PatinaShadingContext* ctx, PatinaVec3,
                 const PatinaWavelengths* wl, float* a)
     {
-        store(eval_rgb(static_cast<const Lambert*>(instance)->reflectance, *wl), *wl, a);
+        const auto* lambert = static_cast<const Lambert*>(instance);
+        store(eval_rgb(lambert->reflectance, *wl) * reflectance_scale(*lambert, ctx), *wl, a);
     }
 
     const PatinaBsdfFuncs kFuncs = {eval, pdf, sample, albedo};
