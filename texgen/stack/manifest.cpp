@@ -20,7 +20,10 @@ namespace patina::texgen {
 
 namespace fs = std::filesystem;
 
-fs::path manifest_path(const fs::path& out_dir) { return out_dir / "stack.toml"; }
+fs::path manifest_path(const fs::path& out_dir)
+{
+    return out_dir / "stack.toml";
+}
 
 std::string map_file_name(const std::string& name, int udim, bool lone_1001_tile)
 {
@@ -29,7 +32,10 @@ std::string map_file_name(const std::string& name, int udim, bool lone_1001_tile
     return fmt::format("{}.{}.exr", name, udim);
 }
 
-std::string map_file_pattern(const std::string& name) { return name + ".<UDIM>.exr"; }
+std::string map_file_pattern(const std::string& name)
+{
+    return name + ".<UDIM>.exr";
+}
 
 namespace {
 
@@ -69,7 +75,10 @@ namespace {
 
     /// A float parameter as the double that prints like the float (0.1f -> 0.1, not
     /// 0.10000000149011612): fmt prints the shortest text that reads back as the same float.
-    double as_shortest_double(float v) { return std::strtod(fmt::format("{}", v).c_str(), nullptr); }
+    double as_shortest_double(float v)
+    {
+        return std::strtod(fmt::format("{}", v).c_str(), nullptr);
+    }
 
     toml::table parameters_table(const MapDescription& map)
     {
@@ -104,15 +113,17 @@ namespace {
         try {
             root = toml::parse_file(path.string());
         } catch (const toml::parse_error& e) {
-            throw std::runtime_error(fmt::format(
-                "cannot update manifest {}:{}:{}: {} (fix or remove the file; it was left unchanged)",
-                path.string(), e.source().begin.line, e.source().begin.column, e.description()));
+            throw std::runtime_error(fmt::format("cannot update manifest {}:{}:{}: {} (fix or "
+                                                 "remove the file; it was left unchanged)",
+                                                 path.string(), e.source().begin.line,
+                                                 e.source().begin.column, e.description()));
         }
         auto fail = [&](const toml::node* node, const std::string& what) {
             const toml::source_region& where = node->source();
-            throw std::runtime_error(fmt::format(
-                "cannot update manifest {}:{}:{}: {} (fix or remove the file; it was left unchanged)",
-                path.string(), where.begin.line, where.begin.column, what));
+            throw std::runtime_error(fmt::format("cannot update manifest {}:{}:{}: {} (fix or "
+                                                 "remove the file; it was left unchanged)",
+                                                 path.string(), where.begin.line,
+                                                 where.begin.column, what));
         };
         if (const toml::node* stack = root.get("stack")) {
             if (!stack->is_table())
@@ -121,8 +132,9 @@ namespace {
                 if (!format->is_integer())
                     fail(format, "[stack] format must be an integer");
                 if (**format->as_integer() > kStackFormatVersion)
-                    fail(format, fmt::format("stack format {} is newer than this patina-texgen's {}",
-                                             **format->as_integer(), kStackFormatVersion));
+                    fail(format,
+                         fmt::format("stack format {} is newer than this patina-texgen's {}",
+                                     **format->as_integer(), kStackFormatVersion));
             }
         }
         if (const toml::node* maps = root.get("maps"); maps && !maps->is_table())
@@ -139,20 +151,23 @@ void record_in_manifest(const fs::path& out_dir, const MapDescription& map,
     if (map.name.empty())
         throw std::runtime_error(fmt::format("manifest '{}': a map needs a name", path.string()));
     if (files.empty())
-        throw std::runtime_error(fmt::format("manifest '{}': map '{}' has no files", path.string(), map.name));
+        throw std::runtime_error(
+            fmt::format("manifest '{}': map '{}' has no files", path.string(), map.name));
 
     toml::table entry;
     if (tiles.empty()) {
         // The per-vertex mode: one PLY, no texels.
         if (files.size() != 1)
-            throw std::runtime_error(fmt::format("manifest '{}': per-vertex map '{}' must be one file, not {}",
-                                                 path.string(), map.name, files.size()));
+            throw std::runtime_error(
+                fmt::format("manifest '{}': per-vertex map '{}' must be one file, not {}",
+                            path.string(), map.name, files.size()));
         entry.insert_or_assign("file", relative_to(files[0], out_dir).generic_string());
         entry.insert_or_assign("domain", "vertex");
     } else {
         if (files.size() != tiles.size())
-            throw std::runtime_error(fmt::format("manifest '{}': map '{}' has {} files for {} tiles",
-                                                 path.string(), map.name, files.size(), tiles.size()));
+            throw std::runtime_error(
+                fmt::format("manifest '{}': map '{}' has {} files for {} tiles", path.string(),
+                            map.name, files.size(), tiles.size()));
         const bool lone = tiles.size() == 1 && tiles[0].udim == 1001;
         if (lone) {
             entry.insert_or_assign("file", relative_to(files[0], out_dir).generic_string());
@@ -169,7 +184,8 @@ void record_in_manifest(const fs::path& out_dir, const MapDescription& map,
                         tiles[i].udim));
                 udims.push_back(static_cast<int64_t>(tiles[i].udim));
             }
-            entry.insert_or_assign("pattern", (folder / map_file_pattern(map.name)).generic_string());
+            entry.insert_or_assign("pattern",
+                                   (folder / map_file_pattern(map.name)).generic_string());
             entry.insert_or_assign("tiles", std::move(udims));
         }
         entry.insert_or_assign("domain", "texel");
@@ -187,8 +203,8 @@ void record_in_manifest(const fs::path& out_dir, const MapDescription& map,
             if (t.width != tiles[0].width || t.height != tiles[0].height)
                 throw std::runtime_error(fmt::format(
                     "manifest '{}': tiles of map '{}' differ in size ({}: {}x{}, {}: {}x{})",
-                    path.string(), map.name, tiles[0].udim, tiles[0].width, tiles[0].height,
-                    t.udim, t.width, t.height));
+                    path.string(), map.name, tiles[0].udim, tiles[0].width, tiles[0].height, t.udim,
+                    t.width, t.height));
         entry.insert_or_assign("resolution", toml::array{static_cast<int64_t>(tiles[0].width),
                                                          static_cast<int64_t>(tiles[0].height)});
     }

@@ -29,10 +29,11 @@ namespace {
     {
         if (map.name.empty() || map.name == "." || map.name == ".." ||
             map.name.find_first_of("/\\") != std::string::npos)
-            throw std::runtime_error(fmt::format("cannot write {} '{}': the map name must be a plain file name",
-                                                 what, map.name));
+            throw std::runtime_error(fmt::format(
+                "cannot write {} '{}': the map name must be a plain file name", what, map.name));
         if (map.channels.empty())
-            throw std::runtime_error(fmt::format("cannot write {} '{}': the map has no channels", what, map.name));
+            throw std::runtime_error(
+                fmt::format("cannot write {} '{}': the map has no channels", what, map.name));
         std::set<std::string> seen;
         for (const std::string& c : map.channels)
             if (c.empty() || !seen.insert(c).second)
@@ -41,12 +42,15 @@ namespace {
                     what, map.name, c));
         for (const auto& [key, value] : map.parameters)
             if (kReservedKeys.count(parameter_key(key)))
-                throw std::runtime_error(fmt::format(
-                    "cannot write {} '{}': parameter '{}' clashes with the header attribute patina:{}",
-                    what, map.name, key, parameter_key(key)));
+                throw std::runtime_error(fmt::format("cannot write {} '{}': parameter '{}' clashes "
+                                                     "with the header attribute patina:{}",
+                                                     what, map.name, key, parameter_key(key)));
     }
 
-    const char* nonfinite_word(float v) { return std::isnan(v) ? "NaN" : "infinite"; }
+    const char* nonfinite_word(float v)
+    {
+        return std::isnan(v) ? "NaN" : "infinite";
+    }
 
     std::string value_text(const MetadataValue& value)
     {
@@ -64,11 +68,13 @@ std::vector<fs::path> write_texel_map(const fs::path& out_dir, const MapDescript
     if (tiles.empty())
         throw std::runtime_error(fmt::format("cannot write map '{}': no UDIM tiles", map.name));
     if (values.size() != tiles.size())
-        throw std::runtime_error(fmt::format("cannot write map '{}': values for {} tiles, but {} tiles",
-                                             map.name, values.size(), tiles.size()));
+        throw std::runtime_error(
+            fmt::format("cannot write map '{}': values for {} tiles, but {} tiles", map.name,
+                        values.size(), tiles.size()));
     if (options.padding < -1)
-        throw std::runtime_error(fmt::format("cannot write map '{}': padding {} must be -1 (fill all) or >= 0",
-                                             map.name, options.padding));
+        throw std::runtime_error(
+            fmt::format("cannot write map '{}': padding {} must be -1 (fill all) or >= 0", map.name,
+                        options.padding));
     const size_t nc = map.channels.size();
 
     // Check every tile before the first file is written: a bad value never leaves a
@@ -87,18 +93,20 @@ std::vector<fs::path> write_texel_map(const fs::path& out_dir, const MapDescript
         for (size_t t = 0; t < tile.texel_count(); ++t) {
             const int32_t g = tile.group_of_texel[t];
             if (g < -1 || g >= static_cast<int64_t>(groups))
-                throw std::runtime_error(fmt::format("cannot write map '{}': tile {} texel {} names group {} of {}",
-                                                     map.name, tile.udim, t, g, groups));
+                throw std::runtime_error(
+                    fmt::format("cannot write map '{}': tile {} texel {} names group {} of {}",
+                                map.name, tile.udim, t, g, groups));
             if (g < 0)
                 continue;
             for (size_t c = 0; c < nc; ++c) {
                 const float v = values[i][static_cast<size_t>(g) * nc + c];
                 if (!std::isfinite(v))
-                    throw std::runtime_error(fmt::format(
-                        "cannot write map '{}': the baker gave texel ({}, {}) of tile {} channel '{}' "
-                        "a {} value (group {})",
-                        map.name, t % static_cast<size_t>(tile.width), t / static_cast<size_t>(tile.width),
-                        tile.udim, map.channels[c], nonfinite_word(v), g));
+                    throw std::runtime_error(
+                        fmt::format("cannot write map '{}': the baker gave texel ({}, {}) of tile "
+                                    "{} channel '{}' a {} value (group {})",
+                                    map.name, t % static_cast<size_t>(tile.width),
+                                    t / static_cast<size_t>(tile.width), tile.udim, map.channels[c],
+                                    nonfinite_word(v), g));
             }
         }
     }
@@ -153,8 +161,8 @@ std::vector<fs::path> write_texel_map(const fs::path& out_dir, const MapDescript
     return files;
 }
 
-void write_vertex_map(const fs::path& ply_path, const TriangleMesh& mesh,
-                      const MapDescription& map, const std::vector<float>& values)
+void write_vertex_map(const fs::path& ply_path, const TriangleMesh& mesh, const MapDescription& map,
+                      const std::vector<float>& values)
 {
     check_description(map, "per-vertex map");
     const size_t nc = map.channels.size();
@@ -164,17 +172,17 @@ void write_vertex_map(const fs::path& ply_path, const TriangleMesh& mesh,
             map.name, ply_path.string(), values.size(), mesh.positions.size(), nc));
     for (size_t i = 0; i < values.size(); ++i)
         if (!std::isfinite(values[i]))
-            throw std::runtime_error(fmt::format(
-                "cannot write per-vertex map '{}' to '{}': the baker gave vertex {} channel '{}' a {} value",
-                map.name, ply_path.string(), i / nc, map.channels[i % nc], nonfinite_word(values[i])));
+            throw std::runtime_error(fmt::format("cannot write per-vertex map '{}' to '{}': the "
+                                                 "baker gave vertex {} channel '{}' a {} value",
+                                                 map.name, ply_path.string(), i / nc,
+                                                 map.channels[i % nc], nonfinite_word(values[i])));
 
     std::vector<std::string> names;
     for (const std::string& c : map.channels)
         names.push_back(sanitize_ply_name(c));
-    std::vector<std::string> comments = {"patina:map " + map.name, "patina:baker " + map.baker,
-                                         "patina:units " + map.units,
-                                         "patina:description " + map.description,
-                                         "patina:colorspace raw"};
+    std::vector<std::string> comments = {
+        "patina:map " + map.name, "patina:baker " + map.baker, "patina:units " + map.units,
+        "patina:description " + map.description, "patina:colorspace raw"};
     for (const auto& [key, value] : map.parameters)
         comments.push_back(fmt::format("patina:{} {}", parameter_key(key), value_text(value)));
     write_ply_with_vertex_values(ply_path, mesh, names, values, comments);

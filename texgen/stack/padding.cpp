@@ -9,13 +9,14 @@
 
 namespace patina::texgen {
 
-std::vector<int> distance_to_covered(const std::vector<uint8_t>& covered, int width,
-                                     int height, int limit)
+std::vector<int> distance_to_covered(const std::vector<uint8_t>& covered, int width, int height,
+                                     int limit)
 {
     const size_t n = static_cast<size_t>(width) * height;
     if (covered.size() != n)
-        throw std::runtime_error(fmt::format("distance_to_covered: {} coverage flags for {}x{} texels",
-                                             covered.size(), width, height));
+        throw std::runtime_error(
+            fmt::format("distance_to_covered: {} coverage flags for {}x{} texels", covered.size(),
+                        width, height));
     std::vector<int> d(n);
     for (size_t i = 0; i < n; ++i)
         d[i] = covered[i] ? 0 : limit;
@@ -67,7 +68,8 @@ void pad_texels(std::vector<float>& pixels, int width, int height, int channels,
             "pad_texels: {} values and {} coverage flags for {}x{} texels of {} channels",
             pixels.size(), covered.size(), width, height, channels));
     if (margin < -1)
-        throw std::runtime_error(fmt::format("padding margin {} must be -1 (fill all) or >= 0", margin));
+        throw std::runtime_error(
+            fmt::format("padding margin {} must be -1 (fill all) or >= 0", margin));
 
     const bool any_covered =
         std::any_of(covered.begin(), covered.end(), [](uint8_t c) { return c != 0; });
@@ -96,7 +98,8 @@ void pad_texels(std::vector<float>& pixels, int width, int height, int channels,
         throw std::runtime_error(fmt::format("padding: {}", src.geterror()));
     OIIO::ImageBuf filled;
     if (!OIIO::ImageBufAlgo::fillholes_pushpull(filled, src))
-        throw std::runtime_error(fmt::format("padding: push-pull fill failed: {}", filled.geterror()));
+        throw std::runtime_error(
+            fmt::format("padding: push-pull fill failed: {}", filled.geterror()));
     if (!filled.get_pixels(filled.roi(), OIIO::TypeDesc::FLOAT, rgba.data()))
         throw std::runtime_error(fmt::format("padding: {}", filled.geterror()));
 

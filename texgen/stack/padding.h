@@ -11,8 +11,8 @@ namespace patina::texgen {
 /// Chebyshev (chessboard) distance in texels from every texel to the nearest covered one:
 /// max(|dx|, |dy|), 0 on covered texels, capped at `limit` (also the value when nothing is
 /// covered). `covered` is per texel, row-major, width x height.
-std::vector<int> distance_to_covered(const std::vector<uint8_t>& covered, int width,
-                                     int height, int limit);
+std::vector<int> distance_to_covered(const std::vector<uint8_t>& covered, int width, int height,
+                                     int limit);
 
 /// Fill the uncovered texels of `pixels` (width x height texels of `channels` interleaved
 /// floats, row-major; all values finite) by push-pull (ImageBufAlgo::fillholes_pushpull on

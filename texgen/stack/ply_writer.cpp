@@ -20,8 +20,8 @@ std::string sanitize_ply_name(std::string_view name)
 {
     std::string out(name);
     for (char& c : out) {
-        const bool ok = (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') ||
-                        (c >= '0' && c <= '9') || c == '_';
+        const bool ok =
+            (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_';
         if (!ok)
             c = '_';
     }
@@ -31,8 +31,7 @@ std::string sanitize_ply_name(std::string_view name)
 namespace {
 
     /// Little-endian bytes whatever the host's byte order.
-    template <class T>
-    void append_le(std::string& out, T value)
+    template <class T> void append_le(std::string& out, T value)
     {
         static_assert(sizeof(T) == 1 || sizeof(T) == 4);
         char bytes[sizeof(T)];
@@ -60,11 +59,12 @@ void write_ply_with_vertex_values(const fs::path& path, const TriangleMesh& mesh
     const size_t nv = mesh.positions.size();
     const size_t np = property_names.size();
     if (values.size() != nv * np)
-        throw std::runtime_error(fmt::format("cannot write PLY '{}': {} values for {} vertices x {} properties",
-                                             path.string(), values.size(), nv, np));
+        throw std::runtime_error(
+            fmt::format("cannot write PLY '{}': {} values for {} vertices x {} properties",
+                        path.string(), values.size(), nv, np));
     if (nv > static_cast<size_t>(INT_MAX))
-        throw std::runtime_error(fmt::format("cannot write PLY '{}': {} vertices do not fit int indices",
-                                             path.string(), nv));
+        throw std::runtime_error(fmt::format(
+            "cannot write PLY '{}': {} vertices do not fit int indices", path.string(), nv));
 
     // The names PLY readers give a meaning to come first; ours must not shadow them.
     std::vector<std::string> fixed = {"x", "y", "z"};
@@ -79,8 +79,8 @@ void write_ply_with_vertex_values(const fs::path& path, const TriangleMesh& mesh
                 "cannot write PLY '{}': vertex property name '{}' must be made of A-Z a-z 0-9 _",
                 path.string(), name));
         if (!used.insert(name).second)
-            throw std::runtime_error(fmt::format("cannot write PLY '{}': vertex property '{}' appears twice",
-                                                 path.string(), name));
+            throw std::runtime_error(fmt::format(
+                "cannot write PLY '{}': vertex property '{}' appears twice", path.string(), name));
     }
 
     std::string header = "ply\nformat binary_little_endian 1.0\n";

@@ -54,7 +54,9 @@ namespace {
 
         const toml::table root = toml::parse_file((dir / "stack.toml").string());
         EXPECT_EQ(root["stack"]["format"].value<int64_t>(), kStackFormatVersion);
-        EXPECT_EQ(root["stack"]["generator"].value<std::string>().value_or("").rfind("patina-texgen ", 0), 0u);
+        EXPECT_EQ(
+            root["stack"]["generator"].value<std::string>().value_or("").rfind("patina-texgen ", 0),
+            0u);
         const toml::node_view<const toml::node> ao = root["maps"]["ao"];
         EXPECT_EQ(ao["file"].value<std::string>(), "ao.exr");
         EXPECT_FALSE(ao["pattern"]);
@@ -95,7 +97,8 @@ namespace {
         const std::string message = patina::test::message_of([&] {
             record_in_manifest(dir, ao_map(), {dir / "ao.1001.exr", dir / "other.exr"}, tiles);
         });
-        EXPECT_NE(message.find("should be 'ao.1012.exr' for tile 1012"), std::string::npos) << message;
+        EXPECT_NE(message.find("should be 'ao.1012.exr' for tile 1012"), std::string::npos)
+            << message;
     }
 
     TEST(Manifest, MergeKeepsEarlierEntriesAndReplacesTheSameName)
@@ -140,7 +143,8 @@ namespace {
         const std::vector<TexelGrid> tiles = {rect_grid(8, 8, {{0, 0, 4, 4}})};
         const std::string message = patina::test::message_of(
             [&] { record_in_manifest(dir, ao_map(), {dir / "ao.exr"}, tiles); });
-        EXPECT_NE(message.find((dir / "stack.toml").string() + ":4:"), std::string::npos) << message;
+        EXPECT_NE(message.find((dir / "stack.toml").string() + ":4:"), std::string::npos)
+            << message;
         EXPECT_NE(message.find("left unchanged"), std::string::npos) << message;
         EXPECT_EQ(file_text(dir / "stack.toml"), broken);
     }

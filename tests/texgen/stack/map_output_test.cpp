@@ -39,7 +39,8 @@ namespace {
         std::vector<float> v(grid.groups.group_count() * channels);
         for (size_t g = 0; g < grid.groups.group_count(); ++g)
             for (size_t c = 0; c < channels; ++c)
-                v[g * channels + c] = offset + static_cast<float>(g) + 0.25f * static_cast<float>(c);
+                v[g * channels + c] =
+                    offset + static_cast<float>(g) + 0.25f * static_cast<float>(c);
         return v;
     }
 
@@ -176,16 +177,18 @@ namespace {
         MapDescription map = thickness_map();
         std::vector<float> values = ramp_values(grid, 2);
         values.pop_back();
-        EXPECT_NE(patina::test::message_of([&] { write_texel_map(dir, map, {grid}, {values}, {}); })
-                      .find("31 values for 16 texel groups x 2 channels"),
+        EXPECT_NE(patina::test::message_of([&] {
+                      write_texel_map(dir, map, {grid}, {values}, {});
+                  }).find("31 values for 16 texel groups x 2 channels"),
                   std::string::npos);
-        EXPECT_NE(patina::test::message_of([&] { write_texel_map(dir, map, {grid, grid}, {values}, {}); })
-                      .find("values for 1 tiles, but 2 tiles"),
+        EXPECT_NE(patina::test::message_of([&] {
+                      write_texel_map(dir, map, {grid, grid}, {values}, {});
+                  }).find("values for 1 tiles, but 2 tiles"),
                   std::string::npos);
         map.parameters.emplace_back("udim", 3);
-        EXPECT_NE(patina::test::message_of(
-                      [&] { write_texel_map(dir, map, {grid}, {ramp_values(grid, 2)}, {}); })
-                      .find("clashes with the header attribute patina:udim"),
+        EXPECT_NE(patina::test::message_of([&] {
+                      write_texel_map(dir, map, {grid}, {ramp_values(grid, 2)}, {});
+                  }).find("clashes with the header attribute patina:udim"),
                   std::string::npos);
     }
 
@@ -287,9 +290,13 @@ namespace {
         // Islands at odd offsets so that seams cut through mip blocks at every level; with
         // margin -1 (fill all) no level sees the background.
         const fs::path dir = scratch_dir("rect_seams");
-        const TexelGrid grid = rect_grid(64, 64, {{1, 3, 20, 28}, {23, 3, 41, 28},
-                                                   {45, 5, 63, 30}, {1, 35, 20, 61},
-                                                   {23, 37, 41, 62}, {45, 35, 62, 60}});
+        const TexelGrid grid = rect_grid(64, 64,
+                                         {{1, 3, 20, 28},
+                                          {23, 3, 41, 28},
+                                          {45, 5, 63, 30},
+                                          {1, 35, 20, 61},
+                                          {23, 37, 41, 62},
+                                          {45, 35, 62, 60}});
         const SeamResult full = seam_check(dir, grid, -1, 7);
         for (size_t level = 0; level < full.min_on_surface.size(); ++level)
             EXPECT_NEAR(full.min_on_surface[level], 1.0f, 1e-3f) << "level " << level;

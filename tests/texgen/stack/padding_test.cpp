@@ -65,8 +65,8 @@ namespace {
         const std::vector<uint8_t> covered = random_coverage(w, h, 7, 40);
         std::vector<float> input(covered.size() * nc);
         // Values whose bits a careless composite would change: -0, a denormal, huge ones.
-        const float special[] = {-0.0f, std::numeric_limits<float>::denorm_min(), 3.0e38f,
-                                 -1.0e-30f, 0.1f, 1.0f / 3.0f};
+        const float special[] = {
+            -0.0f, std::numeric_limits<float>::denorm_min(), 3.0e38f, -1.0e-30f, 0.1f, 1.0f / 3.0f};
         for (size_t i = 0; i < input.size(); ++i)
             input[i] = special[i % 6] * (i % 5 == 0 ? -1.0f : 1.0f);
         for (int margin : {-1, 0, 2, 5}) {
@@ -85,8 +85,8 @@ namespace {
         // Two islands far apart with different two-channel values; margin 4.
         const int w = 64, h = 32, nc = 2, margin = 4;
         std::vector<uint8_t> covered(static_cast<size_t>(w) * h, 0);
-        cover(covered, w, 4, 8, 16, 24);   // left island: (2, -3)
-        cover(covered, w, 44, 8, 56, 24);  // right island: (7, 0.5)
+        cover(covered, w, 4, 8, 16, 24);                         // left island: (2, -3)
+        cover(covered, w, 44, 8, 56, 24);                        // right island: (7, 0.5)
         std::vector<float> pixels(covered.size() * nc, 123.0f);  // garbage in the holes
         for (int y = 0; y < h; ++y)
             for (int x = 0; x < w; ++x) {
@@ -97,12 +97,14 @@ namespace {
                 }
             }
         pad_texels(pixels, w, h, nc, covered, margin);
-        auto value = [&](int x, int y, int c) { return pixels[(static_cast<size_t>(y) * w + x) * nc + c]; };
+        auto value = [&](int x, int y, int c) {
+            return pixels[(static_cast<size_t>(y) * w + x) * nc + c];
+        };
 
         // One texel right of the left island and at the margin's corner: values pulled from
         // the left island, nearer its values than the right island's.
-        for (auto [x, y] : {std::pair{16, 15}, std::pair{16 + margin - 1, 24 + margin - 1},
-                            std::pair{3, 7}}) {
+        for (auto [x, y] :
+             {std::pair{16, 15}, std::pair{16 + margin - 1, 24 + margin - 1}, std::pair{3, 7}}) {
             EXPECT_NEAR(value(x, y, 0), 2.0f, 1.0f) << x << ", " << y;
             EXPECT_NEAR(value(x, y, 1), -3.0f, 1.0f) << x << ", " << y;
         }
@@ -149,11 +151,13 @@ namespace {
     {
         std::vector<float> pixels(16, 0.0f);
         std::vector<uint8_t> covered(16, 1);
-        EXPECT_NE(patina::test::message_of([&] { pad_texels(pixels, 4, 4, 1, covered, -2); })
-                      .find("padding margin -2"),
+        EXPECT_NE(patina::test::message_of([&] {
+                      pad_texels(pixels, 4, 4, 1, covered, -2);
+                  }).find("padding margin -2"),
                   std::string::npos);
-        EXPECT_NE(patina::test::message_of([&] { pad_texels(pixels, 4, 4, 2, covered, 1); })
-                      .find("16 values"),
+        EXPECT_NE(patina::test::message_of([&] {
+                      pad_texels(pixels, 4, 4, 2, covered, 1);
+                  }).find("16 values"),
                   std::string::npos);
     }
 

@@ -83,8 +83,8 @@ inline MipLevel read_mip_level(const std::filesystem::path& path, int level)
     mip.height = spec.height;
     mip.channels = spec.nchannels;
     mip.pixels.resize(static_cast<size_t>(spec.width) * spec.height * spec.nchannels);
-    EXPECT_TRUE(in->read_image(0, level, 0, spec.nchannels, OIIO::TypeDesc::FLOAT,
-                               mip.pixels.data()))
+    EXPECT_TRUE(
+        in->read_image(0, level, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, mip.pixels.data()))
         << in->geterror();
     return mip;
 }

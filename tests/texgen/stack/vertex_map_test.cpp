@@ -131,8 +131,8 @@ namespace {
         const PlyFile ply = read_ply(dir / "wet.ply");
         EXPECT_EQ(ply.header.rfind("ply\nformat binary_little_endian 1.0\n", 0), 0u) << ply.header;
         EXPECT_NE(ply.header.find("property list uchar int vertex_indices\n"), std::string::npos);
-        const std::vector<std::string> expected_properties = {"x",  "y", "z", "nx", "ny", "nz",
-                                                              "u",  "v", "wetness", "albedo_r"};
+        const std::vector<std::string> expected_properties = {
+            "x", "y", "z", "nx", "ny", "nz", "u", "v", "wetness", "albedo_r"};
         EXPECT_EQ(ply.vertex_properties, expected_properties);
         ASSERT_EQ(ply.vertex_count, mesh.positions.size());
         for (size_t v = 0; v < ply.vertex_count; ++v) {
@@ -166,7 +166,8 @@ namespace {
     {
         const fs::path dir = test::scratch_dir("ply_assimp");
         const TriangleMesh mesh = make_box(Imath::V3f(0.5f, 0, 0), Imath::V3f(1, 2, 3));
-        write_vertex_map(dir / "box.ply", mesh, two_channel_map(), vertex_values(mesh.positions.size()));
+        write_vertex_map(dir / "box.ply", mesh, two_channel_map(),
+                         vertex_values(mesh.positions.size()));
 
         const std::vector<TriangleMesh> loaded = load_meshes(dir / "box.ply");
         ASSERT_EQ(loaded.size(), 1u);
@@ -219,19 +220,25 @@ namespace {
         MapDescription map = two_channel_map();
         std::vector<float> values(8, 0.5f);
         values[5] = std::numeric_limits<float>::infinity();
-        std::string message = patina::test::message_of([&] { write_vertex_map(dir / "m.ply", mesh, map, values); });
-        EXPECT_NE(message.find("vertex 2 channel 'albedo.r' a infinite value"), std::string::npos) << message;
+        std::string message =
+            patina::test::message_of([&] { write_vertex_map(dir / "m.ply", mesh, map, values); });
+        EXPECT_NE(message.find("vertex 2 channel 'albedo.r' a infinite value"), std::string::npos)
+            << message;
         EXPECT_NE(message.find("per-vertex map 'wet'"), std::string::npos) << message;
         values[5] = 0.0f;
         values.pop_back();
-        message = patina::test::message_of([&] { write_vertex_map(dir / "m.ply", mesh, map, values); });
-        EXPECT_NE(message.find("7 values for 4 vertices x 2 channels"), std::string::npos) << message;
+        message =
+            patina::test::message_of([&] { write_vertex_map(dir / "m.ply", mesh, map, values); });
+        EXPECT_NE(message.find("7 values for 4 vertices x 2 channels"), std::string::npos)
+            << message;
         values.push_back(0.0f);
         map.channels = {"a.b", "a_b"};
-        message = patina::test::message_of([&] { write_vertex_map(dir / "m.ply", mesh, map, values); });
+        message =
+            patina::test::message_of([&] { write_vertex_map(dir / "m.ply", mesh, map, values); });
         EXPECT_NE(message.find("'a_b' appears twice"), std::string::npos) << message;
         map.channels = {"u", "w"};
-        message = patina::test::message_of([&] { write_vertex_map(dir / "m.ply", mesh, map, values); });
+        message =
+            patina::test::message_of([&] { write_vertex_map(dir / "m.ply", mesh, map, values); });
         EXPECT_NE(message.find("'u' appears twice"), std::string::npos) << message;
         EXPECT_FALSE(fs::exists(dir / "m.ply"));
     }
