@@ -6,6 +6,9 @@
 #include "core/mesh.h"
 #include "texgen/texels/surface_samples.h"
 
+#include <Imath/ImathVec.h>
+
+#include <cstdint>
 #include <vector>
 
 namespace patina::texgen {
@@ -46,9 +49,89 @@ struct RasterOptions {
 /// touching triangle nearest the texel centre.
 std::vector<TexelGrid> rasterize_uv(const TriangleMesh& mesh, const RasterOptions& options);
 
+/// What rasterize_uv left out.
+struct RasterStats {
+    size_t zero_uv_area = 0;       ///< triangles whose three uvs are (nearly) collinear
+    size_t zero_surface_area = 0;  ///< triangles with uv area but no surface area
+    size_t outside_udims = 0;      ///< uv centroid outside u in [0, 10), v in [0, 100)
+};
+
+/// rasterize_uv that also reports the skipped triangles.
+std::vector<TexelGrid> rasterize_uv(const TriangleMesh& mesh, const RasterOptions& options,
+                                    RasterStats& stats);
+
+/// One texel a triangle touches: the triangle overlaps the texel's open square, and bit
+/// (j * s + i) of `inside` is set when the centre of sub-sample (i, j) (i to the right, j
+/// down the image) lies inside the triangle. Centres on an edge shared by two triangles
+/// fall in exactly one of them (a fixed perturbation decides ties).
+struct TexelHit {
+    int x = 0;
+    int y = 0;
+    uint32_t triangle = 0;
+    uint64_t inside = 0;
+};
+
+/// The uv triangles of a mesh placed in the texel grids of their UDIM tiles, for
+/// rasterising band by band (rasterize_uv and uv-check share it). Triangles are checked and
+/// assigned to tiles by their uv centroid on construction.
+class UvRasterizer {
+public:
+    /// Rows of texels per band: small enough for many parallel jobs, large enough that few
+    /// triangles straddle bands.
+    static constexpr int kBandRows = 16;
+    /// Largest `supersampling` (the sub-sample mask has 64 bits).
+    static constexpr int kMaxSupersampling = 8;
+
+    /// Throws std::runtime_error naming the mesh for: no uvs (suggesting the per-vertex
+    /// mode), a non-finite position or uv (naming the vertex), bad options, and, unless
+    /// `lenient`, a triangle outside the UDIM range or a mesh with no triangle of non-zero
+    /// uv and surface area ("zero-area mesh"). Lenient (uv-check) counts and skips those.
+    UvRasterizer(const TriangleMesh& mesh, const RasterOptions& options, bool lenient = false);
+
+    /// UDIM numbers of the tiles holding at least one triangle, ascending.
+    const std::vector<int>& udims() const { return udims_; }
+    int band_count() const { return (options_.height + kBandRows - 1) / kBandRows; }
+    const RasterStats& stats() const { return stats_; }
+    const RasterOptions& options() const { return options_; }
+    /// Index into udims() of the triangle's tile, or -1 when it was skipped.
+    int tile_of(uint32_t triangle) const { return triangles_[triangle].tile; }
+
+    /// Replace `hits` by every TexelHit of band `band` of tile `tile` (an index into
+    /// udims()), in texel scan order and, per texel, in ascending triangle order.
+    void band_hits(size_t tile, int band, std::vector<TexelHit>& hits) const;
+
+    /// Texel-space helpers for a hit's triangle: the point of the triangle nearest the
+    /// centre of texel (x, y), in texels, and the area of the triangle inside that texel as
+    /// a fraction of the texel.
+    Imath::V2d nearest_point(uint32_t triangle, int x, int y) const;
+    double area_in_texel(uint32_t triangle, int x, int y) const;
+    /// Barycentric coordinates of the texel-space point `p` (in texels) in the triangle.
+    Imath::V3d barycentric(uint32_t triangle, const Imath::V2d& p) const;
+
+private:
+    /// A triangle in the scaled texel space of its tile: one texel spans 2 s units, so
+    /// sub-sample centres sit on odd integers and the coordinates of float uvs are exact.
+    struct Placed {
+        Imath::V2d p[3];
+        int tile = -1;
+    };
+    const TriangleMesh& mesh_;
+    RasterOptions options_;
+    RasterStats stats_;
+    std::vector<Placed> triangles_;
+    std::vector<int> udims_;
+    /// Per tile: the triangles of band b are band_triangles_[t][band_begin_[t][b] ..
+    /// band_begin_[t][b + 1]), ascending.
+    std::vector<std::vector<uint32_t>> band_begin_;
+    std::vector<std::vector<uint32_t>> band_triangles_;
+};
+
 /// One group per vertex, holding the vertex itself ("triangulations as texture maps",
 /// Dorsey & Hanrahan 1996 §3.3): N is the vertex normal (area-weighted face normals when
-/// the mesh has none), Ng equals N.
+/// the mesh has none), Ng equals N, uv the vertex's uv (0 without uvs), triangle the first
+/// triangle using it. A vertex no triangle of non-zero area uses has no normal: its group is
+/// empty (bake_groups gives it 0). Throws like rasterize_uv for non-finite values and for a
+/// zero-area mesh; uvs are not needed.
 SampleGroups vertex_samples(const TriangleMesh& mesh);
 
 }  // namespace patina::texgen

@@ -1,0 +1,69 @@
+#include "texgen/texels/mesh_merge.h"
+
+#include <fmt/format.h>
+
+#include <limits>
+#include <stdexcept>
+
+namespace patina::texgen {
+
+TriangleMesh merge_meshes(const std::vector<TriangleMesh>& meshes,
+                          const std::filesystem::path& file)
+{
+    if (meshes.empty())
+        throw std::runtime_error(fmt::format("mesh file '{}' contains no meshes", file.string()));
+    const TriangleMesh* with_uvs = nullptr;
+    const TriangleMesh* without_uvs = nullptr;
+    bool any_normals = false;
+    size_t vertex_count = 0, index_count = 0;
+    for (const TriangleMesh& m : meshes) {
+        (m.has_uvs() ? with_uvs : without_uvs) = &m;
+        any_normals = any_normals || m.has_normals();
+        vertex_count += m.positions.size();
+        index_count += m.indices.size();
+    }
+    if (with_uvs && without_uvs)
+        throw std::runtime_error(fmt::format(
+            "mesh file '{}': mesh '{}' has uvs but mesh '{}' has none; give every mesh uvs, or "
+            "bake per vertex with --per-vertex out.ply",
+            file.string(), with_uvs->name, without_uvs->name));
+    if (vertex_count > std::numeric_limits<uint32_t>::max())
+        throw std::runtime_error(fmt::format("mesh file '{}': {} vertices are more than 32-bit "
+                                             "indices can address", file.string(), vertex_count));
+
+    TriangleMesh merged;
+    merged.name = meshes.size() == 1 ? meshes.front().name : file.stem().string();
+    merged.material_name = meshes.front().material_name;
+    merged.positions.reserve(vertex_count);
+    merged.indices.reserve(index_count);
+    if (any_normals)
+        merged.normals.reserve(vertex_count);
+    if (with_uvs)
+        merged.uvs.reserve(vertex_count);
+    for (const TriangleMesh& m : meshes) {
+        const uint32_t base = static_cast<uint32_t>(merged.positions.size());
+        merged.positions.insert(merged.positions.end(), m.positions.begin(), m.positions.end());
+        merged.uvs.insert(merged.uvs.end(), m.uvs.begin(), m.uvs.end());
+        if (any_normals) {
+            if (m.has_normals()) {
+                merged.normals.insert(merged.normals.end(), m.normals.begin(), m.normals.end());
+            } else {
+                TriangleMesh smooth = m;
+                compute_vertex_normals(smooth);
+                merged.normals.insert(merged.normals.end(), smooth.normals.begin(),
+                                      smooth.normals.end());
+            }
+        }
+        for (uint32_t i : m.indices)
+            merged.indices.push_back(base + i);
+    }
+    validate_mesh(merged, fmt::format("mesh file '{}'", file.string()));
+    return merged;
+}
+
+TriangleMesh load_merged_mesh(const std::filesystem::path& file)
+{
+    return merge_meshes(load_meshes(file), file);
+}
+
+}  // namespace patina::texgen
