@@ -54,8 +54,8 @@ ExposurePeriod clear_sky_period(const ClearSkyPeriodOptions& o)
     const double jd_start = julian_day(o.start, o.timezone_hours);
     const double jd_end = julian_day(o.end, o.timezone_hours);
     if (!(jd_end > jd_start))
-        throw std::runtime_error("--end (" + format_date_time(o.end) + ") must come after --start (" +
-                                 format_date_time(o.start) + ")");
+        throw std::runtime_error("--end (" + format_date_time(o.end) +
+                                 ") must come after --start (" + format_date_time(o.start) + ")");
     ClearSkyParameters sky = o.clear_sky;
     sky.elevation_m = o.site.elevation_m;
 
@@ -104,8 +104,9 @@ ExposurePeriod epw_period(const EpwFile& file, const EpwPeriodOptions& o)
     site.delta_t_s = o.delta_t_s;
     const double default_pressure = standard_pressure_mbar(loc.elevation_m);
 
-    const double start_key = o.start ? calendar_key(*o.start) : -std::numeric_limits<double>::infinity();
-    const double end_key = o.end ? calendar_key(*o.end) : std::numeric_limits<double>::infinity();
+    constexpr double kInfinity = std::numeric_limits<double>::infinity();
+    const double start_key = o.start ? calendar_key(*o.start) : -kInfinity;
+    const double end_key = o.end ? calendar_key(*o.end) : kInfinity;
     const bool wraps = start_key > end_key;
 
     const double interval = file.interval_minutes();

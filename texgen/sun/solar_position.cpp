@@ -344,8 +344,8 @@ SolarPosition solar_position(double jd_ut, const SolarSite& site)
 
     // §3.15: topocentric astronomers' azimuth (westward from south), then the navigators'
     // azimuth eastward from north (Eq. 45-46).
-    const double gamma = deg(std::atan2(
-        std::sin(h_prime), std::cos(h_prime) * std::sin(phi) - std::tan(delta_prime) * std::cos(phi)));
+    const double gamma = deg(std::atan2(std::sin(h_prime), std::cos(h_prime) * std::sin(phi) -
+                                                           std::tan(delta_prime) * std::cos(phi)));
     p.azimuth_deg = limit_degrees(limit_degrees(gamma) + 180.0);
     return p;
 }

@@ -88,11 +88,8 @@ double integrated_ghi(const pt::ClearSkyPeriodOptions& o)
     double sum = 0.0;
     for (int i = 0; i < minutes; ++i) {
         const pt::SolarPosition sun = pt::solar_position(jd0 + (i + 0.5) / 1440.0, o.site);
-        sum += pt::ineichen_perez(sun.zenith_deg,
-                                  pt::extraterrestrial_normal_irradiance(sun.earth_radius_vector_au),
-                                  p)
-                   .ghi *
-               60.0;
+        const double i0 = pt::extraterrestrial_normal_irradiance(sun.earth_radius_vector_au);
+        sum += pt::ineichen_perez(sun.zenith_deg, i0, p).ghi * 60.0;
     }
     return sum;
 }
