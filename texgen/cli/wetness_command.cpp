@@ -17,81 +17,83 @@ namespace patina::texgen {
 
 namespace {
 
-struct WetnessCommandOptions {
-    CommonBakeOptions common;
-    WetnessParameters wetness;
-    std::vector<float> rain_dir;  ///< empty: -up
-    std::string up = "y";
-    float base_level = 0.0f;
-    bool base_level_given = false;
-};
-
-Imath::V3f axis_of(const std::string& text)
-{
-    // "x", "y", "z", optionally signed.
-    std::string name = text;
-    float sign = 1.0f;
-    if (!name.empty() && (name[0] == '-' || name[0] == '+')) {
-        sign = name[0] == '-' ? -1.0f : 1.0f;
-        name = name.substr(1);
-    }
-    if (name == "x")
-        return {sign, 0.0f, 0.0f};
-    if (name == "y")
-        return {0.0f, sign, 0.0f};
-    if (name == "z")
-        return {0.0f, 0.0f, sign};
-    throw std::runtime_error(fmt::format("--up '{}' must be x, y or z (optionally -x, -y, -z)",
-                                         text));
-}
-
-std::string vec_text(const Imath::V3f& v)
-{
-    return fmt::format("{} {} {}", v.x, v.y, v.z);
-}
-
-void run_wetness(WetnessCommandOptions o)
-{
-    WetnessParameters& p = o.wetness;
-    p.up = axis_of(o.up);
-    p.rain_direction = o.rain_dir.size() == 3
-                           ? Imath::V3f(o.rain_dir[0], o.rain_dir[1], o.rain_dir[2])
-                           : Imath::V3f(0.0f) - p.up;  // not -up: no "-0" in the header
-    if (o.base_level_given)
-        p.base_level = o.base_level;
-    p.validate();
-
-    MapDescription map;
-    map.name = "wetness";
-    map.units = "1";
-    map.description = "wetness in [0, 1]: clamp((rain caught * max(0, N.up)^inclination_power "
-                      "+ base) * (1 - drying * exposure / exposure_scale))";
-    map.baker = "wetness";
-    map.parameters = {
-        {"rain_dir", vec_text(p.rain_direction)},
-        {"up", vec_text(p.up)},
-        {"spread_deg", p.spread_deg},
-        {"inclination_power", p.inclination_power},
-        {"rays", p.rays},
-        {"max_distance", p.max_distance},
-        {"exposure", p.exposure_map.string()},
-        {"exposure_channel",
-         p.exposure_channel.empty() ? std::string("exposure or irradiance") : p.exposure_channel},
-        {"drying", p.exposure_map.empty() ? 0.0f : p.drying},
-        {"exposure_scale", p.exposure_scale > 0.0f ? fmt::format("{}", p.exposure_scale)
-                                                   : std::string("map maximum")},
-        {"base_height", p.base_height},
-        {"base_amount", p.base_amount},
-        {"base_level", p.base_level ? fmt::format("{}", *p.base_level)
-                                    : std::string("lowest point of the mesh")},
+    struct WetnessCommandOptions {
+        CommonBakeOptions common;
+        WetnessParameters wetness;
+        std::vector<float> rain_dir; ///< empty: -up
+        std::string up = "y";
+        float base_level = 0.0f;
+        bool base_level_given = false;
     };
-    run_bake(
-        o.common,
-        [p](const BakeScene& s) { return std::make_unique<WetnessBaker>(s.scene, s.target, p); },
-        map);
-}
 
-}  // namespace
+    Imath::V3f axis_of(const std::string& text)
+    {
+        // "x", "y", "z", optionally signed.
+        std::string name = text;
+        float sign = 1.0f;
+        if (!name.empty() && (name[0] == '-' || name[0] == '+')) {
+            sign = name[0] == '-' ? -1.0f : 1.0f;
+            name = name.substr(1);
+        }
+        if (name == "x")
+            return {sign, 0.0f, 0.0f};
+        if (name == "y")
+            return {0.0f, sign, 0.0f};
+        if (name == "z")
+            return {0.0f, 0.0f, sign};
+        throw std::runtime_error(
+            fmt::format("--up '{}' must be x, y or z (optionally -x, -y, -z)", text));
+    }
+
+    std::string vec_text(const Imath::V3f& v)
+    {
+        return fmt::format("{} {} {}", v.x, v.y, v.z);
+    }
+
+    void run_wetness(WetnessCommandOptions o)
+    {
+        WetnessParameters& p = o.wetness;
+        p.up = axis_of(o.up);
+        p.rain_direction = o.rain_dir.size() == 3
+                               ? Imath::V3f(o.rain_dir[0], o.rain_dir[1], o.rain_dir[2])
+                               : Imath::V3f(0.0f) - p.up; // not -up: no "-0" in the header
+        if (o.base_level_given)
+            p.base_level = o.base_level;
+        p.validate();
+
+        MapDescription map;
+        map.name = "wetness";
+        map.units = "1";
+        map.description = "wetness in [0, 1]: clamp((rain caught * max(0, N.up)^inclination_power "
+                          "+ base) * (1 - drying * exposure / exposure_scale))";
+        map.baker = "wetness";
+        map.parameters = {
+            {"rain_dir", vec_text(p.rain_direction)},
+            {"up", vec_text(p.up)},
+            {"spread_deg", p.spread_deg},
+            {"inclination_power", p.inclination_power},
+            {"rays", p.rays},
+            {"max_distance", p.max_distance},
+            {"exposure", p.exposure_map.string()},
+            {"exposure_channel", p.exposure_channel.empty() ? std::string("exposure or irradiance")
+                                                            : p.exposure_channel},
+            {"drying", p.exposure_map.empty() ? 0.0f : p.drying},
+            {"exposure_scale", p.exposure_scale > 0.0f ? fmt::format("{}", p.exposure_scale)
+                                                       : std::string("map maximum")},
+            {"base_height", p.base_height},
+            {"base_amount", p.base_amount},
+            {"base_level", p.base_level ? fmt::format("{}", *p.base_level)
+                                        : std::string("lowest point of the mesh")},
+        };
+        run_bake(
+            o.common,
+            [p](const BakeScene& s) {
+                return std::make_unique<WetnessBaker>(s.scene, s.target, p);
+            },
+            map);
+    }
+
+} // namespace
 
 void register_wetness_command(CLI::App& app)
 {
@@ -118,7 +120,8 @@ void register_wetness_command(CLI::App& app)
     cmd->add_option("--rays", p.rays,
                     "rain rays per texel (split over its sub-samples, at least one each; one "
                     "without spread)")
-        ->capture_default_str()->check(CLI::Range(1, 1 << 20));
+        ->capture_default_str()
+        ->check(CLI::Range(1, 1 << 20));
     cmd->add_option("--max-distance", p.max_distance,
                     "ignore shelter farther than this along a ray (m; default: no limit)")
         ->check(CLI::PositiveNumber);
@@ -127,8 +130,7 @@ void register_wetness_command(CLI::App& app)
                     "sets): wetness *= 1 - drying * clamp(exposure / exposure-scale)");
     cmd->add_option("--exposure-channel", p.exposure_channel,
                     "channel of the exposure map (default: 'exposure', else 'irradiance')");
-    cmd->add_option("--drying", p.drying,
-                    "how much the most exposed point dries, in [0, 1]")
+    cmd->add_option("--drying", p.drying, "how much the most exposed point dries, in [0, 1]")
         ->capture_default_str();
     cmd->add_option("--exposure-scale", p.exposure_scale,
                     "exposure that counts as fully exposed (map units; default: the map's "
@@ -149,4 +151,4 @@ void register_wetness_command(CLI::App& app)
     cmd->callback([o] { run_wetness(*o); });
 }
 
-}  // namespace patina::texgen
+} // namespace patina::texgen

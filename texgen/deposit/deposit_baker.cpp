@@ -53,8 +53,7 @@ int DepositBaker::split(int per_texel, size_t group_size) const
 {
     // A per-texel budget split over the texel's samples, at least one ray each.
     const size_t n = std::max<size_t>(group_size, 1);
-    return static_cast<int>(
-        std::max<size_t>(1, (static_cast<size_t>(per_texel) + n - 1) / n));
+    return static_cast<int>(std::max<size_t>(1, (static_cast<size_t>(per_texel) + n - 1) / n));
 }
 
 size_t DepositBaker::rays_per_sample(size_t group_size) const
@@ -94,13 +93,11 @@ float DepositBaker::visibility(const SurfaceSample& s, size_t group_size, Pcg32&
     const int rays = split(p_.rays, group_size);
     double sum = 0.0;
     for (const DepositSource& source : p_.sources)
-        sum += source.strength *
-               source_visibility(scene_, s, source, rays, p_.max_distance, rng);
+        sum += source.strength * source_visibility(scene_, s, source, rays, p_.max_distance, rng);
     return static_cast<float>(std::min(sum, 1.0));
 }
 
-void DepositBaker::evaluate(const SurfaceSample& s, size_t group_size, Pcg32& rng,
-                            float* out) const
+void DepositBaker::evaluate(const SurfaceSample& s, size_t group_size, Pcg32& rng, float* out) const
 {
     // Accessibility combined with visibility to deposit sources: Dorsey et al. 1999 §6.
     const float hidden =
@@ -114,4 +111,4 @@ void DepositBaker::evaluate(const SurfaceSample& s, size_t group_size, Pcg32& rn
     out[0] = std::clamp(value, 0.0f, 1.0f);
 }
 
-}  // namespace patina::texgen
+} // namespace patina::texgen

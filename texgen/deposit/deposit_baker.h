@@ -34,17 +34,17 @@ namespace patina::texgen {
 
 struct DepositParameters {
     std::vector<DepositSource> sources;
-    int rays = 16;              ///< shadow rays per texel per source (split over samples)
-    float max_distance = std::numeric_limits<float>::infinity();  ///< directional sources, m
+    int rays = 16; ///< shadow rays per texel per source (split over samples)
+    float max_distance = std::numeric_limits<float>::infinity(); ///< directional sources, m
 
-    std::filesystem::path accessibility_map;  ///< optional; "<UDIM>" for a tile set
+    std::filesystem::path accessibility_map; ///< optional; "<UDIM>" for a tile set
     std::string accessibility_channel = "accessibility";
-    int access_rays = 16;          ///< inline estimate: rays per texel
-    float access_distance = 0.0f;  ///< inline estimate: ray length, m; 0: 1/10 of the
-                                   ///< scene's bounding-box diagonal
-    float accessibility_power = 1.0f;   ///< >= 0
-    float accessibility_weight = 0.5f;  ///< >= 0 (combine = sum)
-    float visibility_weight = 0.5f;     ///< >= 0 (combine = sum)
+    int access_rays = 16;              ///< inline estimate: rays per texel
+    float access_distance = 0.0f;      ///< inline estimate: ray length, m; 0: 1/10 of the
+                                       ///< scene's bounding-box diagonal
+    float accessibility_power = 1.0f;  ///< >= 0
+    float accessibility_weight = 0.5f; ///< >= 0 (combine = sum)
+    float visibility_weight = 0.5f;    ///< >= 0 (combine = sum)
     enum class Combine { Sum, Product };
     Combine combine = Combine::Sum;
 
@@ -56,10 +56,7 @@ struct DepositParameters {
     {
         return combine == Combine::Product || accessibility_weight > 0.0f;
     }
-    bool uses_visibility() const
-    {
-        return combine == Combine::Product || visibility_weight > 0.0f;
-    }
+    bool uses_visibility() const { return combine == Combine::Product || visibility_weight > 0.0f; }
 };
 
 class DepositBaker : public SampleBaker {
@@ -73,8 +70,7 @@ public:
 
     std::vector<std::string> channels() const override { return {"deposit"}; }
     size_t rays_per_sample(size_t group_size) const override;
-    void evaluate(const SurfaceSample& s, size_t group_size, Pcg32& rng,
-                  float* out) const override;
+    void evaluate(const SurfaceSample& s, size_t group_size, Pcg32& rng, float* out) const override;
 
     /// The inline estimate's ray length after the default is resolved.
     float access_distance() const { return access_distance_; }
@@ -93,4 +89,4 @@ private:
     std::unique_ptr<SurfaceMap> accessibility_;
 };
 
-}  // namespace patina::texgen
+} // namespace patina::texgen

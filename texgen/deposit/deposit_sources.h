@@ -34,14 +34,14 @@ namespace patina::texgen {
 struct DepositSource {
     enum class Kind { Sphere, Disc, Rectangle, Directional };
     Kind kind = Kind::Sphere;
-    Imath::V3f center{0.0f};     ///< sphere, disc
-    float radius = 0.0f;         ///< sphere, disc (m)
-    Imath::V3f normal{0.0f, 1.0f, 0.0f};  ///< disc (unit; the disc deposits on both sides)
-    Imath::V3f corner{0.0f};     ///< rectangle: corner + s edge1 + t edge2, s, t in [0, 1]
+    Imath::V3f center{0.0f};             ///< sphere, disc
+    float radius = 0.0f;                 ///< sphere, disc (m)
+    Imath::V3f normal{0.0f, 1.0f, 0.0f}; ///< disc (unit; the disc deposits on both sides)
+    Imath::V3f corner{0.0f};             ///< rectangle: corner + s edge1 + t edge2, s, t in [0, 1]
     Imath::V3f edge1{0.0f}, edge2{0.0f};
-    Imath::V3f direction{0.0f, -1.0f, 0.0f};  ///< directional: the direction deposits travel
-    float spread_deg = 0.0f;     ///< directional: cone half-angle, [0, 90)
-    float strength = 1.0f;       ///< >= 0, multiplies the source's visibility
+    Imath::V3f direction{0.0f, -1.0f, 0.0f}; ///< directional: the direction deposits travel
+    float spread_deg = 0.0f;                 ///< directional: cone half-angle, [0, 90)
+    float strength = 1.0f;                   ///< >= 0, multiplies the source's visibility
 
     /// The source in the command-line syntax (for the map's parameters).
     std::string describe() const;
@@ -55,4 +55,4 @@ DepositSource parse_source_option(const std::string& text);
 /// out-of-range value; "<file>: ..." when the file is missing or holds no source.
 std::vector<DepositSource> load_sources_file(const std::filesystem::path& path);
 
-}  // namespace patina::texgen
+} // namespace patina::texgen

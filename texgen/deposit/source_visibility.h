@@ -24,4 +24,4 @@ namespace patina::texgen {
 float source_visibility(const EmbreeScene& scene, const SurfaceSample& s,
                         const DepositSource& source, int rays, float max_distance, Pcg32& rng);
 
-}  // namespace patina::texgen
+} // namespace patina::texgen

@@ -38,9 +38,8 @@ DirectionCone::DirectionCone(const Imath::V3f& axis, float spread_rad) : spread_
 {
     const float length = axis.length();
     if (!(length > 0.0f) || !std::isfinite(length))
-        throw std::runtime_error(
-            fmt::format("direction ({}, {}, {}) must be finite and non-zero", axis.x, axis.y,
-                        axis.z));
+        throw std::runtime_error(fmt::format("direction ({}, {}, {}) must be finite and non-zero",
+                                             axis.x, axis.y, axis.z));
     if (!(spread_rad >= 0.0f && spread_rad < 0.5f * std::numbers::pi_v<float>))
         throw std::runtime_error(
             fmt::format("spread {} deg must be in [0, 90)", spread_rad * 180.0 / std::numbers::pi));
@@ -61,8 +60,8 @@ Imath::V3f DirectionCone::sample(float u1, float u2) const
            cos_theta * axis_;
 }
 
-float directional_catch(const EmbreeScene& scene, const SurfaceSample& s,
-                        const DirectionCone& cone, int rays, float max_distance, Pcg32& rng)
+float directional_catch(const EmbreeScene& scene, const SurfaceSample& s, const DirectionCone& cone,
+                        int rays, float max_distance, Pcg32& rng)
 {
     rays = std::max(rays, 1);
     // Without spread every direction is the axis: one ray says everything.
@@ -87,4 +86,4 @@ float directional_catch(const EmbreeScene& scene, const SurfaceSample& s,
     return static_cast<float>(caught / reference);
 }
 
-}  // namespace patina::texgen
+} // namespace patina::texgen

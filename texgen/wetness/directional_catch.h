@@ -27,7 +27,7 @@ public:
     /// Throws std::runtime_error for a zero or non-finite axis or a spread outside range.
     DirectionCone(const Imath::V3f& axis, float spread_rad);
 
-    const Imath::V3f& axis() const { return axis_; }  ///< unit
+    const Imath::V3f& axis() const { return axis_; } ///< unit
     float spread() const { return spread_; }
     /// The direction for uniform numbers (u1, u2) in [0,1)^2: cos(theta) uniform in
     /// [cos(spread), 1] (uniform solid angle, pbrt-v4 §A.5.4 SampleUniformCone), phi = 2 pi u2.
@@ -49,7 +49,7 @@ private:
 /// open surface facing the flux, computed with the same directions, so such a surface gets
 /// exactly 1 whatever the spread and ray count (a ratio estimator). In [0, 1] up to rounding
 /// (a tilted normal can exceed the facing catch by sampling noise; callers clamp).
-float directional_catch(const EmbreeScene& scene, const SurfaceSample& s,
-                        const DirectionCone& cone, int rays, float max_distance, Pcg32& rng);
+float directional_catch(const EmbreeScene& scene, const SurfaceSample& s, const DirectionCone& cone,
+                        int rays, float max_distance, Pcg32& rng);
 
-}  // namespace patina::texgen
+} // namespace patina::texgen

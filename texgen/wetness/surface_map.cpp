@@ -15,44 +15,46 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr std::string_view kUdimToken = "<UDIM>";
-// How far outside a tile a uv may lie and still read it (uvs of exactly 1.0, rounding).
-constexpr float kEdgeTolerance = 1e-4f;
+    constexpr std::string_view kUdimToken = "<UDIM>";
+    // How far outside a tile a uv may lie and still read it (uvs of exactly 1.0, rounding).
+    constexpr float kEdgeTolerance = 1e-4f;
 
-// The files of a UDIM set "dir/prefix<UDIM>suffix": every existing tile, by UDIM number.
-std::map<int, fs::path> find_udim_files(const fs::path& pattern, const std::string& what)
-{
-    const std::string name = pattern.filename().string();
-    const size_t token = name.find(kUdimToken);
-    if (token == std::string::npos)
-        throw std::runtime_error(fmt::format("{} '{}': the <UDIM> token must be in the file "
-                                             "name, not in a folder",
-                                             what, pattern.string()));
-    const std::string prefix = name.substr(0, token);
-    const std::string suffix = name.substr(token + kUdimToken.size());
-    const fs::path dir = pattern.has_parent_path() ? pattern.parent_path() : fs::path(".");
-    std::map<int, fs::path> files;
-    std::error_code ec;
-    for (const fs::directory_entry& e : fs::directory_iterator(dir, ec)) {
-        const std::string f = e.path().filename().string();
-        if (f.size() != prefix.size() + 4 + suffix.size() || f.compare(0, prefix.size(), prefix) ||
-            f.compare(prefix.size() + 4, suffix.size(), suffix))
-            continue;
-        const std::string digits = f.substr(prefix.size(), 4);
-        if (!std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; }))
-            continue;
-        const int udim = std::stoi(digits);
-        if (udim >= 1001)
-            files[udim] = e.path();
+    // The files of a UDIM set "dir/prefix<UDIM>suffix": every existing tile, by UDIM number.
+    std::map<int, fs::path> find_udim_files(const fs::path& pattern, const std::string& what)
+    {
+        const std::string name = pattern.filename().string();
+        const size_t token = name.find(kUdimToken);
+        if (token == std::string::npos)
+            throw std::runtime_error(fmt::format("{} '{}': the <UDIM> token must be in the file "
+                                                 "name, not in a folder",
+                                                 what, pattern.string()));
+        const std::string prefix = name.substr(0, token);
+        const std::string suffix = name.substr(token + kUdimToken.size());
+        const fs::path dir = pattern.has_parent_path() ? pattern.parent_path() : fs::path(".");
+        std::map<int, fs::path> files;
+        std::error_code ec;
+        for (const fs::directory_entry& e : fs::directory_iterator(dir, ec)) {
+            const std::string f = e.path().filename().string();
+            if (f.size() != prefix.size() + 4 + suffix.size() ||
+                f.compare(0, prefix.size(), prefix) ||
+                f.compare(prefix.size() + 4, suffix.size(), suffix))
+                continue;
+            const std::string digits = f.substr(prefix.size(), 4);
+            if (!std::all_of(digits.begin(), digits.end(),
+                             [](char c) { return c >= '0' && c <= '9'; }))
+                continue;
+            const int udim = std::stoi(digits);
+            if (udim >= 1001)
+                files[udim] = e.path();
+        }
+        if (files.empty())
+            throw std::runtime_error(fmt::format("{} '{}': no tile file matches the pattern{}",
+                                                 what, pattern.string(),
+                                                 ec ? " (" + ec.message() + ")" : std::string()));
+        return files;
     }
-    if (files.empty())
-        throw std::runtime_error(fmt::format("{} '{}': no tile file matches the pattern{}", what,
-                                             pattern.string(),
-                                             ec ? " (" + ec.message() + ")" : std::string()));
-    return files;
-}
 
-}  // namespace
+} // namespace
 
 SurfaceMap::SurfaceMap(const fs::path& path, const std::vector<std::string>& channels,
                        std::string what, const fs::path& ocio_config)
@@ -64,9 +66,8 @@ SurfaceMap::SurfaceMap(const fs::path& path, const std::vector<std::string>& cha
     else
         files[1001] = path;
 
-    colors_ = std::make_unique<ColorManager>(ocio_config.empty()
-                                                 ? ColorManager::default_config_path()
-                                                 : ocio_config);
+    colors_ = std::make_unique<ColorManager>(
+        ocio_config.empty() ? ColorManager::default_config_path() : ocio_config);
     TextureAccess::Options options;
     // Texels past the map's edge repeat the edge (the padding already extends the map).
     options.wrap = OIIO::TextureOpt::WrapClamp;
@@ -177,4 +178,4 @@ float SurfaceMap::at(const Imath::V2f& uv) const
     return value;
 }
 
-}  // namespace patina::texgen
+} // namespace patina::texgen

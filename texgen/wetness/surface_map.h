@@ -60,7 +60,7 @@ private:
     float maximum_ = 0.0f;
     std::unique_ptr<ColorManager> colors_;
     std::unique_ptr<TextureAccess> access_;
-    std::map<int, Tile> tiles_;  ///< by UDIM number
+    std::map<int, Tile> tiles_; ///< by UDIM number
 };
 
-}  // namespace patina::texgen
+} // namespace patina::texgen

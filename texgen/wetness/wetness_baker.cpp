@@ -11,18 +11,18 @@ namespace patina::texgen {
 
 namespace {
 
-constexpr float kDegree = std::numbers::pi_v<float> / 180.0f;
+    constexpr float kDegree = std::numbers::pi_v<float> / 180.0f;
 
-Imath::V3f unit(const Imath::V3f& v, const char* option)
-{
-    const float length = v.length();
-    if (!(length > 0.0f) || !std::isfinite(length))
-        throw std::runtime_error(fmt::format("{} ({}, {}, {}) must be a finite non-zero vector",
-                                                option, v.x, v.y, v.z));
-    return v / length;
-}
+    Imath::V3f unit(const Imath::V3f& v, const char* option)
+    {
+        const float length = v.length();
+        if (!(length > 0.0f) || !std::isfinite(length))
+            throw std::runtime_error(fmt::format("{} ({}, {}, {}) must be a finite non-zero vector",
+                                                 option, v.x, v.y, v.z));
+        return v / length;
+    }
 
-}  // namespace
+} // namespace
 
 void WetnessParameters::validate() const
 {
@@ -58,8 +58,7 @@ float lowest_along(const TriangleMesh& mesh, const Imath::V3f& up)
 WetnessBaker::WetnessBaker(const EmbreeScene& scene, const TriangleMesh& target,
                            const WetnessParameters& parameters,
                            const std::filesystem::path& ocio_config)
-    : scene_(scene),
-      p_((parameters.validate(), parameters)),
+    : scene_(scene), p_((parameters.validate(), parameters)),
       cone_(parameters.rain_direction, parameters.spread_deg * kDegree),
       up_(unit(parameters.up, "--up"))
 {
@@ -68,8 +67,8 @@ WetnessBaker::WetnessBaker(const EmbreeScene& scene, const TriangleMesh& target,
         std::vector<std::string> names = {"exposure", "irradiance"};
         if (!p_.exposure_channel.empty())
             names = {p_.exposure_channel};
-        exposure_ = std::make_unique<SurfaceMap>(p_.exposure_map, names, "exposure map",
-                                                 ocio_config);
+        exposure_ =
+            std::make_unique<SurfaceMap>(p_.exposure_map, names, "exposure map", ocio_config);
         exposure_scale_ = p_.exposure_scale > 0.0f ? p_.exposure_scale : exposure_->maximum();
     }
 }
@@ -83,21 +82,19 @@ size_t WetnessBaker::rays_per_sample(size_t group_size) const
     return std::max<size_t>(1, (static_cast<size_t>(p_.rays) + n - 1) / n);
 }
 
-void WetnessBaker::evaluate(const SurfaceSample& s, size_t group_size, Pcg32& rng,
-                            float* out) const
+void WetnessBaker::evaluate(const SurfaceSample& s, size_t group_size, Pcg32& rng, float* out) const
 {
     // Rain caught, with visibility: Dorsey et al. 1999 §6.
-    const float rain = directional_catch(scene_, s, cone_,
-                                         static_cast<int>(rays_per_sample(group_size)),
-                                         p_.max_distance, rng);
+    const float rain = directional_catch(
+        scene_, s, cone_, static_cast<int>(rays_per_sample(group_size)), p_.max_distance, rng);
     // Inclined surfaces shed water: D&H 1996 §5.2 ("decreases the average wetness of
     // inclined surfaces"), as a power of the cosine to the up axis.
     const float incline = std::pow(std::max(0.0f, s.N.dot(up_)), p_.inclination_power);
     // Water collecting near the base: D&H 1996 §5.2 (the "base" curve), a linear ramp.
     float base = 0.0f;
     if (p_.base_height > 0.0f)
-        base = p_.base_amount *
-               std::max(0.0f, 1.0f - (s.P.dot(up_) - base_level_) / p_.base_height);
+        base =
+            p_.base_amount * std::max(0.0f, 1.0f - (s.P.dot(up_) - base_level_) / p_.base_height);
     // Drying by exposure: D&H 1996 §5.2-5.3 (exposed, sunny areas are dryer).
     float dry = 1.0f;
     if (exposure_) {
@@ -107,4 +104,4 @@ void WetnessBaker::evaluate(const SurfaceSample& s, size_t group_size, Pcg32& rn
     out[0] = std::clamp((rain * incline + base) * dry, 0.0f, 1.0f);
 }
 
-}  // namespace patina::texgen
+} // namespace patina::texgen

@@ -45,21 +45,21 @@
 namespace patina::texgen {
 
 struct WetnessParameters {
-    Imath::V3f rain_direction{0.0f, -1.0f, 0.0f};  ///< the direction rain travels
-    float spread_deg = 0.0f;                       ///< cone half-angle, [0, 90)
-    Imath::V3f up{0.0f, 1.0f, 0.0f};               ///< the scene's up axis
-    float inclination_power = 1.0f;                ///< >= 0; 0 turns the inclination law off
-    int rays = 16;                                 ///< rain rays per texel (split over samples)
-    float max_distance = std::numeric_limits<float>::infinity();  ///< shadow-ray length, m
+    Imath::V3f rain_direction{0.0f, -1.0f, 0.0f}; ///< the direction rain travels
+    float spread_deg = 0.0f;                      ///< cone half-angle, [0, 90)
+    Imath::V3f up{0.0f, 1.0f, 0.0f};              ///< the scene's up axis
+    float inclination_power = 1.0f;               ///< >= 0; 0 turns the inclination law off
+    int rays = 16;                                ///< rain rays per texel (split over samples)
+    float max_distance = std::numeric_limits<float>::infinity(); ///< shadow-ray length, m
 
-    std::filesystem::path exposure_map;  ///< optional; "<UDIM>" for a tile set
-    std::string exposure_channel;        ///< empty: "exposure", else "irradiance"
-    float drying = 1.0f;                 ///< in [0, 1]: wetness left at the most exposed point
-    float exposure_scale = 0.0f;         ///< E_scale; 0: the map's maximum
+    std::filesystem::path exposure_map; ///< optional; "<UDIM>" for a tile set
+    std::string exposure_channel;       ///< empty: "exposure", else "irradiance"
+    float drying = 1.0f;                ///< in [0, 1]: wetness left at the most exposed point
+    float exposure_scale = 0.0f;        ///< E_scale; 0: the map's maximum
 
-    float base_height = 0.0f;            ///< m; 0: no base accumulation
-    float base_amount = 1.0f;            ///< extra wetness at the base level, >= 0
-    std::optional<float> base_level;     ///< coordinate along U; default: the mesh's lowest
+    float base_height = 0.0f;        ///< m; 0: no base accumulation
+    float base_amount = 1.0f;        ///< extra wetness at the base level, >= 0
+    std::optional<float> base_level; ///< coordinate along U; default: the mesh's lowest
 
     /// Throw std::runtime_error naming the parameter (as its command-line option) when a
     /// value is out of range.
@@ -76,8 +76,7 @@ public:
 
     std::vector<std::string> channels() const override { return {"wetness"}; }
     size_t rays_per_sample(size_t group_size) const override;
-    void evaluate(const SurfaceSample& s, size_t group_size, Pcg32& rng,
-                  float* out) const override;
+    void evaluate(const SurfaceSample& s, size_t group_size, Pcg32& rng, float* out) const override;
 
     /// The values the formula uses after defaults are resolved (for the map's parameters).
     float base_level() const { return base_level_; }
@@ -97,4 +96,4 @@ private:
 /// The lowest coordinate of `mesh` along the unit axis `up`.
 float lowest_along(const TriangleMesh& mesh, const Imath::V3f& up);
 
-}  // namespace patina::texgen
+} // namespace patina::texgen

@@ -85,4 +85,4 @@ inline Imath::V2f texel_centre(int x, int y, int width, int height)
             1.0f - (static_cast<float>(y) + 0.5f) / static_cast<float>(height)};
 }
 
-}  // namespace patina::texgen::test
+} // namespace patina::texgen::test
