@@ -3,8 +3,12 @@
 // the bottom of a closed box. A comparison baker next to Miller's accessibility.
 #pragma once
 
+#include "texgen/ao/sobol02.h"
 #include "texgen/bake/sample_baker.h"
 
+#include <patina/shading/sampling.h>
+
+#include <cmath>
 #include <limits>
 
 namespace patina::texgen {
@@ -34,9 +38,50 @@ public:
 
     const AoOptions& options() const { return options_; }
 
+    /// The rays evaluate() traces for sample `s`: calls trace(origin, dir) for each ray
+    /// that leaves above the facet (the others count as occluded) and returns how many
+    /// rays there are in all. evaluate() traces them with EmbreeScene::occluded; the
+    /// benchmark records them to replay through raw Embree.
+    template <class Trace>
+    uint32_t for_each_ray(const SurfaceSample& s, size_t group_size, Pcg32& rng,
+                          Trace&& trace) const;
+
 private:
     const EmbreeScene& scene_;
     AoOptions options_;
 };
+
+template <class Trace>
+uint32_t AoBaker::for_each_ray(const SurfaceSample& s, size_t group_size, Pcg32& rng,
+                               Trace&& trace) const
+{
+    const uint32_t n = static_cast<uint32_t>(rays_per_sample(group_size));
+    // A fresh random-digit scramble per sample keeps the estimate unbiased while the
+    // points stay stratified (Kollig & Keller 2002 §3).
+    const uint32_t scramble0 = rng.uniform_u32();
+    const uint32_t scramble1 = rng.uniform_u32();
+
+    // Orthonormal frame about N: Duff et al. 2017, "Building an Orthonormal Basis,
+    // Revisited", JCGT 6(1), Listing 3.
+    const Imath::V3f& N = s.N;
+    const float sign = std::copysign(1.0f, N.z);
+    const float a = -1.0f / (sign + N.z);
+    const float b = N.x * N.y * a;
+    const Imath::V3f T(1.0f + sign * N.x * N.x * a, sign * b, -sign * N.x);
+    const Imath::V3f B(b, sign + N.y * N.y * a, -N.y);
+
+    for (uint32_t i = 0; i < n; ++i) {
+        const shading::Vec2 u(sobol02_to_float(sobol02_dimension0(i, scramble0)),
+                              sobol02_to_float(sobol02_dimension1(i, scramble1)));
+        // Cosine-weighted direction (Malley's method): pbrt-v4 §A.5.3
+        const shading::Vec3 w = shading::sample_cosine_hemisphere(u);
+        const Imath::V3f dir = w.x * T + w.y * B + w.z * N;
+        // Below the facet: the surface itself blocks it.
+        if (dir.dot(s.Ng) <= 0.0f)
+            continue;
+        trace(offset_ray_origin(s.P, s.Ng, dir), dir);
+    }
+    return n;
+}
 
 }  // namespace patina::texgen
