@@ -2,6 +2,8 @@
 
 #include "texgen/stack/map_output.h"
 
+#include "core/cancel.h"
+
 #include <fmt/format.h>
 #include <toml++/toml.h>
 
@@ -237,6 +239,7 @@ void record_in_manifest(const fs::path& out_dir, const MapDescription& map,
         text << root << "\n";
     std::error_code ec;
     fs::create_directories(out_dir, ec);
+    throw_if_cancelled();
     write_text_atomic(path, text.str());
 }
 

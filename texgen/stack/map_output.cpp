@@ -4,6 +4,8 @@
 #include "texgen/stack/padding.h"
 #include "texgen/stack/ply_writer.h"
 
+#include "core/cancel.h"
+
 #include <fmt/format.h>
 
 #include <cmath>
@@ -126,6 +128,8 @@ std::vector<fs::path> write_texel_map(const fs::path& out_dir, const MapDescript
     std::vector<fs::path> files;
     for (size_t i = 0; i < tiles.size(); ++i) {
         const TexelGrid& tile = tiles[i];
+        // A Ctrl-C between tiles stops before the next file; each file is whole or absent.
+        throw_if_cancelled();
         // Scatter the groups' values into the texels they came from.
         std::vector<float> pixels(tile.texel_count() * nc, 0.0f);
         std::vector<uint8_t> covered(tile.texel_count(), 0);
@@ -185,6 +189,7 @@ void write_vertex_map(const fs::path& ply_path, const TriangleMesh& mesh, const 
         "patina:description " + map.description, "patina:colorspace raw"};
     for (const auto& [key, value] : map.parameters)
         comments.push_back(fmt::format("patina:{} {}", parameter_key(key), value_text(value)));
+    throw_if_cancelled();
     write_ply_with_vertex_values(ply_path, mesh, names, values, comments);
 }
 

@@ -4,6 +4,8 @@
 #include "test_util.h"
 #include "texgen/texgen_meshes.h"
 
+#include "core/cancel.h"
+
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
@@ -168,6 +170,17 @@ namespace {
         EXPECT_NE(message.find("channel 'exposure'"), std::string::npos) << message;
         EXPECT_NE(message.find("NaN"), std::string::npos) << message;
         EXPECT_FALSE(fs::exists(dir / "patina.exr"));
+    }
+
+    TEST(WriteTexelMap, CancelledBeforeWritingLeavesNoFile)
+    {
+        const fs::path dir = scratch_dir("cancel");
+        const TexelGrid grid = rect_grid(8, 8, {{0, 0, 4, 4}});
+        request_cancel();
+        EXPECT_THROW(write_texel_map(dir, thickness_map(), {grid}, {ramp_values(grid, 2)}, {}),
+                     Cancelled);
+        reset_cancel();
+        EXPECT_TRUE(fs::is_empty(dir));
     }
 
     TEST(WriteTexelMap, MismatchedSizesAreErrors)
