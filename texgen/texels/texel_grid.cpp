@@ -465,15 +465,20 @@ double UvRasterizer::area_in_texel(uint32_t triangle, int x, int y) const
            (k * k);
 }
 
-Imath::V3d UvRasterizer::barycentric(uint32_t triangle, const Imath::V2d& point) const
+UvRasterizer::BarycentricMap UvRasterizer::barycentric_map(uint32_t triangle, int x, int y) const
 {
+    // q - p0 = b1 e1 + b2 e2 (Cramer's rule), evaluated relative to p0 and the texel corner
+    // so that large texel coordinates cost no precision.
     const double k = 2.0 * options_.supersampling;
     const V2d* p = triangles_[triangle].p;
-    const V2d q = point * k;
-    const double area = cross(p[1] - p[0], p[2] - p[0]);
-    const double b0 = cross(p[1] - q, p[2] - q) / area;
-    const double b1 = cross(p[2] - q, p[0] - q) / area;
-    return Imath::V3d(b0, b1, 1.0 - b0 - b1);
+    const V2d e1 = p[1] - p[0], e2 = p[2] - p[0];
+    const double area = cross(e1, e2);
+    const V2d d = V2d(x * k, y * k) - p[0];
+    const double b1 = cross(d, e2) / area, b2 = cross(e1, d) / area;
+    const double b1_x = k * e2.y / area, b1_y = -k * e2.x / area;
+    const double b2_x = -k * e1.y / area, b2_y = k * e1.x / area;
+    return {Imath::V3d(1.0 - b1 - b2, b1, b2), Imath::V3d(-b1_x - b2_x, b1_x, b2_x),
+            Imath::V3d(-b1_y - b2_y, b1_y, b2_y)};
 }
 
 std::vector<TexelGrid> rasterize_uv(const TriangleMesh& mesh, const RasterOptions& options)
@@ -586,6 +591,9 @@ std::vector<TexelGrid> rasterize_uv(const TriangleMesh& mesh, const RasterOption
     }
 
     // Pass 2: the samples themselves, written in place.
+    std::vector<double> sub_centre(s);
+    for (int i = 0; i < s; ++i)
+        sub_centre[i] = (i + 0.5) / s;
     tbb::parallel_for(tbb::blocked_range<size_t>(0, results.size(), 1),
                       [&](const tbb::blocked_range<size_t>& range) {
         for (size_t job = range.begin(); job != range.end(); ++job) {
@@ -602,17 +610,17 @@ std::vector<TexelGrid> rasterize_uv(const TriangleMesh& mesh, const RasterOption
                 const int x = static_cast<int>(entry.texel % width);
                 const int y = static_cast<int>(entry.texel / width);
                 const Imath::V3f ng(twice_area_vector(mesh, entry.triangle).normalized());
+                const UvRasterizer::BarycentricMap b = raster.barycentric_map(entry.triangle, x, y);
                 if (entry.mask == 0) {
                     const V2d q = raster.nearest_point(entry.triangle, x, y);
-                    grid.groups.samples[next++] = make_sample(
-                        mesh, entry.triangle, raster.barycentric(entry.triangle, q), ng);
+                    grid.groups.samples[next++] =
+                        make_sample(mesh, entry.triangle, b.at(q.x - x, q.y - y), ng);
                     continue;
                 }
                 for (uint64_t mask = entry.mask; mask; mask &= mask - 1) {
                     const int bit = std::countr_zero(mask);
-                    const V2d centre(x + (bit % s + 0.5) / s, y + (bit / s + 0.5) / s);
                     grid.groups.samples[next++] = make_sample(
-                        mesh, entry.triangle, raster.barycentric(entry.triangle, centre), ng);
+                        mesh, entry.triangle, b.at(sub_centre[bit % s], sub_centre[bit / s]), ng);
                 }
             }
         }

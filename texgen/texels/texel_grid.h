@@ -56,7 +56,13 @@ struct RasterStats {
     size_t outside_udims = 0;      ///< uv centroid outside u in [0, 10), v in [0, 100)
 };
 
-/// rasterize_uv that also reports the skipped triangles.
+/// rasterize_uv that also reports the skipped triangles. Details of both: a triangle
+/// belongs to the UDIM tile of its uv centroid and is clipped to that tile; degenerate
+/// triangles are skipped and counted (a mesh with nothing else throws "zero-area mesh"); a
+/// triangle outside the tiles throws, naming it. Where uvs overlap, a sub-sample
+/// goes to the lowest-numbered triangle (uv-check reports overlaps). A texel the mesh only
+/// grazes gets its exact covered area as coverage (at least 1e-6). Samples carry the mesh's
+/// own uv (tile offset included). Parallel (TBB), and bitwise the same for any thread count.
 std::vector<TexelGrid> rasterize_uv(const TriangleMesh& mesh, const RasterOptions& options,
                                     RasterStats& stats);
 
@@ -105,8 +111,14 @@ public:
     /// a fraction of the texel.
     Imath::V2d nearest_point(uint32_t triangle, int x, int y) const;
     double area_in_texel(uint32_t triangle, int x, int y) const;
-    /// Barycentric coordinates of the texel-space point `p` (in texels) in the triangle.
-    Imath::V3d barycentric(uint32_t triangle, const Imath::V2d& p) const;
+    /// Barycentric coordinates of the triangle near texel (x, y), as an affine function of
+    /// the offset (fx, fy) in texels from the texel's top-left corner:
+    /// b = at_corner + fx per_x + fy per_y (relative to the texel, to keep precision).
+    struct BarycentricMap {
+        Imath::V3d at_corner, per_x, per_y;
+        Imath::V3d at(double fx, double fy) const { return at_corner + fx * per_x + fy * per_y; }
+    };
+    BarycentricMap barycentric_map(uint32_t triangle, int x, int y) const;
 
 private:
     /// A triangle in the scaled texel space of its tile: one texel spans 2 s units, so
