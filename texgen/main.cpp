@@ -17,7 +17,14 @@ int main(int argc, char** argv)
     app.require_subcommand(1);
 
     // Keep this list in the order of `patina-texgen --help`.
-    // (commands are added here as they land)
+    pt::register_mesh_command(app);
+    pt::register_uv_check_command(app);
+    pt::register_ao_command(app);
+    pt::register_accessibility_command(app);
+    pt::register_sun_command(app);
+    pt::register_exposure_command(app);
+    pt::register_wetness_command(app);
+    pt::register_deposit_command(app);
 
     patina::install_cancel_handler();
     try {
