@@ -366,3 +366,24 @@ TEST(Exposure, EpwDateRangeAndBrokenRows)
     range.end = pt::parse_date_time("2020-06-21T00:00", "end");
     EXPECT_NO_THROW(pt::epw_period(broken, range));
 }
+
+TEST(Exposure, VerticalWallUnderTheOvercastSky)
+{
+    // Under the Moon-Spencer sky L = Lz (1 + 2 cos Z) / 3 the horizontal irradiance is
+    // 7 pi / 9 Lz and a vertical surface receives (2/3) (pi/4 + 2/3) Lz (integrate
+    // L sin Z cos(phi) over the half hemisphere it faces), so E_v / E_h = 0.39618: the
+    // classic 0.396 of daylighting (no ground reflection).
+    const double expected = (2.0 / 3.0) * (M_PI / 4.0 + 2.0 / 3.0) / (7.0 * M_PI / 9.0);
+    EXPECT_NEAR(expected, 0.39618, 1e-5);
+    const pt::ExposureSky sky = pt::accumulate_exposure(
+        pt::clear_sky_period(clear_period("2003-10-17T08:00", "2003-10-17T16:00")),
+        pt::parse_cie_sky("overcast", "sky"), {});
+    for (const Imath::V3f& n : {Imath::V3f(1, 0, 0), Imath::V3f(0, 0, -1)}) {
+        OpenPlane wall(patina::make_plane(Imath::V3f(0, 0, 0), 10.0f, 1, n));
+        const std::vector<float> v =
+            bake(wall.scene, sky, samples_at(Imath::V3f(0, 0, 0), n, 16));
+        std::printf("vertical wall (%g, %g, %g): sky / DHI %.5f (closed form %.5f)\n", n.x, n.y,
+                    n.z, v[2] / sky.diffuse_horizontal, expected);
+        EXPECT_NEAR(v[2] / sky.diffuse_horizontal, expected, 0.01 * expected);
+    }
+}
