@@ -12,10 +12,10 @@ namespace patina::texgen {
 
 /// One point on the mesh surface, world space.
 struct SurfaceSample {
-    Imath::V3f P;        ///< position
-    Imath::V3f N;        ///< unit shading normal (interpolated, or Ng without vertex normals)
-    Imath::V3f Ng;       ///< unit geometric normal of the triangle, on N's side
-    Imath::V2f uv;       ///< the mesh's uv at P (for reading input maps)
+    Imath::V3f P{0.0f, 0.0f, 0.0f};   ///< position
+    Imath::V3f N{0.0f, 0.0f, 1.0f};   ///< unit shading normal (interpolated, or Ng without vertex normals)
+    Imath::V3f Ng{0.0f, 0.0f, 1.0f};  ///< unit geometric normal of the triangle, on N's side
+    Imath::V2f uv{0.0f, 0.0f};        ///< the mesh's uv at P (for reading input maps)
     uint32_t triangle = 0;
 };
 
