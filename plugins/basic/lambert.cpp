@@ -9,6 +9,8 @@
  *                texture none             A data map (raw) whose first channel, clamped to
  *                                         [0, 1], scales R: baked ambient occlusion,
  *                                         accessibility or wetness shown on a surface.
+ *  map_gain      float   1                Multiplies the map value before the clamp (e.g.
+ *                                         1 / max for an exposure map in J/m^2).
  *
  * An ideal diffuse (Lambertian) reflector: light is scattered equally into every direction
  * of the hemisphere it arrived from, f(wo, wi) = R(λ) / π, so the directional albedo is
@@ -38,6 +40,7 @@ namespace {
         PatinaRgbSpectrum reflectance;
         const PatinaHost* host = nullptr;
         const PatinaTexture* scale_map = nullptr;  // may be null
+        float map_gain = 1.0f;
     };
 
     // clang-format off
@@ -48,6 +51,9 @@ namespace {
          0.0f, 0.0f, "raw",
          "Data texture whose first channel, clamped to [0, 1], scales the reflectance (e.g. a "
          "baked AO, accessibility or wetness map)."},
+        {"map_gain", PATINA_PARAM_FLOAT, {1.0f, 0.0f, 0.0f}, nullptr, nullptr, 0.0f, 1e30f,
+         nullptr, "Multiplies the reflectance_scale_map value before the clamp to [0, 1] (e.g. "
+         "1 / max for an exposure map in J/m^2)."},
     };
     // clang-format on
 
@@ -86,7 +92,7 @@ namespace {
                          lo, hi);
             return nullptr;
         }
-        return make_instance<Lambert>(host, kName, s, host, values[1].texture);
+        return make_instance<Lambert>(host, kName, s, host, values[1].texture, values[2].f);
     }
 
     void destroy(void* instance)
@@ -103,6 +109,7 @@ namespace {
         if (!lambert.host->texture_lookup(lambert.host, lambert.scale_map, ctx, ctx->uv.x,
                                           ctx->uv.y, 0, 1, &value))
             return 1.0f;
+        value *= lambert.map_gain;
         return value >= 0.0f ? (value <= 1.0f ? value : 1.0f) : 0.0f;  // NaN -> 0
     }
 
