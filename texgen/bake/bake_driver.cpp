@@ -3,6 +3,7 @@
 #include "core/cancel.h"
 
 #include <tbb/blocked_range.h>
+#include <tbb/partitioner.h>
 #include <tbb/parallel_for.h>
 
 namespace patina::texgen {
@@ -13,16 +14,17 @@ std::vector<float> bake_groups(const SampleGroups& groups, const SampleBaker& ba
     const size_t channel_count = baker.channels().size();
     const size_t group_count = groups.group_count();
     std::vector<float> values(group_count * channel_count, 0.0f);
-    // Blocks of groups: small enough to balance and to poll for cancellation often, large
-    // enough that scheduling costs nothing next to the rays.
-    constexpr size_t kGrain = 64;
+    // Blocks of at most kGrain groups (simple_partitioner: the auto partitioner would hand
+    // out huge first chunks): small enough to balance, to show progress and to notice a
+    // cancellation quickly, large enough that scheduling costs nothing next to the rays.
+    constexpr size_t kGrain = 32;
     tbb::parallel_for(tbb::blocked_range<size_t>(0, group_count, kGrain),
                       [&](const tbb::blocked_range<size_t>& range) {
-        if (cancel_requested())
-            return;
         std::vector<double> sum(channel_count);
         std::vector<float> one(channel_count);
         for (size_t g = range.begin(); g != range.end(); ++g) {
+            if (cancel_requested())
+                return;
             const uint32_t first = groups.offsets[g];
             const uint32_t last = groups.offsets[g + 1];
             const size_t size = last - first;
@@ -42,7 +44,7 @@ std::vector<float> bake_groups(const SampleGroups& groups, const SampleBaker& ba
         }
         if (run.progress)
             run.progress->step(range.size());
-    });
+    }, tbb::simple_partitioner());
     throw_if_cancelled();
     return values;
 }
