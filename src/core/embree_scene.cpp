@@ -201,6 +201,38 @@ bool EmbreeScene::occluded(const Imath::V3f& origin, const Imath::V3f& dir, floa
     return ray.tfar == -INFINITY;
 }
 
+size_t EmbreeScene::count_unoccluded(std::span<const ShadowRay> rays) const
+{
+    if (!committed_)
+        throw std::runtime_error("EmbreeScene::count_unoccluded called before commit()");
+    constexpr size_t kChunk = 64;
+    RTCRay batch[kChunk];
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    size_t unoccluded = 0;
+    for (size_t first = 0; first < rays.size(); first += kChunk) {
+        const size_t n = std::min(kChunk, rays.size() - first);
+        for (size_t i = 0; i < n; ++i) {
+            const ShadowRay& r = rays[first + i];
+            RTCRay& ray = batch[i];
+            ray = RTCRay{};
+            ray.org_x = r.origin.x;
+            ray.org_y = r.origin.y;
+            ray.org_z = r.origin.z;
+            ray.dir_x = r.dir.x;
+            ray.dir_y = r.dir.y;
+            ray.dir_z = r.dir.z;
+            ray.tnear = 0.0f;
+            ray.tfar = r.tmax;
+            ray.mask = 0xFFFFFFFFu;
+        }
+        rtcOccluded1M(scene_, &context, batch, static_cast<unsigned>(n), sizeof(RTCRay));
+        for (size_t i = 0; i < n; ++i)
+            unoccluded += batch[i].tfar != -INFINITY;  // Embree marks a blocked ray with -inf
+    }
+    return unoccluded;
+}
+
 SurfacePoint EmbreeScene::interpolate(const Hit& hit, const Imath::V3f& origin,
                                       const Imath::V3f& dir) const
 {

@@ -10,6 +10,7 @@
 
 #include <limits>
 #include <optional>
+#include <span>
 #include <vector>
 
 // Embree's opaque handles, declared here so users need not include <embree3/rtcore.h>.
@@ -39,6 +40,13 @@ struct SurfacePoint {
     Imath::V3f wo;       ///< unit direction back towards the ray origin
     int mesh_id = -1;
     int prim_id = -1;
+};
+
+/// A shadow ray for EmbreeScene::count_unoccluded: open segment t in [0, tmax] along dir.
+struct ShadowRay {
+    Imath::V3f origin;
+    Imath::V3f dir;
+    float tmax = std::numeric_limits<float>::infinity();
 };
 
 /// Move a ray origin off a surface so the new ray cannot hit it again: offset P along Ng,
@@ -71,6 +79,11 @@ public:
     /// True if anything lies along the ray with t in [tmin, tmax] (shadow rays).
     bool occluded(const Imath::V3f& origin, const Imath::V3f& dir, float tmin = 0.0f,
                   float tmax = std::numeric_limits<float>::infinity()) const;
+
+    /// How many of `rays` are unoccluded. One call traces the batch through Embree's ray
+    /// stream API (rtcOccluded1M), which amortises the per-ray call overhead and lets Embree
+    /// reorder incoherent rays (the AO and exposure bakers' many rays per texel).
+    size_t count_unoccluded(std::span<const ShadowRay> rays) const;
 
     /// The surface point of a hit of the ray (origin, dir). Ng follows the winding
     /// (cross(p1 - p0, p2 - p0)) unless the mesh has normals, in which case Ng is flipped to

@@ -257,3 +257,36 @@ TEST(EmbreeScene, ErrorsAreExceptionsWithText)
 }
 
 }  // namespace patina
+
+namespace patina {
+namespace {
+
+    // The stream query agrees with one occluded() call per ray, for batches longer than its
+    // internal chunk and with finite and infinite tmax.
+    TEST(EmbreeScene, CountUnoccludedMatchesOccludedPerRay)
+    {
+        EmbreeScene scene;
+        scene.add_mesh(make_uv_sphere(Imath::V3f(0.0f), 1.0f, 16, 32));
+        scene.commit();
+        std::mt19937 gen(5);
+        std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+        std::vector<ShadowRay> rays;
+        size_t expected = 0;
+        for (int i = 0; i < 300; ++i) {
+            ShadowRay r;
+            r.origin = Imath::V3f(3.0f * u(gen), 3.0f * u(gen), 3.0f * u(gen));
+            // Aimed at points within 1.6 of the unit sphere's centre: about half hit it.
+            const Imath::V3f target(1.6f * u(gen), 1.6f * u(gen), 1.6f * u(gen));
+            r.dir = (target - r.origin).normalized();
+            r.tmax = i % 2 ? std::numeric_limits<float>::infinity() : 2.0f;
+            rays.push_back(r);
+            expected += !scene.occluded(r.origin, r.dir, 0.0f, r.tmax);
+        }
+        EXPECT_GT(expected, 30u);
+        EXPECT_LT(expected, 270u);
+        EXPECT_EQ(scene.count_unoccluded(rays), expected);
+        EXPECT_EQ(scene.count_unoccluded({}), 0u);
+    }
+
+}  // namespace
+}  // namespace patina

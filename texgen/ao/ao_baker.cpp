@@ -1,5 +1,7 @@
 #include "texgen/ao/ao_baker.h"
 
+#include <vector>
+
 #include <fmt/format.h>
 
 #include <cmath>
@@ -29,12 +31,14 @@ size_t AoBaker::rays_per_sample(size_t group_size) const
 
 void AoBaker::evaluate(const SurfaceSample& s, size_t group_size, Pcg32& rng, float* out) const
 {
-    uint32_t unoccluded = 0;
+    // Gather the sample's rays and trace them as one stream (EmbreeScene::count_unoccluded).
+    thread_local std::vector<ShadowRay> rays;
+    rays.clear();
     const uint32_t n = for_each_ray(s, group_size, rng, [&](const Imath::V3f& origin,
                                                             const Imath::V3f& dir) {
-        if (!scene_.occluded(origin, dir, 0.0f, options_.max_distance))
-            ++unoccluded;
+        rays.push_back({origin, dir, options_.max_distance});
     });
+    const size_t unoccluded = scene_.count_unoccluded(rays);
     out[0] = static_cast<float>(unoccluded) / static_cast<float>(n);
 }
 
