@@ -1,5 +1,7 @@
 #include "core/image_io.h"
 
+#include <fstream>
+
 #include <OpenImageIO/imagebufalgo.h>
 #include <OpenImageIO/imageio.h>
 #include <fmt/format.h>
@@ -90,6 +92,30 @@ std::filesystem::path temporary_path_for(const std::filesystem::path& path)
 {
     static std::atomic<unsigned> counter{0};
     return fmt::format("{}.tmp-{}-{}", path.string(), static_cast<long>(::getpid()), counter++);
+}
+
+void write_file_atomic(const std::filesystem::path& path,
+                       std::initializer_list<std::string_view> parts, std::string_view what)
+{
+    const std::filesystem::path tmp = temporary_path_for(path);
+    bool ok = false;
+    {
+        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+        if (out) {
+            for (const std::string_view part : parts)
+                out.write(part.data(), static_cast<std::streamsize>(part.size()));
+            out.flush();
+            ok = static_cast<bool>(out);
+        }
+    }
+    std::error_code ec;
+    if (ok)
+        std::filesystem::rename(tmp, path, ec);
+    if (!ok || ec) {
+        std::filesystem::remove(tmp, ec);
+        throw std::runtime_error(fmt::format("cannot write {} '{}': {}", what, path.string(),
+                                             ok ? "rename failed" : "write failed"));
+    }
 }
 
 void write_image_atomic(const std::filesystem::path& path, const float* pixels, int width,

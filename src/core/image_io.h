@@ -7,6 +7,7 @@
 #include <OpenImageIO/typedesc.h>
 
 #include <filesystem>
+#include <initializer_list>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -56,6 +57,12 @@ struct ImageWindow {
 /// The temporary name a write goes to before the rename: `<path>.tmp-<pid>-<n>`, in the
 /// same folder (so the rename is atomic), `n` unique within the process.
 std::filesystem::path temporary_path_for(const std::filesystem::path& path);
+
+/// Write the concatenation of `parts` to `path` as bytes, under a temporary name renamed
+/// when complete (a text manifest, a PLY): a failed write leaves `path` as it was. Throws
+/// std::runtime_error "cannot write <what> '<path>': ...".
+void write_file_atomic(const std::filesystem::path& path,
+                       std::initializer_list<std::string_view> parts, std::string_view what);
 
 /// Write `width` x `height` pixels of `channels` interleaved floats to `path`. The file
 /// format follows the extension (.exr, .png, .tif, ...); `format` is the pixel type in the

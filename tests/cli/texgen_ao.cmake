@@ -7,12 +7,6 @@ include("${CMAKE_CURRENT_LIST_DIR}/lib/expect.cmake")
 file(REMOVE_RECURSE "${WORK_DIR}")
 file(MAKE_DIRECTORY "${WORK_DIR}")
 
-function(expect_in text part)
-  string(FIND "${text}" "${part}" pos)
-  if(pos EQUAL -1)
-    message(FATAL_ERROR "expected '${part}' in:\n${text}")
-  endif()
-endfunction()
 
 # Min and max of channel `channel` of an image, from oiiotool --stats.
 function(channel_range image channel out_min out_max)
@@ -33,18 +27,7 @@ function(channel_range image channel out_min out_max)
   set(${out_max} "${hi}" PARENT_SCOPE)
 endfunction()
 
-# A 2 m square, uvs over the unit square: nothing occludes it.
-file(WRITE "${WORK_DIR}/square.obj" [=[
-v -1 0 1
-v 1 0 1
-v 1 0 -1
-v -1 0 -1
-vt 0 0
-vt 1 0
-vt 1 1
-vt 0 1
-f 1/1 2/2 3/3 4/4
-]=])
+write_unit_square_obj("${WORK_DIR}/square.obj")
 set(out "${WORK_DIR}/maps")
 
 # AO of an open plane is exactly 1 in every texel (padding fills the rest with it).

@@ -3,12 +3,6 @@
 # unit" line per quantity; bad dates and missing options give one error line.
 include("${CMAKE_CURRENT_LIST_DIR}/lib/expect.cmake")
 
-function(expect_in text part)
-  string(FIND "${text}" "${part}" pos)
-  if(pos EQUAL -1)
-    message(FATAL_ERROR "expected '${part}' in:\n${text}")
-  endif()
-endfunction()
 
 set(site --latitude 39.742476 --longitude -105.1786 --elevation 1830.14 --pressure 820
     --temperature 11 --delta-t 67 --timezone -7)

@@ -5,25 +5,8 @@ include("${CMAKE_CURRENT_LIST_DIR}/lib/expect.cmake")
 file(REMOVE_RECURSE "${WORK_DIR}")
 file(MAKE_DIRECTORY "${WORK_DIR}")
 
-function(expect_in text part)
-  string(FIND "${text}" "${part}" pos)
-  if(pos EQUAL -1)
-    message(FATAL_ERROR "expected '${part}' in:\n${text}")
-  endif()
-endfunction()
 
-# A 2 m square whose uvs fill the unit square.
-file(WRITE "${WORK_DIR}/square.obj" [=[
-v -1 0 1
-v 1 0 1
-v 1 0 -1
-v -1 0 -1
-vt 0 0
-vt 1 0
-vt 1 1
-vt 0 1
-f 1/1 2/2 3/3 4/4
-]=])
+write_unit_square_obj("${WORK_DIR}/square.obj")
 # Two squares on the same uvs.
 file(WRITE "${WORK_DIR}/overlap.obj" [=[
 v -1 0 1

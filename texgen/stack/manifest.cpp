@@ -41,30 +41,6 @@ std::string map_file_pattern(const std::string& name)
 
 namespace {
 
-    /// Write `text` to `path` through a temporary name and a rename, so a reader never sees
-    /// half a manifest and a failed write leaves the old one.
-    void write_text_atomic(const fs::path& path, const std::string& text)
-    {
-        const fs::path tmp = temporary_path_for(path);
-        bool ok = false;
-        {
-            std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-            if (out) {
-                out.write(text.data(), static_cast<std::streamsize>(text.size()));
-                out.flush();
-                ok = static_cast<bool>(out);
-            }
-        }
-        std::error_code ec;
-        if (ok)
-            fs::rename(tmp, path, ec);
-        if (!ok || ec) {
-            fs::remove(tmp, ec);
-            throw std::runtime_error(fmt::format("cannot write manifest '{}': {}", path.string(),
-                                                 ok ? "rename failed" : "write failed"));
-        }
-    }
-
     /// `file` relative to the folder of the manifest, with '/' separators.
     fs::path relative_to(const fs::path& file, const fs::path& out_dir)
     {
@@ -240,7 +216,7 @@ void record_in_manifest(const fs::path& out_dir, const MapDescription& map,
     std::error_code ec;
     fs::create_directories(out_dir, ec);
     throw_if_cancelled();
-    write_text_atomic(path, text.str());
+    write_file_atomic(path, {text.str()}, "manifest");
 }
 
 }  // namespace patina::texgen

@@ -121,25 +121,7 @@ void write_ply_with_vertex_values(const fs::path& path, const TriangleMesh& mesh
     }
 
     // Temporary name + rename: an interrupted write never leaves half a PLY.
-    const fs::path tmp = temporary_path_for(path);
-    bool ok = false;
-    {
-        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-        if (out) {
-            out.write(header.data(), static_cast<std::streamsize>(header.size()));
-            out.write(body.data(), static_cast<std::streamsize>(body.size()));
-            out.flush();
-            ok = static_cast<bool>(out);
-        }
-    }
-    std::error_code ec;
-    if (ok)
-        fs::rename(tmp, path, ec);
-    if (!ok || ec) {
-        fs::remove(tmp, ec);
-        throw std::runtime_error(fmt::format("cannot write PLY '{}': {}", path.string(),
-                                             ok ? "rename failed" : "write failed"));
-    }
+    write_file_atomic(path, {header, body}, "PLY");
 }
 
 }  // namespace patina::texgen

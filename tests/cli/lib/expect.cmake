@@ -24,3 +24,17 @@ function(expect_success)
   set(LAST_STDOUT "${out}" PARENT_SCOPE)
   set(LAST_STDERR "${err}" PARENT_SCOPE)
 endfunction()
+
+# Fail unless `part` occurs in `text`.
+function(expect_in text part)
+  string(FIND "${text}" "${part}" pos)
+  if(pos EQUAL -1)
+    message(FATAL_ERROR "expected '${part}' in:\n${text}")
+  endif()
+endfunction()
+
+# A 2 m square in the plane y = 0, facing up, whose uvs fill the unit square (texgen tests).
+function(write_unit_square_obj path)
+  file(WRITE "${path}" "v -1 0 1\nv 1 0 1\nv 1 0 -1\nv -1 0 -1\n"
+                       "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nf 1/1 2/2 3/3 4/4\n")
+endfunction()
