@@ -6,6 +6,8 @@
 #include "test_util.h"
 
 #include <gtest/gtest.h>
+
+#include "texgen/bake_test_util.h"
 #include <tbb/global_control.h>
 
 #include <cmath>
@@ -127,15 +129,8 @@ namespace {
         SampleGroups groups;
         for (int i = 0; i < 200; ++i)
             groups.add_group({test::wedge_face_sample(0.005f * (i + 1))});
-        std::vector<float> one, two;
-        {
-            tbb::global_control c(tbb::global_control::max_allowed_parallelism, 1);
-            one = bake_groups(groups, baker, {3, 0, nullptr});
-        }
-        {
-            tbb::global_control c(tbb::global_control::max_allowed_parallelism, 2);
-            two = bake_groups(groups, baker, {3, 0, nullptr});
-        }
+        const std::vector<float> one = patina::test::bake_with_threads(groups, baker, {3, 0, nullptr}, 1);
+        const std::vector<float> two = patina::test::bake_with_threads(groups, baker, {3, 0, nullptr}, 2);
         EXPECT_EQ(one, two);
         for (int i = 0; i < 200; ++i) {
             // Right-angle corner: r = d, capped at 0.5 m, normalised by the cap.

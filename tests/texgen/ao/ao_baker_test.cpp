@@ -7,6 +7,8 @@
 #include "test_util.h"
 
 #include <gtest/gtest.h>
+
+#include "texgen/bake_test_util.h"
 #include <tbb/global_control.h>
 
 #include <cmath>
@@ -149,15 +151,8 @@ namespace {
             }
             groups.add_group(group);
         }
-        std::vector<float> one, two;
-        {
-            tbb::global_control c(tbb::global_control::max_allowed_parallelism, 1);
-            one = bake_groups(groups, baker, {42, 1001, nullptr});
-        }
-        {
-            tbb::global_control c(tbb::global_control::max_allowed_parallelism, 2);
-            two = bake_groups(groups, baker, {42, 1001, nullptr});
-        }
+        const std::vector<float> one = patina::test::bake_with_threads(groups, baker, {42, 1001, nullptr}, 1);
+        const std::vector<float> two = patina::test::bake_with_threads(groups, baker, {42, 1001, nullptr}, 2);
         EXPECT_EQ(one, two);
         // The sphere shadows the samples under it: some values are below 1.
         EXPECT_LT(*std::min_element(one.begin(), one.end()), 0.9f);

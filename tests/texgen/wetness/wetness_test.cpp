@@ -3,6 +3,8 @@
 #include "texgen/wetness/bake_fixture.h"
 
 #include <gtest/gtest.h>
+
+#include "texgen/bake_test_util.h"
 #include <tbb/global_control.h>
 
 #include "test_util.h"
@@ -274,15 +276,8 @@ namespace {
             samples.push_back(
                 sample_at({-0.5f + 0.002f * static_cast<float>(i), 0.0f, 0.0f}, {0, 1, 0}));
         const SampleGroups groups = one_per_group(samples);
-        std::vector<float> one, two;
-        {
-            tbb::global_control c(tbb::global_control::max_allowed_parallelism, 1);
-            one = bake_groups(groups, baker, {7, 1001, nullptr});
-        }
-        {
-            tbb::global_control c(tbb::global_control::max_allowed_parallelism, 2);
-            two = bake_groups(groups, baker, {7, 1001, nullptr});
-        }
+        const std::vector<float> one = patina::test::bake_with_threads(groups, baker, {7, 1001, nullptr}, 1);
+        const std::vector<float> two = patina::test::bake_with_threads(groups, baker, {7, 1001, nullptr}, 2);
         EXPECT_EQ(one, two);
         EXPECT_NE(one, bake_groups(groups, baker, {8, 1001, nullptr}));
     }
