@@ -52,7 +52,7 @@ namespace {
          "Data texture whose first channel, clamped to [0, 1], scales the reflectance (e.g. a "
          "baked AO, accessibility or wetness map)."},
         {"map_gain", PATINA_PARAM_FLOAT, {1.0f, 0.0f, 0.0f}, nullptr, nullptr, 0.0f, 1e30f,
-         nullptr, "Multiplies the reflectance_scale_map value before the clamp to [0, 1] (e.g. "
+         "", "Multiplies the reflectance_scale_map value before the clamp to [0, 1] (e.g. "
          "1 / max for an exposure map in J/m^2)."},
     };
     // clang-format on
