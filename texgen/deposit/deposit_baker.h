@@ -20,7 +20,7 @@
 
 #include "texgen/bake/sample_baker.h"
 #include "texgen/deposit/deposit_sources.h"
-#include "texgen/wetness/surface_map.h"
+#include "texgen/stack/surface_map.h"
 
 #include <Imath/ImathBox.h>
 

@@ -32,7 +32,7 @@
 #include "core/mesh.h"
 #include "texgen/bake/sample_baker.h"
 #include "texgen/wetness/directional_catch.h"
-#include "texgen/wetness/surface_map.h"
+#include "texgen/stack/surface_map.h"
 
 #include <Imath/ImathVec.h>
 

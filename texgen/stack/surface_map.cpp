@@ -1,4 +1,4 @@
-#include "texgen/wetness/surface_map.h"
+#include "texgen/stack/surface_map.h"
 
 #include "core/image_io.h"
 
