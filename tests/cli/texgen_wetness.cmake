@@ -73,6 +73,14 @@ expect_success("${PATINA_TEXGEN}" wetness --mesh "${WORK_DIR}/ground.obj" --reso
 if(NOT EXISTS "${maps}/dried.exr")
   message(FATAL_ERROR "wetness --name dried wrote no dried.exr")
 endif()
+# Defaults the baker resolved (the map's maximum, the mesh's lowest point) are recorded as
+# numbers, so the map tells exactly how it was made.
+file(READ "${maps}/stack.toml" manifest)
+foreach(pattern "exposure_scale = [0-9]" "base_level = [-0-9]")
+  if(NOT manifest MATCHES "${pattern}")
+    message(FATAL_ERROR "stack.toml lacks a resolved '${pattern}':\n${manifest}")
+  endif()
+endforeach()
 
 # Bad input: the message names the file and line (or the option), and nothing is written.
 set(bad "${WORK_DIR}/bad")

@@ -9,6 +9,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <optional>
 #include <stdexcept>
@@ -76,6 +77,14 @@ void run_bake(const CommonBakeOptions& options, const BakerFactory& make_baker, 
 
     const std::unique_ptr<SampleBaker> baker = make_baker({scene, target, scene.bounds()});
     map.channels = baker->channels();
+    for (const auto& [key, value] : baker->resolved_parameters()) {
+        const auto it = std::find_if(map.parameters.begin(), map.parameters.end(),
+                                     [&](const auto& entry) { return entry.first == key; });
+        if (it != map.parameters.end())
+            it->second = value;
+        else
+            map.parameters.emplace_back(key, value);
+    }
     if (!options.name.empty())
         map.name = options.name;
     map.parameters.insert(map.parameters.begin(),

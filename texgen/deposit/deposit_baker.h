@@ -74,6 +74,10 @@ public:
 
     /// The inline estimate's ray length after the default is resolved.
     float access_distance() const { return access_distance_; }
+    Metadata resolved_parameters() const override
+    {
+        return {{"access_distance", access_distance_}};
+    }
 
     /// The accessibility A at `s` (map or inline estimate) and the source visibility, the
     /// two inputs of the formula.

@@ -104,4 +104,12 @@ void WetnessBaker::evaluate(const SurfaceSample& s, size_t group_size, Pcg32& rn
     out[0] = std::clamp((rain * incline + base) * dry, 0.0f, 1.0f);
 }
 
+Metadata WetnessBaker::resolved_parameters() const
+{
+    Metadata m = {{"base_level", base_level_}};
+    if (exposure_)
+        m.emplace_back("exposure_scale", exposure_scale_);
+    return m;
+}
+
 } // namespace patina::texgen

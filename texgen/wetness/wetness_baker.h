@@ -82,6 +82,7 @@ public:
     float base_level() const { return base_level_; }
     float exposure_scale() const { return exposure_scale_; }
     const SurfaceMap* exposure() const { return exposure_.get(); }
+    Metadata resolved_parameters() const override;
 
 private:
     const EmbreeScene& scene_;
