@@ -129,8 +129,10 @@ namespace {
         SampleGroups groups;
         for (int i = 0; i < 200; ++i)
             groups.add_group({test::wedge_face_sample(0.005f * (i + 1))});
-        const std::vector<float> one = patina::test::bake_with_threads(groups, baker, {3, 0, nullptr}, 1);
-        const std::vector<float> two = patina::test::bake_with_threads(groups, baker, {3, 0, nullptr}, 2);
+        const std::vector<float> one =
+            patina::test::bake_with_threads(groups, baker, {3, 0, nullptr}, 1);
+        const std::vector<float> two =
+            patina::test::bake_with_threads(groups, baker, {3, 0, nullptr}, 2);
         EXPECT_EQ(one, two);
         for (int i = 0; i < 200; ++i) {
             // Right-angle corner: r = d, capped at 0.5 m, normalised by the cap.

@@ -146,13 +146,15 @@ namespace {
         for (int g = 0; g < 300; ++g) {
             std::vector<SurfaceSample> group;
             for (int k = 0; k < 3; ++k) {
-                group.push_back(test::make_sample(Imath::V3f(-1.5f + 0.01f * g, 0.0f, -0.5f + 0.3f * k),
-                                                  Imath::V3f(0, 1, 0), Imath::V3f(0, 1, 0)));
+                const Imath::V3f P(-1.5f + 0.01f * g, 0.0f, -0.5f + 0.3f * k);
+                group.push_back(test::make_sample(P, Imath::V3f(0, 1, 0), Imath::V3f(0, 1, 0)));
             }
             groups.add_group(group);
         }
-        const std::vector<float> one = patina::test::bake_with_threads(groups, baker, {42, 1001, nullptr}, 1);
-        const std::vector<float> two = patina::test::bake_with_threads(groups, baker, {42, 1001, nullptr}, 2);
+        const std::vector<float> one =
+            patina::test::bake_with_threads(groups, baker, {42, 1001, nullptr}, 1);
+        const std::vector<float> two =
+            patina::test::bake_with_threads(groups, baker, {42, 1001, nullptr}, 2);
         EXPECT_EQ(one, two);
         // The sphere shadows the samples under it: some values are below 1.
         EXPECT_LT(*std::min_element(one.begin(), one.end()), 0.9f);

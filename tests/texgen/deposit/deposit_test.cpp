@@ -246,8 +246,10 @@ namespace {
             samples.push_back(
                 sample_at({-1.0f + 0.004f * static_cast<float>(i), 0.0f, 0.0f}, {0, 1, 0}));
         const SampleGroups groups = one_per_group(samples);
-        const std::vector<float> one = patina::test::bake_with_threads(groups, baker, {11, 1001, nullptr}, 1);
-        const std::vector<float> two = patina::test::bake_with_threads(groups, baker, {11, 1001, nullptr}, 2);
+        const std::vector<float> one =
+            patina::test::bake_with_threads(groups, baker, {11, 1001, nullptr}, 1);
+        const std::vector<float> two =
+            patina::test::bake_with_threads(groups, baker, {11, 1001, nullptr}, 2);
         EXPECT_EQ(one, two);
         EXPECT_NE(one, bake_groups(groups, baker, {12, 1001, nullptr}));
     }

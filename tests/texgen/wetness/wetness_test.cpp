@@ -276,8 +276,10 @@ namespace {
             samples.push_back(
                 sample_at({-0.5f + 0.002f * static_cast<float>(i), 0.0f, 0.0f}, {0, 1, 0}));
         const SampleGroups groups = one_per_group(samples);
-        const std::vector<float> one = patina::test::bake_with_threads(groups, baker, {7, 1001, nullptr}, 1);
-        const std::vector<float> two = patina::test::bake_with_threads(groups, baker, {7, 1001, nullptr}, 2);
+        const std::vector<float> one =
+            patina::test::bake_with_threads(groups, baker, {7, 1001, nullptr}, 1);
+        const std::vector<float> two =
+            patina::test::bake_with_threads(groups, baker, {7, 1001, nullptr}, 2);
         EXPECT_EQ(one, two);
         EXPECT_NE(one, bake_groups(groups, baker, {8, 1001, nullptr}));
     }
