@@ -8,5 +8,5 @@ build="${PATINA_BUILD_DIR:-build}"
 mkdir -p out
 "$build/bin/patina-render" samples/basic/scene.toml --output out/basic.exr "$@"
 echo "wrote out/basic.exr (scene-linear ACEScg, with albedo, normal and depth AOVs) and out/basic.png (sRGB display)"
-samples/bake/bake.sh "$build" out/bake
+samples/bake/bake.sh "$build"
 echo "wrote out/bake/maps/ (texture stack + stack.toml) and out/bake.png (the maps on four statues)"

@@ -1,14 +1,15 @@
 #!/usr/bin/env bash
 # samples/bake: bake the texgen maps of the project's statue and render them side by side.
-#   samples/bake/bake.sh [BUILD_DIR] [OUT_DIR]     (defaults: build, out/bake)
-# Writes OUT_DIR/statue.obj, OUT_DIR/ground.obj, OUT_DIR/maps/*.exr + stack.toml, and renders
+#   samples/bake/bake.sh [BUILD_DIR]     (default: build)
+# Writes out/bake/statue.obj, out/bake/ground.obj, out/bake/maps/*.exr + stack.toml (where
+# scene.toml looks for them), and renders
 # samples/bake/scene.toml to out/bake.exr + out/bake.png (accessibility, ambient occlusion,
 # one week of June sun in Rome, and wetness, each shown as the albedo of one statue).
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 root="$(cd "$here/../.." && pwd)"
 build="$(cd "${1:-$root/build}" && pwd)"
-out="${2:-$root/out/bake}"
+out="$root/out/bake"
 texgen="$build/bin/patina-texgen"
 mkdir -p "$out"
 
