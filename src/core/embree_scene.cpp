@@ -201,15 +201,17 @@ bool EmbreeScene::occluded(const Imath::V3f& origin, const Imath::V3f& dir, floa
     return ray.tfar == -INFINITY;
 }
 
-size_t EmbreeScene::count_unoccluded(std::span<const ShadowRay> rays) const
+void EmbreeScene::trace_shadow_rays(std::span<const ShadowRay> rays,
+                                    std::span<uint8_t> visible) const
 {
     if (!committed_)
-        throw std::runtime_error("EmbreeScene::count_unoccluded called before commit()");
+        throw std::runtime_error("EmbreeScene::trace_shadow_rays called before commit()");
+    if (visible.size() != rays.size())
+        throw std::invalid_argument("EmbreeScene::trace_shadow_rays: one result per ray");
     constexpr size_t kChunk = 64;
     RTCRay batch[kChunk];
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
-    size_t unoccluded = 0;
     for (size_t first = 0; first < rays.size(); first += kChunk) {
         const size_t n = std::min(kChunk, rays.size() - first);
         for (size_t i = 0; i < n; ++i) {
@@ -227,9 +229,19 @@ size_t EmbreeScene::count_unoccluded(std::span<const ShadowRay> rays) const
             ray.mask = 0xFFFFFFFFu;
         }
         rtcOccluded1M(scene_, &context, batch, static_cast<unsigned>(n), sizeof(RTCRay));
-        for (size_t i = 0; i < n; ++i)
-            unoccluded += batch[i].tfar != -INFINITY;  // Embree marks a blocked ray with -inf
+        for (size_t i = 0; i < n; ++i)  // Embree marks a blocked ray with tfar = -inf
+            visible[first + i] = batch[i].tfar != -INFINITY ? 1 : 0;
     }
+}
+
+size_t EmbreeScene::count_unoccluded(std::span<const ShadowRay> rays) const
+{
+    thread_local std::vector<uint8_t> visible;
+    visible.resize(rays.size());
+    trace_shadow_rays(rays, visible);
+    size_t unoccluded = 0;
+    for (const uint8_t v : visible)
+        unoccluded += v;
     return unoccluded;
 }
 

@@ -84,6 +84,9 @@ public:
     /// stream API (rtcOccluded1M), which amortises the per-ray call overhead and lets Embree
     /// reorder incoherent rays (the AO and exposure bakers' many rays per texel).
     size_t count_unoccluded(std::span<const ShadowRay> rays) const;
+    /// The same stream query, per ray: visible[i] = 1 if rays[i] is unoccluded, else 0
+    /// (`visible` as long as `rays`).
+    void trace_shadow_rays(std::span<const ShadowRay> rays, std::span<uint8_t> visible) const;
 
     /// The surface point of a hit of the ray (origin, dir). Ng follows the winding
     /// (cross(p1 - p0, p2 - p0)) unless the mesh has normals, in which case Ng is flipped to

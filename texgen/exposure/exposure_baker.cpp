@@ -1,5 +1,7 @@
 #include "texgen/exposure/exposure_baker.h"
 
+#include <vector>
+
 #include <cmath>
 #include <stdexcept>
 
@@ -61,23 +63,29 @@ size_t ExposureBaker::rays_per_sample(size_t group_size) const
     return sky_.sun_bins.size() + static_cast<size_t>(sky_.non_empty_sky_cells);
 }
 
-bool ExposureBaker::visible(const SurfaceSample& s, const Imath::V3f& dir) const
-{
-    // A direction below the facet's geometric plane would go through the surface itself.
-    if (s.Ng.dot(dir) <= 0.0f)
-        return false;
-    const Imath::V3f origin = offset_ray_origin(s.P, s.Ng, dir);
-    return !scene_.occluded(origin, dir, 0.0f, options_.max_distance);
-}
-
 void ExposureBaker::evaluate(const SurfaceSample& s, size_t group_size, Pcg32& rng,
                              float* out) const
 {
     (void)group_size;
     const Imath::V3d n(s.N.x, s.N.y, s.N.z);
+    // Every shadow ray of the sample, with the energy it carries if unoccluded, traced as one
+    // Embree stream. is_sun[i] says which term a ray belongs to.
+    thread_local std::vector<ShadowRay> rays;
+    thread_local std::vector<double> weights;
+    thread_local std::vector<uint8_t> is_sun, visible;
+    rays.clear();
+    weights.clear();
+    is_sun.clear();
+    const auto add = [&](const Imath::V3f& dir, double weight, bool sun) {
+        // A direction below the facet's geometric plane would go through the surface itself.
+        if (s.Ng.dot(dir) <= 0.0f)
+            return;
+        rays.push_back({offset_ray_origin(s.P, s.Ng, dir), dir, options_.max_distance});
+        weights.push_back(weight);
+        is_sun.push_back(sun ? 1 : 0);
+    };
 
     // Direct sun: one shadow ray per bin the surface faces, jittered over the solar disc.
-    double direct = 0.0;
     for (const SunBin& bin : sky_.sun_bins) {
         const double facing = n.dot(bin.weighted);
         if (facing <= 0.0)
@@ -87,12 +95,10 @@ void ExposureBaker::evaluate(const SurfaceSample& s, size_t group_size, Pcg32& r
         const Imath::V3f dir = cos_sun_radius_ < 1.0f
                                    ? sample_cone(bin.direction, cos_sun_radius_, u0, u1)
                                    : bin.direction;
-        if (visible(s, dir))
-            direct += facing;
+        add(dir, facing, true);
     }
 
     // Sky: one ray per cell, uniform within the cell (stratified over the hemisphere).
-    double sky = 0.0;
     const int res = sky_.sky_resolution;
     for (int i = 0; i < res; ++i)
         for (int j = 0; j < res; ++j) {
@@ -107,9 +113,15 @@ void ExposureBaker::evaluate(const SurfaceSample& s, size_t group_size, Pcg32& r
                 continue;
             const Imath::V3f dir(static_cast<float>(w.x), static_cast<float>(w.y),
                                  static_cast<float>(w.z));
-            if (visible(s, dir))
-                sky += radiance_time * cos_n * sky_.cell_solid_angle;
+            add(dir, radiance_time * cos_n * sky_.cell_solid_angle, false);
         }
+
+    visible.resize(rays.size());
+    scene_.trace_shadow_rays(rays, visible);
+    double direct = 0.0, sky = 0.0;
+    for (size_t r = 0; r < rays.size(); ++r)
+        if (visible[r])
+            (is_sun[r] ? direct : sky) += weights[r];
 
     out[0] = static_cast<float>((direct + sky) * scale_);
     if (options_.components) {

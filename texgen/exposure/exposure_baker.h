@@ -44,8 +44,6 @@ public:
                   float* out) const override;
 
 private:
-    bool visible(const SurfaceSample& s, const Imath::V3f& dir) const;
-
     const EmbreeScene& scene_;
     const ExposureSky& sky_;
     ExposureOptions options_;
