@@ -19,27 +19,16 @@
 #include <cstring>
 #include <sstream>
 
+#include "texgen/spa_example_site.h"
+
 namespace pt = patina::texgen;
 
 namespace {
 
-// Golden, CO (the SPA report's site).
-pt::SolarSite golden()
-{
-    pt::SolarSite site;
-    site.latitude_deg = 39.742476;
-    site.longitude_deg = -105.1786;
-    site.elevation_m = 1830.14;
-    site.pressure_mbar = 820.0;
-    site.temperature_c = 11.0;
-    site.delta_t_s = 67.0;
-    return site;
-}
-
 pt::ClearSkyPeriodOptions clear_period(const char* start, const char* end, double step = 10.0)
 {
     pt::ClearSkyPeriodOptions o;
-    o.site = golden();
+    o.site = patina::test::spa_example_site();
     o.timezone_hours = -7.0;
     o.start = pt::parse_date_time(start, "start");
     o.end = pt::parse_date_time(end, "end");

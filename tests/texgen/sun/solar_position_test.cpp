@@ -8,25 +8,15 @@
 
 #include <cmath>
 
+#include "texgen/spa_example_site.h"
+
 namespace pt = patina::texgen;
+using patina::test::spa_example_site;
 
 namespace {
 
 // Reda & Andreas 2004 (NREL/TP-560-34302, rev. 2008), Table A5.1 input: 2003-10-17
 // 12:30:30 local time, time zone -7, delta T 67 s, Golden CO.
-pt::SolarSite spa_example_site()
-{
-    pt::SolarSite site;
-    site.latitude_deg = 39.742476;
-    site.longitude_deg = -105.1786;
-    site.elevation_m = 1830.14;
-    site.pressure_mbar = 820.0;
-    site.temperature_c = 11.0;
-    site.delta_t_s = 67.0;
-    site.atmospheric_refraction_deg = 0.5667;
-    return site;
-}
-
 pt::SolarPosition spa_example()
 {
     const pt::DateTime local = pt::parse_date_time("2003-10-17T12:30:30", "test");
