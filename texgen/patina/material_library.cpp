@@ -1,0 +1,267 @@
+#include "texgen/patina/material_library.h"
+
+#include "core/kubelka_munk.h"
+
+#include <fmt/format.h>
+#include <toml++/toml.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <stdexcept>
+
+namespace patina::texgen {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+    std::string where(const fs::path& file, const toml::node& node)
+    {
+        const toml::source_region& region = node.source();
+        if (!region.begin)
+            return file.string();
+        return fmt::format("{}:{}:{}", file.string(), region.begin.line, region.begin.column);
+    }
+
+    [[noreturn]] void fail(const fs::path& file, const toml::node& node, const std::string& what)
+    {
+        throw std::runtime_error(fmt::format("{}: {}", where(file, node), what));
+    }
+
+    double number_of(const fs::path& file, const toml::node& node, const std::string& key)
+    {
+        if (const auto v = node.value<double>())
+            return *v;
+        fail(file, node, fmt::format("'{}' must be a number", key));
+    }
+
+    Imath::V3f triple_of(const fs::path& file, const toml::node& node, const std::string& key)
+    {
+        const toml::array* a = node.as_array();
+        if (!a || a->size() != 3)
+            fail(file, node, fmt::format("'{}' must be an array of 3 numbers", key));
+        Imath::V3f v;
+        for (int c = 0; c < 3; ++c)
+            v[c] = static_cast<float>(number_of(file, *a->get(c), key));
+        return v;
+    }
+
+    // The keys a material table may hold; anything else is a typo.
+    const std::set<std::string> kMaterialKeys = {"kind", "names", "color", "color_space",
+                                                 "scattering", "mixture", "roughness",
+                                                 "specular", "description"};
+
+}  // namespace
+
+void MaterialLibrary::load(const fs::path& file, const ColorManager& colors)
+{
+    toml::table root;
+    try {
+        root = toml::parse_file(file.string());
+    } catch (const toml::parse_error& e) {
+        const auto& b = e.source().begin;
+        throw std::runtime_error(
+            fmt::format("{}:{}:{}: {}", file.string(), b.line, b.column, e.description()));
+    }
+    for (const auto& [key, node] : root)
+        if (key.str() != "library" && key.str() != "materials")
+            fail(file, node, fmt::format("unknown table '{}' (expected [library] and "
+                                         "[materials.<name>])", key.str()));
+    const toml::table* table = root["materials"].as_table();
+    if (!table)
+        throw std::runtime_error(fmt::format("{}: no [materials.<name>] tables", file.string()));
+
+    // Plain materials first, so that mixtures may name materials defined after them.
+    std::vector<std::pair<std::string, const toml::table*>> plain, mixtures;
+    for (const auto& [key, node] : *table) {
+        const toml::table* m = node.as_table();
+        if (!m)
+            fail(file, node, fmt::format("materials.{} must be a table", key.str()));
+        (m->contains("mixture") ? mixtures : plain).emplace_back(std::string(key.str()), m);
+    }
+
+    auto add_name = [&](const std::string& name, size_t index, const toml::node& node) {
+        if (by_name_.count(name))
+            fail(file, node, fmt::format("material name '{}' is already defined (in {})", name,
+                                         materials_[by_name_.at(name)].file.string()));
+        by_name_[name] = index;
+    };
+
+    auto define = [&](const std::string& name, const toml::table& m, bool mixture) {
+        for (const auto& [k, v] : m)
+            if (!kMaterialKeys.count(std::string(k.str())))
+                fail(file, v, fmt::format("material '{}': unknown key '{}' (known: kind, "
+                                          "names, color, color_space, scattering, mixture, "
+                                          "roughness, specular, description)",
+                                          name, k.str()));
+        PatinaMaterial mat;
+        mat.name = name;
+        mat.file = file;
+        if (const toml::node* kind = m.get("kind")) {
+            const auto s = kind->value<std::string>();
+            if (!s || (*s != "metal" && *s != "layer"))
+                fail(file, *kind, fmt::format("material '{}': kind must be \"metal\" or "
+                                              "\"layer\"", name));
+            mat.is_metal = *s == "metal";
+        }
+        if (const toml::node* names = m.get("names")) {
+            const toml::array* a = names->as_array();
+            if (!a)
+                fail(file, *names, "'names' must be an array of strings");
+            for (const toml::node& n : *a) {
+                const auto s = n.value<std::string>();
+                if (!s || s->empty())
+                    fail(file, n, "'names' must be an array of non-empty strings");
+                mat.aliases.push_back(*s);
+            }
+        }
+        if (const toml::node* d = m.get("description"))
+            mat.description = d->value<std::string>().value_or("");
+        if (const toml::node* r = m.get("roughness")) {
+            mat.roughness = static_cast<float>(number_of(file, *r, "roughness"));
+            if (!(mat.roughness > 0.0f && mat.roughness <= 1.0f))
+                fail(file, *r, fmt::format("material '{}': roughness must be in (0, 1]", name));
+        }
+        if (const toml::node* s = m.get("specular"))
+            mat.specular = triple_of(file, *s, "specular");
+
+        if (mixture) {
+            // Duncan's rule: K and S of a mixture are the volume-weighted sums.
+            const toml::node* mix_node = m.get("mixture");
+            const toml::table* mix = mix_node->as_table();
+            if (!mix || mix->empty())
+                fail(file, *mix_node, "'mixture' must be a table of material = fraction");
+            if (m.contains("color") || m.contains("scattering") || mat.is_metal)
+                fail(file, *mix_node, fmt::format("material '{}': a mixture takes its colour "
+                                                  "and scattering from its components", name));
+            double sum = 0.0;
+            Imath::V3f K(0.0f), S(0.0f);
+            for (const auto& [component, fraction_node] : *mix) {
+                const PatinaMaterial* c = find(std::string(component.str()));
+                if (!c)
+                    fail(file, fraction_node, fmt::format("material '{}': mixture names "
+                                                          "unknown material '{}'",
+                                                          name, component.str()));
+                if (c->is_metal)
+                    fail(file, fraction_node, fmt::format("material '{}': a mixture cannot "
+                                                          "hold the metal '{}'",
+                                                          name, component.str()));
+                const double f = number_of(file, fraction_node, "mixture fraction");
+                if (!(f > 0.0 && f <= 1.0))
+                    fail(file, fraction_node, "a mixture fraction must be in (0, 1]");
+                sum += f;
+                K += c->absorption * static_cast<float>(f);
+                S += c->scattering * static_cast<float>(f);
+            }
+            if (std::abs(sum - 1.0) > 1e-3)
+                fail(file, *mix_node, fmt::format("material '{}': mixture fractions sum to {} "
+                                                  "(must be 1)", name, sum));
+            mat.absorption = K;
+            mat.scattering = S;
+            for (int c = 0; c < 3; ++c)
+                mat.color[c] = km_r_infinity(K[c] / S[c]);
+        } else {
+            const toml::node* color = m.get("color");
+            if (!color)
+                fail(file, m, fmt::format("material '{}' has no 'color' (R_inf, or a metal's "
+                                          "reflectance) and no 'mixture'", name));
+            Imath::V3f c = triple_of(file, *color, "color");
+            for (int i = 0; i < 3; ++i)
+                if (!(c[i] > 0.0f && c[i] <= 1.0f))
+                    fail(file, *color, fmt::format("material '{}': colour components must be in "
+                                                   "(0, 1]", name));
+            std::string space = "srgb_texture";
+            if (const toml::node* cs = m.get("color_space"))
+                space = cs->value<std::string>().value_or("");
+            try {
+                colors.convert(space, "lin_rec709", &c.x, 1);
+            } catch (const std::exception& e) {
+                fail(file, m.get("color_space") ? *m.get("color_space") : *color, e.what());
+            }
+            // Keep R_inf inside (0, 1): K/S is infinite at 0 and 0 at 1.
+            for (int i = 0; i < 3; ++i)
+                c[i] = std::clamp(c[i], 1e-4f, 0.9999f);
+            mat.color = c;
+            if (!mat.is_metal) {
+                const toml::node* s = m.get("scattering");
+                if (!s)
+                    fail(file, m, fmt::format("material '{}' has no 'scattering' (S, 1/µm)",
+                                              name));
+                const float S = static_cast<float>(number_of(file, *s, "scattering"));
+                if (!(S > 0.0f) || !std::isfinite(S))
+                    fail(file, *s, fmt::format("material '{}': scattering must be positive",
+                                               name));
+                mat.scattering = Imath::V3f(S);
+                // K/S from R_inf (D&H 1996 §4.1), with the assumed S.
+                for (int i = 0; i < 3; ++i)
+                    mat.absorption[i] = km_k_over_s(c[i]) * S;
+            }
+        }
+        const size_t index = materials_.size();
+        add_name(name, index, m);
+        for (const std::string& alias : mat.aliases)
+            add_name(alias, index, m);
+        materials_.push_back(std::move(mat));
+    };
+
+    for (const auto& [name, m] : plain)
+        define(name, *m, false);
+    for (const auto& [name, m] : mixtures)
+        define(name, *m, true);
+}
+
+const PatinaMaterial* MaterialLibrary::find(const std::string& name) const
+{
+    const auto it = by_name_.find(name);
+    return it == by_name_.end() ? nullptr : &materials_[it->second];
+}
+
+const PatinaMaterial& MaterialLibrary::at(const std::string& name) const
+{
+    if (const PatinaMaterial* m = find(name))
+        return *m;
+    throw std::runtime_error(fmt::format("unknown material '{}'", name));
+}
+
+std::set<std::string> MaterialLibrary::names() const
+{
+    std::set<std::string> out;
+    for (const auto& [name, index] : by_name_)
+        out.insert(name);
+    return out;
+}
+
+std::vector<fs::path> MaterialLibrary::default_files()
+{
+    std::vector<fs::path> dirs;
+    if (const char* env = std::getenv("PATINA_SHADER_PATH"); env && *env) {
+        std::string s(env);
+        size_t start = 0;
+        while (start <= s.size()) {
+            const size_t end = std::min(s.find(':', start), s.size());
+            if (end > start)
+                dirs.push_back(fs::path(s.substr(start, end - start)) / "patina");
+            start = end + 1;
+        }
+    }
+    std::error_code ec;
+    const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+    if (!ec)
+        dirs.push_back((exe.parent_path() / ".." / "share" / "patina" / "shaders" / "patina")
+                           .lexically_normal());
+    std::vector<fs::path> files;
+    for (const fs::path& dir : dirs) {
+        if (!fs::is_directory(dir, ec))
+            continue;
+        std::vector<fs::path> here;
+        for (const auto& entry : fs::directory_iterator(dir, ec))
+            if (entry.path().extension() == ".toml")
+                here.push_back(entry.path());
+        std::sort(here.begin(), here.end());
+        files.insert(files.end(), here.begin(), here.end());
+    }
+    return files;
+}
+
+}  // namespace patina::texgen

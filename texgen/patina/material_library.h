@@ -1,0 +1,65 @@
+// The layer materials a patina script names (`new copper`, `coat marine patina 3 ...`):
+// TOML files in the shader library (shaders/patina/*.toml). Each material is given the way
+// Dorsey & Hanrahan 1996 give theirs (§4.1): the colour of an optically thick layer R_inf,
+// an assumed backscattering S, and K from K/S = (1 - R_inf)^2 / (2 R_inf); a mixture mixes
+// K and S of its components by volume fraction. The file format is described at the top of
+// shaders/patina/copper.toml and in the README.
+#pragma once
+
+#include "core/color_management.h"
+
+#include <Imath/ImathVec.h>
+
+#include <filesystem>
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace patina::texgen {
+
+struct PatinaMaterial {
+    std::string name;                 ///< canonical name (the TOML key)
+    std::vector<std::string> aliases; ///< other names scripts may use ("tarnish 1")
+    bool is_metal = false;            ///< a base metal: opaque, reflects `color`
+    /// Linear Rec.709: R_inf of a thick layer, or a metal's normal-incidence reflectance.
+    Imath::V3f color{0.5f};
+    /// KM absorption and backscattering per µm, per linear Rec.709 channel (0 for metals).
+    Imath::V3f absorption{0.0f};
+    Imath::V3f scattering{0.0f};
+    float roughness = 0.5f;
+    Imath::V3f specular{0.04f};       ///< linear normal-incidence specular colour
+    std::string description;
+    std::filesystem::path file;       ///< where it was defined
+};
+
+class MaterialLibrary {
+public:
+    MaterialLibrary() = default;
+
+    /// Add every material of a library file. Colours are converted to linear Rec.709 with
+    /// `colors` (OCIO) from their `color_space` (default "srgb_texture"). Throws
+    /// std::runtime_error naming the file and the key for: a TOML syntax error (with its
+    /// line), an unknown key, a colour outside (0, 1], a negative or missing scattering, a
+    /// mixture naming an unknown material or fractions not summing to 1 (within 1e-3), a
+    /// name already defined (in this or an earlier file).
+    void load(const std::filesystem::path& file, const ColorManager& colors);
+
+    /// The material a name or alias denotes, or nullptr.
+    const PatinaMaterial* find(const std::string& name) const;
+    const PatinaMaterial& at(const std::string& name) const;
+    /// Every name and alias, for the script parser and its "did you mean" messages.
+    std::set<std::string> names() const;
+    const std::vector<PatinaMaterial>& materials() const { return materials_; }
+
+    /// The library files found by default: every *.toml of `patina/` under each directory
+    /// of $PATINA_SHADER_PATH (colon-separated), then the shipped
+    /// `<exe>/../share/patina/shaders/patina/`; sorted by name within a directory.
+    static std::vector<std::filesystem::path> default_files();
+
+private:
+    std::vector<PatinaMaterial> materials_;
+    std::map<std::string, size_t> by_name_;
+};
+
+}  // namespace patina::texgen
