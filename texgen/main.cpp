@@ -25,6 +25,7 @@ int main(int argc, char** argv)
     pt::register_exposure_command(app);
     pt::register_wetness_command(app);
     pt::register_deposit_command(app);
+    pt::register_patina_command(app);
 
     patina::install_cancel_handler();
     try {

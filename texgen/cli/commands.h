@@ -14,5 +14,6 @@ void register_sun_command(CLI::App& app);
 void register_exposure_command(CLI::App& app);
 void register_wetness_command(CLI::App& app);
 void register_deposit_command(CLI::App& app);
+void register_patina_command(CLI::App& app);
 
 }  // namespace patina::texgen

@@ -1,0 +1,214 @@
+// `patina-texgen patina SCRIPT`: runs a patina script (Dorsey & Hanrahan 1996 §3, §5) on a
+// mesh's texels or on a flat strip and writes a thickness stack per time step.
+#include "texgen/cli/commands.h"
+
+#include "core/cancel.h"
+#include "core/color_management.h"
+#include "core/progress.h"
+#include "texgen/patina/interpreter.h"
+#include "texgen/patina/material_library.h"
+#include "texgen/patina/script_parser.h"
+#include "texgen/patina/stack_writer.h"
+#include "texgen/texels/mesh_merge.h"
+
+#include <fmt/format.h>
+#include <tbb/global_control.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <optional>
+#include <sstream>
+
+namespace patina::texgen {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct PatinaOptions {
+    fs::path script;
+    fs::path mesh;
+    fs::path out_dir = "patina";
+    std::vector<double> times{30.0};
+    double end_time = 0;
+    int width = 0, height = 0;  // 0: 512 for a strip, 1024 for a mesh
+    double strip_size = 0.1;
+    int supersampling = 2;
+    uint64_t seed = 1;
+    int threads = 0;
+    std::vector<fs::path> materials;
+    int padding = 16;
+    bool half = false;
+    bool no_preview = false;
+    bool quiet = false;
+};
+
+/// "t06" for 6 of a series that reaches 30: times padded to the same width, decimals kept
+/// only when a time has them.
+std::string step_folder(double t, double last)
+{
+    const int digits = static_cast<int>(std::to_string(static_cast<long long>(last)).size());
+    if (t == std::floor(t))
+        return fmt::format("t{:0{}}", static_cast<long long>(t), digits);
+    return fmt::format("t{:0{}.3f}", t, digits + 4);
+}
+
+void run_patina(const PatinaOptions& o)
+{
+    std::optional<tbb::global_control> threads;
+    if (o.threads > 0)
+        threads.emplace(tbb::global_control::max_allowed_parallelism, o.threads);
+    const auto start = std::chrono::steady_clock::now();
+
+    ColorManager colors(ColorManager::default_config_path());
+    MaterialLibrary library;
+    std::vector<fs::path> library_files = MaterialLibrary::default_files();
+    library_files.insert(library_files.end(), o.materials.begin(), o.materials.end());
+    if (library_files.empty())
+        throw std::runtime_error("no material library: none found under $PATINA_SHADER_PATH or "
+                                 "<exe>/../share/patina/shaders/patina; pass --materials FILE");
+    for (const fs::path& f : library_files)
+        library.load(f, colors);
+
+    const Script script = parse_script_file(o.script, library.names());
+
+    TriangleMesh mesh;
+    PatinaDomain domain;
+    if (!o.mesh.empty()) {
+        mesh = load_merged_mesh(o.mesh);
+        RasterOptions raster;
+        raster.width = o.width > 0 ? o.width : 1024;
+        raster.height = o.height > 0 ? o.height : raster.width;
+        raster.supersampling = o.supersampling;
+        domain = make_mesh_domain(mesh, raster);
+    } else {
+        const int w = o.width > 0 ? o.width : 512;
+        domain = make_strip_domain(w, o.height > 0 ? o.height : w, o.strip_size);
+    }
+
+    InterpreterOptions run;
+    run.times_years = o.times;
+    run.end_time_years = o.end_time;
+    run.seed = o.seed;
+    run.script_dir = o.script.parent_path();
+    Progress progress(patina_work_units(script, run), o.quiet, "patina");
+    run.progress = &progress;
+    const std::vector<PatinaStep> steps = run_patina_script(script, library, domain, run);
+    progress.finish();
+
+    PatinaOutputOptions out;
+    out.maps.padding = o.padding;
+    out.maps.format = o.half ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT;
+    out.preview = !o.no_preview;
+    out.script = o.script.filename().string();
+    out.parameters = {{"patina:script", o.script.filename().string()},
+                      {"patina:seed", static_cast<int>(o.seed)},
+                      {"patina:end_time_years",
+                       static_cast<float>(o.end_time > 0 ? o.end_time : o.times.back())},
+                      {"patina:domain", o.mesh.empty() ? std::string("strip")
+                                                       : o.mesh.filename().string()}};
+    if (o.mesh.empty())
+        out.parameters.emplace_back("patina:strip_size_m", static_cast<float>(o.strip_size));
+
+    const bool series = steps.size() > 1;
+    std::ostringstream series_toml;
+    series_toml << "# The time series written by patina-texgen patina: one stack per step.\n"
+                << "[series]\nscript = \"" << out.script << "\"\nsteps = [";
+    for (size_t k = 0; k < steps.size(); ++k) {
+        throw_if_cancelled();
+        const fs::path dir =
+            series ? o.out_dir / step_folder(steps[k].time_years, steps.back().time_years)
+                   : o.out_dir;
+        write_patina_step(dir, steps[k], domain, out, colors);
+        if (series)
+            series_toml << (k ? ", " : "") << "{ time_years = " << steps[k].time_years
+                        << ", folder = \"" << dir.filename().string() << "\" }";
+    }
+    series_toml << "]\n";
+    if (series)
+        write_file_atomic(o.out_dir / "series.toml", {series_toml.str()}, "series manifest");
+
+    if (!o.quiet) {
+        const double seconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        const PatinaStep& last = steps.back();
+        std::fprintf(stderr, "patina: %s, %zu nodes, %zu step(s), %zu layer(s) over %s -> %s "
+                             "(%.2f s)\n",
+                     out.script.c_str(), domain.size(), steps.size(), last.layers.size(),
+                     last.base->name.c_str(), o.out_dir.string().c_str(), seconds);
+    }
+}
+
+std::vector<double> parse_times(const std::string& text)
+{
+    std::vector<double> times;
+    std::stringstream in(text);
+    std::string item;
+    while (std::getline(in, item, ',')) {
+        size_t used = 0;
+        double v = 0;
+        try {
+            v = std::stod(item, &used);
+        } catch (const std::exception&) {
+            used = 0;
+        }
+        if (used == 0 || used != item.size() || !std::isfinite(v) || v < 0)
+            throw std::runtime_error(fmt::format("--times: '{}' is not a time in years >= 0 "
+                                                 "(expected e.g. 0,6,12,18,24,30)", item));
+        if (!times.empty() && !(v > times.back()))
+            throw std::runtime_error(fmt::format("--times must ascend ({} after {})", v,
+                                                 times.back()));
+        times.push_back(v);
+    }
+    if (times.empty())
+        throw std::runtime_error("--times: no times given");
+    return times;
+}
+
+}  // namespace
+
+void register_patina_command(CLI::App& app)
+{
+    auto o = std::make_shared<PatinaOptions>();
+    auto times_text = std::make_shared<std::string>();
+    CLI::App* cmd = app.add_subcommand(
+        "patina", "run a patina script (Dorsey & Hanrahan 1996: new, coat, erode, fill, polish, "
+                  "offset, growth models) on a mesh or a flat strip; writes a thickness stack "
+                  "per time step");
+    cmd->add_option("script", o->script, "the .patina script")->required()
+        ->check(CLI::ExistingFile);
+    cmd->add_option("--mesh", o->mesh, "the uv-mapped mesh (any Assimp format); without it, "
+                                       "a flat strip")->check(CLI::ExistingFile);
+    cmd->add_option("-o,--out", o->out_dir, "output folder (a stack, or one per time step)")
+        ->capture_default_str();
+    cmd->add_option("--times", *times_text,
+                    "years to compute, ascending, e.g. 0,6,12,18,24,30 (default 30); the script "
+                    "describes the last one");
+    cmd->add_option("--end-time", o->end_time, "years the script describes (default: the last "
+                                               "of --times)")->check(CLI::PositiveNumber);
+    cmd->add_option("--resolution", o->width, "texels per side (strip default 512, mesh 1024)")
+        ->check(CLI::Range(8, 16384));
+    cmd->add_option("--strip-size", o->strip_size, "width of the strip in metres")
+        ->capture_default_str()->check(CLI::PositiveNumber);
+    cmd->add_option("--supersampling", o->supersampling, "sub-samples per texel side (mesh)")
+        ->capture_default_str()->check(CLI::Range(1, 8));
+    cmd->add_option("--seed", o->seed, "random seed of the growth models")->capture_default_str();
+    cmd->add_option("--threads", o->threads, "worker threads (0: all cores)")
+        ->capture_default_str()->check(CLI::NonNegativeNumber);
+    cmd->add_option("--materials", o->materials, "more material library files (TOML)")
+        ->check(CLI::ExistingFile);
+    cmd->add_option("--padding", o->padding, "texels of push-pull padding (-1: all)")
+        ->capture_default_str();
+    cmd->add_flag("--half", o->half, "write half-float maps");
+    cmd->add_flag("--no-preview", o->no_preview, "skip the preview PNG");
+    cmd->add_flag("-q,--quiet", o->quiet, "no progress");
+    cmd->callback([o, times_text] {
+        if (!times_text->empty())
+            o->times = parse_times(*times_text);
+        run_patina(*o);
+    });
+}
+
+}  // namespace patina::texgen

@@ -1,0 +1,199 @@
+#include "texgen/patina/stack_writer.h"
+
+#include "core/image_io.h"
+#include "texgen/patina/stack_preview.h"
+#include "texgen/stack/manifest.h"
+
+#include <fmt/format.h>
+#include <toml++/toml.h>
+
+#include <algorithm>
+#include <cctype>
+#include <sstream>
+
+namespace patina::texgen {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+    constexpr const char* kBaker = "patina";
+
+    std::string slug(const std::string& name)
+    {
+        std::string s;
+        for (char c : name)
+            s += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
+        return s;
+    }
+
+    /// Drop the entries (and files) of an earlier patina run from the manifest, so that a
+    /// stack of fewer layers does not list stale ones.
+    void forget_earlier_run(const fs::path& out_dir)
+    {
+        const fs::path path = manifest_path(out_dir);
+        std::error_code ec;
+        if (!fs::exists(path, ec))
+            return;
+        toml::table root;
+        try {
+            root = toml::parse_file(path.string());
+        } catch (const toml::parse_error& e) {
+            throw std::runtime_error(fmt::format("cannot update manifest {}:{}:{}: {} (fix or "
+                                                 "remove the file; it was left unchanged)",
+                                                 path.string(), e.source().begin.line,
+                                                 e.source().begin.column, e.description()));
+        }
+        bool changed = root.erase("patina") > 0;
+        if (toml::table* maps = root["maps"].as_table()) {
+            std::vector<std::string> stale;
+            for (const auto& [name, entry] : *maps)
+                if (const toml::table* t = entry.as_table();
+                    t && t->get("baker") && t->get("baker")->value<std::string>() == kBaker)
+                    stale.emplace_back(name.str());
+            for (const std::string& name : stale) {
+                if (const auto* file = (*maps)[name]["file"].as_string())
+                    fs::remove(out_dir / file->get(), ec);
+                maps->erase(name);
+                changed = true;
+            }
+        }
+        if (!changed)
+            return;
+        std::ostringstream text;
+        text << root << "\n";
+        write_file_atomic(path, {text.str()}, "manifest");
+    }
+
+    struct LayerStats {
+        double mean = 0, max = 0, coverage = 0;
+    };
+
+    LayerStats stats_of(const std::vector<float>& t, const std::vector<float>& weight)
+    {
+        LayerStats s;
+        double w_sum = 0;
+        for (size_t i = 0; i < t.size(); ++i) {
+            w_sum += weight[i];
+            s.mean += weight[i] * t[i];
+            s.max = std::max(s.max, static_cast<double>(t[i]));
+            if (t[i] > 0.0f)
+                s.coverage += weight[i];
+        }
+        if (w_sum > 0) {
+            s.mean /= w_sum;
+            s.coverage /= w_sum;
+        }
+        return s;
+    }
+
+    /// The stack's own table in stack.toml, after its maps were recorded.
+    void record_patina_table(const fs::path& out_dir, const PatinaStep& step,
+                             const PatinaDomain& domain, const PatinaOutputOptions& options,
+                             const std::vector<std::string>& layer_maps)
+    {
+        const fs::path path = manifest_path(out_dir);
+        toml::table root = toml::parse_file(path.string());
+        toml::table patina;
+        patina.insert_or_assign("script", options.script);
+        patina.insert_or_assign("time_years", step.time_years);
+        patina.insert_or_assign("base", step.base->name);
+        patina.insert_or_assign("thickness_units", "um");
+        patina.insert_or_assign("total_thickness", "total_thickness");
+        if (options.preview)
+            patina.insert_or_assign("preview", "preview.png");
+        toml::array layers;
+        for (size_t l = 0; l < step.layers.size(); ++l) {
+            const ResultLayer& layer = step.layers[l];
+            const LayerStats s = stats_of(layer.thickness_um, domain.area_weight);
+            toml::table entry;
+            entry.insert_or_assign("material", layer.material->name);
+            entry.insert_or_assign("map", layer_maps[l]);
+            entry.insert_or_assign("made_by", layer.made_by);
+            entry.insert_or_assign("mean_um", s.mean);
+            entry.insert_or_assign("max_um", s.max);
+            entry.insert_or_assign("coverage", s.coverage);
+            layers.push_back(std::move(entry));
+        }
+        patina.insert_or_assign("layers", std::move(layers));
+        root.insert_or_assign("patina", std::move(patina));
+        std::ostringstream text;
+        text << "# Written by patina-texgen. [patina] lists the layers bottom to top (the base,\n"
+                "# infinitely thick, first); thicknesses are in micrometres.\n"
+             << root << "\n";
+        write_file_atomic(path, {text.str()}, "manifest");
+    }
+
+}  // namespace
+
+std::string layer_map_name(size_t index, const PatinaMaterial& material)
+{
+    return fmt::format("layer{:02}_{}", index, slug(material.name));
+}
+
+std::vector<fs::path> write_patina_step(const fs::path& out_dir, const PatinaStep& step,
+                                        const PatinaDomain& domain,
+                                        const PatinaOutputOptions& options,
+                                        const ColorManager& colors)
+{
+    fs::create_directories(out_dir);
+    forget_earlier_run(out_dir);
+    std::vector<fs::path> written;
+    Metadata parameters = options.parameters;
+    parameters.emplace_back("patina:time_years", static_cast<float>(step.time_years));
+
+    auto write_map = [&](const std::string& name, const std::string& description,
+                         const std::vector<float>& values) {
+        MapDescription map;
+        map.name = name;
+        map.channels = {"thickness"};
+        map.units = "um";
+        map.description = description;
+        map.baker = kBaker;
+        map.parameters = parameters;
+        const auto files = write_texel_map(out_dir, map, domain.grids, domain.per_tile(values),
+                                           options.maps);
+        record_in_manifest(out_dir, map, files, domain.grids);
+        written.insert(written.end(), files.begin(), files.end());
+    };
+
+    std::vector<std::string> layer_maps;
+    for (size_t l = 0; l < step.layers.size(); ++l) {
+        const ResultLayer& layer = step.layers[l];
+        layer_maps.push_back(layer_map_name(l + 1, *layer.material));
+        write_map(layer_maps.back(),
+                  fmt::format("thickness of layer {} ({}, {}) in micrometres", l + 1,
+                              layer.material->name, layer.made_by),
+                  layer.thickness_um);
+    }
+    write_map("total_thickness",
+              "total thickness of the layers over the base in micrometres (for displacement or "
+              "bump, D&H 1996 §4.3)",
+              step.total_um);
+    record_patina_table(out_dir, step, domain, options, layer_maps);
+    written.push_back(manifest_path(out_dir));
+
+    if (options.preview) {
+        // The preview shows the first tile as an image: each texel's KM colour.
+        std::vector<PreviewLayer> layers;
+        for (const ResultLayer& layer : step.layers)
+            layers.push_back({layer.material, layer.thickness_um});
+        const std::vector<Imath::V3f> node_colors =
+            stack_diffuse_color(*step.base, layers, domain.size());
+        const TexelGrid& grid = domain.grids.front();
+        std::vector<Imath::V3f> image(grid.texel_count());
+        std::vector<uint8_t> covered(grid.texel_count(), 0);
+        for (size_t t = 0; t < grid.texel_count(); ++t) {
+            if (const int32_t g = grid.group_of_texel[t]; g >= 0) {
+                image[t] = node_colors[g];
+                covered[t] = 1;
+            }
+        }
+        const fs::path png = out_dir / "preview.png";
+        write_preview_png(png, image, grid.width, grid.height, covered, colors);
+        written.push_back(png);
+    }
+    return written;
+}
+
+}  // namespace patina::texgen
