@@ -49,7 +49,9 @@ std::vector<std::string> closest_names(std::string_view word,
     std::vector<std::string> closest;
     for (const std::string& candidate : candidates) {
         const int distance = edit_distance(word, candidate);
-        if (distance > best)
+        // A complete rewrite ('a' for 't') is no suggestion.
+        const int longest = static_cast<int>(std::max(word.size(), candidate.size()));
+        if (distance > best || distance >= longest)
             continue;
         if (distance < best) {
             best = distance;

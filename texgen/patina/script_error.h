@@ -46,8 +46,9 @@ private:
 int edit_distance(std::string_view a, std::string_view b);
 
 /// The candidates closest to `word` by edit_distance, if that distance is at most
-/// max(|word|, 3) / 3 (the bound rustc uses): all candidates at the smallest distance, in
-/// the order given. Empty if nothing is that close.
+/// max(|word|, 3) / 3 (the bound rustc uses) and less than the longer name's length (so 'a'
+/// does not suggest 't'): all candidates at the smallest distance, in the order given.
+/// Empty if nothing is that close.
 std::vector<std::string> closest_names(std::string_view word,
                                        std::span<const std::string> candidates);
 

@@ -37,9 +37,34 @@ struct Token {
     SourceLocation location;  ///< of the token's first character
 };
 
-/// Split `text` into tokens, ending with one End token. Throws ScriptError
-/// "FILE:LINE:COL: error: ..." for a character that starts no token, a bad number ("1.2.3",
-/// "10x") and a string that is not closed on its line.
+/// Reads the tokens of a script one at a time, so that the parser meets an error in the
+/// order of the text: a bad character late in a line does not hide a syntax error before it.
+class Lexer {
+public:
+    /// `text` must outlive the lexer; `file_name` names it in messages.
+    Lexer(std::string_view text, std::string file_name);
+
+    /// The next token; End at the end of the text, and again on every later call. Throws
+    /// ScriptError "FILE:LINE:COL: error: ..." for a character that starts no token, a bad
+    /// number ("1.2.3", "10x") and a string that is not closed on its line.
+    Token next();
+
+private:
+    bool done() const { return pos_ >= text_.size(); }
+    char peek(size_t ahead = 0) const;
+    char advance();
+    SourceLocation location() const { return {line_, column_}; }
+    Token lex_number();
+    Token lex_string();
+
+    std::string_view text_;
+    std::string file_name_;
+    size_t pos_ = 0;
+    int line_ = 1;
+    int column_ = 1;
+};
+
+/// All the tokens of `text`, ending with one End token (Lexer::next until End).
 std::vector<Token> tokenize(std::string_view text, const std::string& file_name);
 
 /// How a token is named in a message: "'coat'", "';'", "string \"a.exr\"", "end of line",

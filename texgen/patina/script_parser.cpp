@@ -4,6 +4,7 @@
 #include "texgen/patina/script_names.h"
 
 #include <algorithm>
+#include <deque>
 #include <fstream>
 #include <map>
 #include <optional>
@@ -46,9 +47,9 @@ const char* kind_name(NameKind kind)
 
 class Parser {
 public:
-    Parser(std::vector<Token> tokens, const std::string& file_name,
+    Parser(std::string_view text, const std::string& file_name,
            const std::set<std::string>& material_names)
-        : tokens_(std::move(tokens)), file_name_(file_name), materials_(material_names),
+        : lexer_(text, file_name), file_name_(file_name), materials_(material_names),
           material_list_(material_names.begin(), material_names.end())
     {
     }
@@ -79,19 +80,31 @@ public:
 private:
     // --- Tokens ----------------------------------------------------------------------------
 
+    // Token i of the script, read from the lexer when first needed (so that errors come in
+    // the order of the text); the End token for every i past the end.
+    const Token& token_at(size_t i)
+    {
+        while (tokens_.size() <= i) {
+            if (!tokens_.empty() && tokens_.back().kind == TokenKind::End)
+                return tokens_.back();
+            tokens_.push_back(lexer_.next());
+        }
+        return tokens_[i];
+    }
+
     // The next token; inside parentheses line breaks are skipped (a statement continues).
     const Token& peek()
     {
-        while (depth_ > 0 && tokens_[pos_].kind == TokenKind::Newline)
+        while (depth_ > 0 && token_at(pos_).kind == TokenKind::Newline)
             ++pos_;
-        return tokens_[pos_];
+        return token_at(pos_);
     }
 
     // The token after peek(), without skipping line breaks.
     const Token& peek_second()
     {
         peek();
-        return tokens_[std::min(pos_ + 1, tokens_.size() - 1)];
+        return token_at(pos_ + 1);
     }
 
     Token next()
@@ -122,7 +135,11 @@ private:
         if (token.kind == TokenKind::RightParen && depth_ == 0)
             fail(token.location, "unbalanced parenthesis: ')' without a matching '('");
         std::string message = "expected " + expected + ", found " + describe(token);
-        if (token.kind == TokenKind::Newline)
+        // A line that ends in an operator was probably meant to go on.
+        const TokenKind previous = pos_ > 0 ? tokens_[pos_ - 1].kind : TokenKind::End;
+        if (token.kind == TokenKind::Newline &&
+            (previous == TokenKind::Plus || previous == TokenKind::Minus ||
+             previous == TokenKind::Star || previous == TokenKind::Slash))
             message += " (a statement ends at the end of its line; wrap a long expression in "
                        "parentheses to continue it)";
         fail(token.location, message);
@@ -681,7 +698,8 @@ private:
         return expr;
     }
 
-    std::vector<Token> tokens_;
+    Lexer lexer_;
+    std::deque<Token> tokens_;  // read so far; a deque keeps references valid as it grows
     size_t pos_ = 0;
     int depth_ = 0;  // parentheses open at the current token
     std::string file_name_;
@@ -697,7 +715,7 @@ private:
 Script parse_script(std::string_view text, const std::string& file_name,
                     const std::set<std::string>& material_names)
 {
-    return Parser(tokenize(text, file_name), file_name, material_names).parse();
+    return Parser(text, file_name, material_names).parse();
 }
 
 Script parse_script_file(const std::filesystem::path& path,
