@@ -648,17 +648,27 @@ Lattice build_surface_lattice(const TriangleMesh& mesh, const std::vector<TexelG
         const Candidate& back = candidates[static_cast<size_t>(c.node) * kSlots + c.slot];
         return back.node == static_cast<int32_t>(a) && back.slot == slot;
     };
+    // Claims per slot: its own proposal, plus every one-sided proposal aimed at it (few:
+    // they come from seams), counted in one sequential pass over those.
+    std::vector<uint8_t> one_sided(count * kSlots, 0);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, count, 4096),
+                      [&](const tbb::blocked_range<size_t>& range) {
+        for (size_t a = range.begin(); a != range.end(); ++a)
+            for (int slot = 0; slot < kSlots; ++slot)
+                one_sided[a * kSlots + slot] =
+                    candidates[a * kSlots + slot].node >= 0 && !mutual(a, slot);
+    });
     std::vector<uint8_t> claims(count * kSlots, 0);
-    for (size_t a = 0; a < count; ++a)
-        for (int slot = 0; slot < kSlots; ++slot) {
-            const Candidate& c = candidates[a * kSlots + slot];
-            if (c.node < 0)
-                continue;
-            const auto bump = [&](size_t i) { claims[i] = static_cast<uint8_t>(
-                                                  std::min(255, claims[i] + 1)); };
-            bump(a * kSlots + slot);
-            if (!mutual(a, slot))
-                bump(static_cast<size_t>(c.node) * kSlots + c.slot);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, count * kSlots, 16384),
+                      [&](const tbb::blocked_range<size_t>& range) {
+        for (size_t i = range.begin(); i != range.end(); ++i)
+            claims[i] = candidates[i].node >= 0;
+    });
+    for (size_t i = 0; i < count * kSlots; ++i)
+        if (one_sided[i]) {
+            uint8_t& target = claims[static_cast<size_t>(candidates[i].node) * kSlots +
+                                     candidates[i].slot];
+            target = static_cast<uint8_t>(std::min(255, target + 1));
         }
     const auto proposes = [&](size_t a, int32_t b, int except) {
         for (int s = 0; s < kSlots; ++s)
@@ -666,34 +676,44 @@ Lattice build_surface_lattice(const TriangleMesh& mesh, const std::vector<TexelG
                 return true;
         return false;
     };
+    // Clean links: each end writes its own slot (the test is symmetric in the two ends);
+    // the rest are marked contested.
+    std::vector<uint8_t> is_contested(count * kSlots, 0);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, count, 4096),
+                      [&](const tbb::blocked_range<size_t>& range) {
+        for (size_t a = range.begin(); a != range.end(); ++a)
+            for (int slot = 0; slot < kSlots; ++slot) {
+                const Candidate& c = candidates[a * kSlots + slot];
+                if (c.node < 0)
+                    continue;
+                const size_t b = static_cast<size_t>(c.node);
+                const bool clean = !one_sided[a * kSlots + slot] &&
+                                   claims[a * kSlots + slot] == 1 &&
+                                   claims[b * kSlots + c.slot] == 1 &&
+                                   !proposes(a, c.node, slot) &&
+                                   !proposes(b, static_cast<int32_t>(a), c.slot);
+                if (clean)
+                    lattice.neighbours[a][slot] = c.node;
+                else
+                    is_contested[a * kSlots + slot] = 1;
+            }
+    });
     struct Contested {
         float distance;
         int32_t a, slot_a, b, slot_b;
         auto tie() const { return std::tie(distance, a, slot_a, b, slot_b); }
     };
     std::vector<Contested> contested;
-    for (size_t a = 0; a < count; ++a)
-        for (int slot = 0; slot < kSlots; ++slot) {
-            const Candidate& c = candidates[a * kSlots + slot];
-            if (c.node < 0)
-                continue;
-            const size_t b = static_cast<size_t>(c.node);
-            const bool both = mutual(a, slot);
-            if (both && b < a)
-                continue;  // seen from b
-            const bool clean = both && claims[a * kSlots + slot] == 1 &&
-                               claims[b * kSlots + c.slot] == 1 &&
-                               !proposes(a, c.node, slot) &&
-                               !proposes(b, static_cast<int32_t>(a), c.slot);
-            if (clean) {
-                lattice.neighbours[a][slot] = c.node;
-                lattice.neighbours[b][c.slot] = static_cast<int32_t>(a);
-                continue;
-            }
-            const int32_t ia = static_cast<int32_t>(a);
-            contested.push_back(ia < c.node ? Contested{c.distance, ia, slot, c.node, c.slot}
-                                            : Contested{c.distance, c.node, c.slot, ia, slot});
-        }
+    for (size_t i = 0; i < count * kSlots; ++i) {
+        if (!is_contested[i])
+            continue;
+        const Candidate& c = candidates[i];
+        const int32_t a = static_cast<int32_t>(i / kSlots), slot = static_cast<int32_t>(i % kSlots);
+        if (!one_sided[i] && c.node < a)
+            continue;  // a two-sided link, listed from its lower end
+        contested.push_back(a < c.node ? Contested{c.distance, a, slot, c.node, c.slot}
+                                       : Contested{c.distance, c.node, c.slot, a, slot});
+    }
     std::sort(contested.begin(), contested.end(),
               [](const Contested& x, const Contested& y) { return x.tie() < y.tie(); });
     for (const Contested& e : contested) {
