@@ -44,7 +44,10 @@ namespace {
         return fmt::format("mesh '{}'", mesh.name.empty() ? std::string("(unnamed)") : mesh.name);
     }
 
-    double cross(const V2d& a, const V2d& b) { return a.x * b.y - a.y * b.x; }
+    double cross(const V2d& a, const V2d& b)
+    {
+        return a.x * b.y - a.y * b.x;
+    }
 
     int find_root(std::vector<int32_t>& parent, int32_t i)
     {
@@ -143,10 +146,10 @@ namespace {
     {
         const V2d u1 = c.uv[1] - c.uv[0], u2 = c.uv[2] - c.uv[0];
         const V3d e1 = c.P[1] - c.P[0], e2 = c.P[2] - c.P[0];
-        const bool flat_uv = !(std::abs(cross(u1, u2)) > kDegenerateSine * u1.length() *
-                                                             u2.length());
-        const bool flat_surface = !(e1.cross(e2).length() > kDegenerateSine * e1.length() *
-                                                               e2.length());
+        const bool flat_uv =
+            !(std::abs(cross(u1, u2)) > kDegenerateSine * u1.length() * u2.length());
+        const bool flat_surface =
+            !(e1.cross(e2).length() > kDegenerateSine * e1.length() * e2.length());
         return flat_uv || flat_surface;
     }
 
@@ -185,15 +188,17 @@ namespace {
         std::iota(parent.begin(), parent.end(), 0);
         for (size_t i = 0; i < n; ++i)
             for (size_t j = i + 1; j < n && key[order[j]] - key[order[i]] <= eps; ++j)
-                if ((V3d(mesh.positions[order[i]]) - V3d(mesh.positions[order[j]])).length() <=
-                    eps)
+                if ((V3d(mesh.positions[order[i]]) - V3d(mesh.positions[order[j]])).length() <= eps)
                     unite(parent, order[i], order[j]);
         for (size_t v = 0; v < n; ++v)
             parent[v] = find_root(parent, static_cast<int32_t>(v));
         return parent;
     }
 
-    int udim_index(int udim) { return udim - 1001; }
+    int udim_index(int udim)
+    {
+        return udim - 1001;
+    }
 
     Topology build_topology(const TriangleMesh& mesh, const std::vector<TexelGrid>& grids)
     {
@@ -213,20 +218,22 @@ namespace {
                 grid_of_udim[k] = static_cast<int32_t>(g);
         }
         std::vector<uint8_t> usable(count, 0);
-        tbb::parallel_for(tbb::blocked_range<size_t>(0, count, 4096),
-                          [&](const tbb::blocked_range<size_t>& range) {
-            for (size_t t = range.begin(); t != range.end(); ++t) {
-                const Chart c(mesh, t);
-                if (degenerate(c))
-                    continue;
-                usable[t] = 1;
-                const V2d centroid = (c.uv[0] + c.uv[1] + c.uv[2]) / 3.0;
-                const double u0 = std::floor(centroid.x), v0 = std::floor(centroid.y);
-                topo.tile_origin[t] = V2d(u0, v0);
-                if (u0 >= 0 && u0 < 10 && v0 >= 0 && v0 < 100)
-                    topo.grid[t] = grid_of_udim[static_cast<int>(u0) + 10 * static_cast<int>(v0)];
-            }
-        });
+        tbb::parallel_for(
+            tbb::blocked_range<size_t>(0, count, 4096),
+            [&](const tbb::blocked_range<size_t>& range) {
+                for (size_t t = range.begin(); t != range.end(); ++t) {
+                    const Chart c(mesh, t);
+                    if (degenerate(c))
+                        continue;
+                    usable[t] = 1;
+                    const V2d centroid = (c.uv[0] + c.uv[1] + c.uv[2]) / 3.0;
+                    const double u0 = std::floor(centroid.x), v0 = std::floor(centroid.y);
+                    topo.tile_origin[t] = V2d(u0, v0);
+                    if (u0 >= 0 && u0 < 10 && v0 >= 0 && v0 < 100)
+                        topo.grid[t] =
+                            grid_of_udim[static_cast<int>(u0) + 10 * static_cast<int>(v0)];
+                }
+            });
 
         // Edge adjacency over welded vertices: sort the edges of the usable triangles by
         // their welded ends; an edge's neighbour is the lowest other triangle on it.
@@ -296,17 +303,21 @@ namespace {
     V2d slot_step(int slot, const TexelGrid& grid)
     {
         switch (slot) {
-        case 0: return V2d(1.0 / grid.width, 0.0);
-        case 1: return V2d(-1.0 / grid.width, 0.0);
-        case 2: return V2d(0.0, -1.0 / grid.height);
-        default: return V2d(0.0, 1.0 / grid.height);
+        case 0:
+            return V2d(1.0 / grid.width, 0.0);
+        case 1:
+            return V2d(-1.0 / grid.width, 0.0);
+        case 2:
+            return V2d(0.0, -1.0 / grid.height);
+        default:
+            return V2d(0.0, 1.0 / grid.height);
         }
     }
 
     /// The slot of `grid` whose direction is nearest a uv direction.
     int slot_of_direction(const V2d& d, const TexelGrid& grid)
     {
-        const double x = d.x * grid.width, y = -d.y * grid.height;  // image texels, y down
+        const double x = d.x * grid.width, y = -d.y * grid.height; // image texels, y down
         if (std::abs(x) >= std::abs(y))
             return x >= 0.0 ? 0 : 1;
         return y >= 0.0 ? 2 : 3;
@@ -314,7 +325,7 @@ namespace {
 
     struct Candidate {
         int32_t node = -1;
-        int32_t slot = -1;  ///< the slot of `node` the link comes back through
+        int32_t slot = -1; ///< the slot of `node` the link comes back through
         float distance = 0.0f;
     };
 
@@ -322,13 +333,13 @@ namespace {
         const TriangleMesh& mesh;
         const std::vector<TexelGrid>& grids;
         Topology topo;
-        std::vector<int32_t> base;       ///< per grid: its first node
-        std::vector<int32_t> node_grid;  ///< per node
-        std::vector<int32_t> node_texel; ///< per node: y * width + x in its grid
-        std::vector<int32_t> home;       ///< per node: home triangle
-        std::vector<V2d> home_uv;        ///< per node: the home sample's uv
-        std::vector<int32_t> island;     ///< per node
-        std::vector<std::array<float, 2>> expected;  ///< 3D length of one step along x, y
+        std::vector<int32_t> base;                  ///< per grid: its first node
+        std::vector<int32_t> node_grid;             ///< per node
+        std::vector<int32_t> node_texel;            ///< per node: y * width + x in its grid
+        std::vector<int32_t> home;                  ///< per node: home triangle
+        std::vector<V2d> home_uv;                   ///< per node: the home sample's uv
+        std::vector<int32_t> island;                ///< per node
+        std::vector<std::array<float, 2>> expected; ///< 3D length of one step along x, y
 
         /// The node of the texel under uv point p of triangle t (its own tile), or -1.
         int32_t node_at(int32_t t, const V2d& p) const
@@ -432,8 +443,7 @@ namespace {
         }
 
         /// The link of node a in `slot` (see the header), or none.
-        Candidate link(int32_t a, int slot,
-                       const std::vector<Imath::V3f>& position) const
+        Candidate link(int32_t a, int slot, const std::vector<Imath::V3f>& position) const
         {
             const TexelGrid& grid = grids[node_grid[a]];
             const int x = node_texel[a] % grid.width, y = node_texel[a] / grid.width;
@@ -447,7 +457,8 @@ namespace {
             // Inside an island: the texel next to it.
             const int nx = x + (slot == 0) - (slot == 1), ny = y + (slot == 2) - (slot == 3);
             if (nx >= 0 && nx < grid.width && ny >= 0 && ny < grid.height) {
-                const int32_t group = grid.group_of_texel[static_cast<size_t>(ny) * grid.width + nx];
+                const int32_t group =
+                    grid.group_of_texel[static_cast<size_t>(ny) * grid.width + nx];
                 if (group >= 0) {
                     const int32_t b = base[node_grid[a]] + group;
                     if (island[b] == island[a]) {
@@ -493,7 +504,7 @@ namespace {
         }
     }
 
-}  // namespace
+} // namespace
 
 Lattice build_surface_lattice(const TriangleMesh& mesh, const SurfaceLatticeOptions& options)
 {
@@ -524,8 +535,8 @@ Lattice build_surface_lattice(const TriangleMesh& mesh, const std::vector<TexelG
         count += grid.groups.group_count();
     }
     if (count > static_cast<size_t>(std::numeric_limits<int32_t>::max()))
-        throw std::runtime_error(fmt::format("surface lattice of {}: {} texels are too many",
-                                             mesh_label(mesh), count));
+        throw std::runtime_error(
+            fmt::format("surface lattice of {}: {} texels are too many", mesh_label(mesh), count));
     bld.node_grid.resize(count);
     bld.node_texel.assign(count, -1);
     lattice.tiles.resize(grids.size());
@@ -561,84 +572,85 @@ Lattice build_surface_lattice(const TriangleMesh& mesh, const std::vector<TexelG
     lattice.position.resize(count);
     lattice.cell_size.resize(count);
     lattice.neighbours.assign(count, {-1, -1, -1, -1});
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, count, 1024),
-                      [&](const tbb::blocked_range<size_t>& range) {
-        for (size_t node = range.begin(); node != range.end(); ++node) {
-            const int32_t g = bld.node_grid[node];
-            const TexelGrid& grid = grids[g];
-            if (bld.node_texel[node] < 0)
-                throw std::runtime_error(fmt::format(
-                    "surface lattice of {}: group {} of UDIM {} has no texel", mesh_label(mesh),
-                    node - bld.base[g], grid.udim));
-            const int x = bld.node_texel[node] % grid.width;
-            const int y = bld.node_texel[node] / grid.width;
-            const int k = udim_index(grid.udim);
-            const V2d centre((k % 10) + (x + 0.5) / grid.width,
-                             (k / 10) + 1.0 - (y + 0.5) / grid.height);
-            const size_t group = node - bld.base[g];
-            const uint32_t first = grid.groups.offsets[group], last = grid.groups.offsets[group + 1];
-            double best = std::numeric_limits<double>::infinity();
-            for (uint32_t s = first; s < last; ++s) {
-                const SurfaceSample& sample = grid.groups.samples[s];
-                const double d2 = (V2d(sample.uv) - centre).length2();
-                if (d2 < best && bld.topo.island[sample.triangle] >= 0) {
-                    best = d2;
-                    bld.home[node] = static_cast<int32_t>(sample.triangle);
-                    bld.home_uv[node] = V2d(sample.uv);
+    tbb::parallel_for(
+        tbb::blocked_range<size_t>(0, count, 1024), [&](const tbb::blocked_range<size_t>& range) {
+            for (size_t node = range.begin(); node != range.end(); ++node) {
+                const int32_t g = bld.node_grid[node];
+                const TexelGrid& grid = grids[g];
+                if (bld.node_texel[node] < 0)
+                    throw std::runtime_error(
+                        fmt::format("surface lattice of {}: group {} of UDIM {} has no texel",
+                                    mesh_label(mesh), node - bld.base[g], grid.udim));
+                const int x = bld.node_texel[node] % grid.width;
+                const int y = bld.node_texel[node] / grid.width;
+                const int k = udim_index(grid.udim);
+                const V2d centre((k % 10) + (x + 0.5) / grid.width,
+                                 (k / 10) + 1.0 - (y + 0.5) / grid.height);
+                const size_t group = node - bld.base[g];
+                const uint32_t first = grid.groups.offsets[group],
+                               last = grid.groups.offsets[group + 1];
+                double best = std::numeric_limits<double>::infinity();
+                for (uint32_t s = first; s < last; ++s) {
+                    const SurfaceSample& sample = grid.groups.samples[s];
+                    const double d2 = (V2d(sample.uv) - centre).length2();
+                    if (d2 < best && bld.topo.island[sample.triangle] >= 0) {
+                        best = d2;
+                        bld.home[node] = static_cast<int32_t>(sample.triangle);
+                        bld.home_uv[node] = V2d(sample.uv);
+                    }
                 }
-            }
-            if (bld.home[node] < 0) {
-                // No sample on a usable triangle (an empty group): a node without links.
-                bld.expected[node] = {0.0f, 0.0f};
-                continue;
-            }
-            bld.island[node] = bld.topo.island[bld.home[node]];
-            // Walks start from the island's point nearest the texel centre, so that the two
-            // sides of a seam agree on where along it a texel sits.
-            best = std::numeric_limits<double>::infinity();
-            for (uint32_t s = first; s < last; ++s) {
-                const uint32_t tri = grid.groups.samples[s].triangle;
-                if (bld.topo.island[tri] != bld.island[node] ||
-                    (s > first && grid.groups.samples[s - 1].triangle == tri))
+                if (bld.home[node] < 0) {
+                    // No sample on a usable triangle (an empty group): a node without links.
+                    bld.expected[node] = {0.0f, 0.0f};
                     continue;
-                const V2d q = nearest_point(Chart(mesh, tri), centre);
-                const double d2 = (q - centre).length2();
-                if (d2 < best) {
-                    best = d2;
-                    bld.home[node] = static_cast<int32_t>(tri);
-                    bld.home_uv[node] = q;
                 }
-            }
-            const int32_t t = bld.home[node];
-            V3d sum(0.0);
-            int on_island = 0;
-            for (uint32_t s = first; s < last; ++s) {
-                const SurfaceSample& sample = grid.groups.samples[s];
-                if (bld.topo.island[sample.triangle] == bld.island[node]) {
-                    sum += V3d(sample.P);
-                    ++on_island;
+                bld.island[node] = bld.topo.island[bld.home[node]];
+                // Walks start from the island's point nearest the texel centre, so that the two
+                // sides of a seam agree on where along it a texel sits.
+                best = std::numeric_limits<double>::infinity();
+                for (uint32_t s = first; s < last; ++s) {
+                    const uint32_t tri = grid.groups.samples[s].triangle;
+                    if (bld.topo.island[tri] != bld.island[node] ||
+                        (s > first && grid.groups.samples[s - 1].triangle == tri))
+                        continue;
+                    const V2d q = nearest_point(Chart(mesh, tri), centre);
+                    const double d2 = (q - centre).length2();
+                    if (d2 < best) {
+                        best = d2;
+                        bld.home[node] = static_cast<int32_t>(tri);
+                        bld.home_uv[node] = q;
+                    }
                 }
+                const int32_t t = bld.home[node];
+                V3d sum(0.0);
+                int on_island = 0;
+                for (uint32_t s = first; s < last; ++s) {
+                    const SurfaceSample& sample = grid.groups.samples[s];
+                    if (bld.topo.island[sample.triangle] == bld.island[node]) {
+                        sum += V3d(sample.P);
+                        ++on_island;
+                    }
+                }
+                lattice.position[node] = Imath::V3f(sum / on_island);
+                const Chart c(mesh, t);
+                bld.expected[node] = {
+                    static_cast<float>(c.to_surface(slot_step(0, grid)).length()),
+                    static_cast<float>(c.to_surface(slot_step(2, grid)).length())};
             }
-            lattice.position[node] = Imath::V3f(sum / on_island);
-            const Chart c(mesh, t);
-            bld.expected[node] = {
-                static_cast<float>(c.to_surface(slot_step(0, grid)).length()),
-                static_cast<float>(c.to_surface(slot_step(2, grid)).length())};
-        }
-    });
+        });
 
     // Every node proposes a link per slot.
     std::vector<Candidate> candidates(count * kSlots);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, count, 256),
                       [&](const tbb::blocked_range<size_t>& range) {
-        for (size_t node = range.begin(); node != range.end(); ++node) {
-            if (bld.home[node] < 0)
-                continue;
-            for (int slot = 0; slot < kSlots; ++slot)
-                candidates[node * kSlots + slot] =
-                    bld.link(static_cast<int32_t>(node), slot, lattice.position);
-        }
-    });
+                          for (size_t node = range.begin(); node != range.end(); ++node) {
+                              if (bld.home[node] < 0)
+                                  continue;
+                              for (int slot = 0; slot < kSlots; ++slot)
+                                  candidates[node * kSlots + slot] =
+                                      bld.link(static_cast<int32_t>(node), slot, lattice.position);
+                          }
+                      });
 
     // Symmetry. A link both ends propose, whose slots nobody else claims, is kept as is
     // (almost every link inside an island). The others are accepted nearest first while
@@ -653,21 +665,21 @@ Lattice build_surface_lattice(const TriangleMesh& mesh, const std::vector<TexelG
     std::vector<uint8_t> one_sided(count * kSlots, 0);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, count, 4096),
                       [&](const tbb::blocked_range<size_t>& range) {
-        for (size_t a = range.begin(); a != range.end(); ++a)
-            for (int slot = 0; slot < kSlots; ++slot)
-                one_sided[a * kSlots + slot] =
-                    candidates[a * kSlots + slot].node >= 0 && !mutual(a, slot);
-    });
+                          for (size_t a = range.begin(); a != range.end(); ++a)
+                              for (int slot = 0; slot < kSlots; ++slot)
+                                  one_sided[a * kSlots + slot] =
+                                      candidates[a * kSlots + slot].node >= 0 && !mutual(a, slot);
+                      });
     std::vector<uint8_t> claims(count * kSlots, 0);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, count * kSlots, 16384),
                       [&](const tbb::blocked_range<size_t>& range) {
-        for (size_t i = range.begin(); i != range.end(); ++i)
-            claims[i] = candidates[i].node >= 0;
-    });
+                          for (size_t i = range.begin(); i != range.end(); ++i)
+                              claims[i] = candidates[i].node >= 0;
+                      });
     for (size_t i = 0; i < count * kSlots; ++i)
         if (one_sided[i]) {
-            uint8_t& target = claims[static_cast<size_t>(candidates[i].node) * kSlots +
-                                     candidates[i].slot];
+            uint8_t& target =
+                claims[static_cast<size_t>(candidates[i].node) * kSlots + candidates[i].slot];
             target = static_cast<uint8_t>(std::min(255, target + 1));
         }
     const auto proposes = [&](size_t a, int32_t b, int except) {
@@ -681,23 +693,23 @@ Lattice build_surface_lattice(const TriangleMesh& mesh, const std::vector<TexelG
     std::vector<uint8_t> is_contested(count * kSlots, 0);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, count, 4096),
                       [&](const tbb::blocked_range<size_t>& range) {
-        for (size_t a = range.begin(); a != range.end(); ++a)
-            for (int slot = 0; slot < kSlots; ++slot) {
-                const Candidate& c = candidates[a * kSlots + slot];
-                if (c.node < 0)
-                    continue;
-                const size_t b = static_cast<size_t>(c.node);
-                const bool clean = !one_sided[a * kSlots + slot] &&
-                                   claims[a * kSlots + slot] == 1 &&
-                                   claims[b * kSlots + c.slot] == 1 &&
-                                   !proposes(a, c.node, slot) &&
-                                   !proposes(b, static_cast<int32_t>(a), c.slot);
-                if (clean)
-                    lattice.neighbours[a][slot] = c.node;
-                else
-                    is_contested[a * kSlots + slot] = 1;
-            }
-    });
+                          for (size_t a = range.begin(); a != range.end(); ++a)
+                              for (int slot = 0; slot < kSlots; ++slot) {
+                                  const Candidate& c = candidates[a * kSlots + slot];
+                                  if (c.node < 0)
+                                      continue;
+                                  const size_t b = static_cast<size_t>(c.node);
+                                  const bool clean = !one_sided[a * kSlots + slot] &&
+                                                     claims[a * kSlots + slot] == 1 &&
+                                                     claims[b * kSlots + c.slot] == 1 &&
+                                                     !proposes(a, c.node, slot) &&
+                                                     !proposes(b, static_cast<int32_t>(a), c.slot);
+                                  if (clean)
+                                      lattice.neighbours[a][slot] = c.node;
+                                  else
+                                      is_contested[a * kSlots + slot] = 1;
+                              }
+                      });
     struct Contested {
         float distance;
         int32_t a, slot_a, b, slot_b;
@@ -710,7 +722,7 @@ Lattice build_surface_lattice(const TriangleMesh& mesh, const std::vector<TexelG
         const Candidate& c = candidates[i];
         const int32_t a = static_cast<int32_t>(i / kSlots), slot = static_cast<int32_t>(i % kSlots);
         if (!one_sided[i] && c.node < a)
-            continue;  // a two-sided link, listed from its lower end
+            continue; // a two-sided link, listed from its lower end
         contested.push_back(a < c.node ? Contested{c.distance, a, slot, c.node, c.slot}
                                        : Contested{c.distance, c.node, c.slot, a, slot});
     }
@@ -727,21 +739,21 @@ Lattice build_surface_lattice(const TriangleMesh& mesh, const std::vector<TexelG
     }
 
     // Cell size: the mean length of the node's links, else of a texel step on its triangle.
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, count, 4096),
-                      [&](const tbb::blocked_range<size_t>& range) {
-        for (size_t node = range.begin(); node != range.end(); ++node) {
-            double sum = 0.0;
-            int links = 0;
-            for (int32_t b : lattice.neighbours[node])
-                if (b >= 0) {
-                    sum += (lattice.position[node] - lattice.position[b]).length();
-                    ++links;
-                }
-            lattice.cell_size[node] =
-                links ? static_cast<float>(sum / links)
-                      : 0.5f * (bld.expected[node][0] + bld.expected[node][1]);
-        }
-    });
+    tbb::parallel_for(
+        tbb::blocked_range<size_t>(0, count, 4096), [&](const tbb::blocked_range<size_t>& range) {
+            for (size_t node = range.begin(); node != range.end(); ++node) {
+                double sum = 0.0;
+                int links = 0;
+                for (int32_t b : lattice.neighbours[node])
+                    if (b >= 0) {
+                        sum += (lattice.position[node] - lattice.position[b]).length();
+                        ++links;
+                    }
+                lattice.cell_size[node] =
+                    links ? static_cast<float>(sum / links)
+                          : 0.5f * (bld.expected[node][0] + bld.expected[node][1]);
+            }
+        });
     return lattice;
 }
 
@@ -756,56 +768,60 @@ std::vector<std::vector<float>> lattice_to_groups(const Lattice& lattice,
     std::vector<std::vector<float>> out(grids.size());
     for (size_t g = 0; g < grids.size(); ++g) {
         const TexelGrid& grid = grids[g];
-        const auto tile_it = std::find_if(lattice.tiles.begin(), lattice.tiles.end(),
-                                          [&](const Lattice::Tile& t) { return t.udim == grid.udim; });
+        const auto tile_it =
+            std::find_if(lattice.tiles.begin(), lattice.tiles.end(),
+                         [&](const Lattice::Tile& t) { return t.udim == grid.udim; });
         if (tile_it == lattice.tiles.end())
-            throw std::runtime_error(fmt::format("lattice_to_groups: the lattice has no UDIM {}",
-                                                 grid.udim));
+            throw std::runtime_error(
+                fmt::format("lattice_to_groups: the lattice has no UDIM {}", grid.udim));
         const Lattice::Tile& tile = *tile_it;
         std::vector<float>& values = out[g];
         values.assign(grid.groups.group_count(), 0.0f);
         const bool same_size = tile.width == grid.width && tile.height == grid.height;
         // For another resolution: the nearest texel, then a search of a few texels around.
-        const int radius = same_size ? 0
-                                     : 2 + static_cast<int>(std::ceil(std::max(
-                                               double(tile.width) / grid.width,
-                                               double(tile.height) / grid.height)));
-        tbb::parallel_for(tbb::blocked_range<int>(0, grid.height),
-                          [&](const tbb::blocked_range<int>& rows) {
-            for (int y = rows.begin(); y != rows.end(); ++y)
-                for (int x = 0; x < grid.width; ++x) {
-                    const int32_t group = grid.group_of_texel[static_cast<size_t>(y) * grid.width + x];
-                    if (group < 0)
-                        continue;
-                    const int tx = same_size ? x : static_cast<int>((x + 0.5) * tile.width / grid.width);
-                    const int ty =
-                        same_size ? y : static_cast<int>((y + 0.5) * tile.height / grid.height);
-                    int32_t node = -1;
-                    int best = std::numeric_limits<int>::max();
-                    for (int dy = -radius; dy <= radius; ++dy)
-                        for (int dx = -radius; dx <= radius; ++dx) {
-                            const int sx = tx + dx, sy = ty + dy;
-                            const int d2 = dx * dx + dy * dy;
-                            if (sx < 0 || sy < 0 || sx >= tile.width || sy >= tile.height ||
-                                d2 >= best)
-                                continue;
-                            const int32_t n =
-                                tile.node_of_texel[static_cast<size_t>(sy) * tile.width + sx];
-                            if (n >= 0) {
-                                node = n;
-                                best = d2;
+        const int radius =
+            same_size
+                ? 0
+                : 2 + static_cast<int>(std::ceil(std::max(double(tile.width) / grid.width,
+                                                          double(tile.height) / grid.height)));
+        tbb::parallel_for(
+            tbb::blocked_range<int>(0, grid.height), [&](const tbb::blocked_range<int>& rows) {
+                for (int y = rows.begin(); y != rows.end(); ++y)
+                    for (int x = 0; x < grid.width; ++x) {
+                        const int32_t group =
+                            grid.group_of_texel[static_cast<size_t>(y) * grid.width + x];
+                        if (group < 0)
+                            continue;
+                        const int tx =
+                            same_size ? x : static_cast<int>((x + 0.5) * tile.width / grid.width);
+                        const int ty =
+                            same_size ? y : static_cast<int>((y + 0.5) * tile.height / grid.height);
+                        int32_t node = -1;
+                        int best = std::numeric_limits<int>::max();
+                        for (int dy = -radius; dy <= radius; ++dy)
+                            for (int dx = -radius; dx <= radius; ++dx) {
+                                const int sx = tx + dx, sy = ty + dy;
+                                const int d2 = dx * dx + dy * dy;
+                                if (sx < 0 || sy < 0 || sx >= tile.width || sy >= tile.height ||
+                                    d2 >= best)
+                                    continue;
+                                const int32_t n =
+                                    tile.node_of_texel[static_cast<size_t>(sy) * tile.width + sx];
+                                if (n >= 0) {
+                                    node = n;
+                                    best = d2;
+                                }
                             }
-                        }
-                    if (node < 0)
-                        throw std::runtime_error(fmt::format(
-                            "lattice_to_groups: texel ({}, {}) of UDIM {} has no lattice node "
-                            "within {} texels",
-                            x, y, grid.udim, radius));
-                    values[group] = node_values[node];
-                }
-        });
+                        if (node < 0)
+                            throw std::runtime_error(fmt::format(
+                                "lattice_to_groups: texel ({}, {}) of UDIM {} has no lattice node "
+                                "within {} texels",
+                                x, y, grid.udim, radius));
+                        values[group] = node_values[node];
+                    }
+            });
     }
     return out;
 }
 
-}  // namespace patina::texgen
+} // namespace patina::texgen

@@ -74,4 +74,4 @@ std::vector<std::vector<float>> lattice_to_groups(const Lattice& lattice,
                                                   std::span<const float> node_values,
                                                   const std::vector<TexelGrid>& grids);
 
-}  // namespace patina::texgen
+} // namespace patina::texgen

@@ -34,9 +34,8 @@ namespace {
     {
         size_t n = 0;
         for (const auto& nb : l.neighbours)
-            n += static_cast<size_t>(std::count_if(nb.begin(), nb.end(), [](int32_t b) {
-                return b >= 0;
-            }));
+            n += static_cast<size_t>(
+                std::count_if(nb.begin(), nb.end(), [](int32_t b) { return b >= 0; }));
         return n;
     }
 
@@ -88,7 +87,8 @@ namespace {
         for (int y = 1; y + 1 < n; ++y)
             for (int x = 1; x + 1 < n; ++x) {
                 const auto& nb = l.neighbours[y * n + x];
-                interior_full += std::all_of(nb.begin(), nb.end(), [](int32_t b) { return b >= 0; });
+                interior_full +=
+                    std::all_of(nb.begin(), nb.end(), [](int32_t b) { return b >= 0; });
             }
         EXPECT_EQ(interior_full, (n - 2) * (n - 2));
         for (size_t i = 0; i < l.size(); ++i) {
@@ -103,14 +103,15 @@ namespace {
     /// The links of the atlas cube between different faces, per cube edge (pair of faces).
     struct SeamLinks {
         int links_between[6][6] = {};
-        std::vector<std::pair<int32_t, int32_t>> links;  // a < b
+        std::vector<std::pair<int32_t, int32_t>> links; // a < b
     };
     SeamLinks seam_links(const Lattice& l)
     {
         SeamLinks s;
         for (size_t a = 0; a < l.size(); ++a)
             for (int32_t b : l.neighbours[a])
-                if (b > static_cast<int32_t>(a) && face_of(l.position[a]) != face_of(l.position[b])) {
+                if (b > static_cast<int32_t>(a) &&
+                    face_of(l.position[a]) != face_of(l.position[b])) {
                     ++s.links_between[face_of(l.position[a])][face_of(l.position[b])];
                     ++s.links_between[face_of(l.position[b])][face_of(l.position[a])];
                     s.links.emplace_back(static_cast<int32_t>(a), b);
@@ -125,7 +126,7 @@ namespace {
         const TriangleMesh cube = test::make_atlas_cube();
         const Lattice l = build_surface_lattice(cube, lattice_options(resolution));
         expect_symmetric(l);
-        const double texels_per_edge = resolution * test::kAtlasIsland;  // 5/16 of the tile
+        const double texels_per_edge = resolution * test::kAtlasIsland; // 5/16 of the tile
         const float cell = static_cast<float>(1.0 / texels_per_edge);
 
         // Every node's cell size is near the texel's side on the cube (1 m / island texels):
@@ -235,8 +236,8 @@ namespace {
     }
 
     struct Smoothness {
-        double across = 0.0;  ///< mean |difference| over the links between faces
-        double inside = 0.0;  ///< mean |difference| over links inside a face, near the edges
+        double across = 0.0; ///< mean |difference| over the links between faces
+        double inside = 0.0; ///< mean |difference| over links inside a face, near the edges
     };
     /// Differences of `u` over the seam links of `seams` and over the in-face links of
     /// `full` whose two ends are within 2 cells of a cube edge, both within `radius` of the
@@ -291,7 +292,7 @@ namespace {
             if ((l.position[i] - target).length() < (l.position[source] - target).length())
                 source = static_cast<int32_t>(i);
         ASSERT_EQ(face_of(l.position[source]), 0);
-        const int steps = 300;  // spreads sqrt(4 * 0.2 * 300) ~ 15 cells
+        const int steps = 300; // spreads sqrt(4 * 0.2 * 300) ~ 15 cells
         const std::vector<double> u = diffuse(l, source, steps);
         const Smoothness s = smoothness(l, u, source, 12.0f * cell, cell);
         EXPECT_LE(s.across, 1.5 * s.inside) << "across " << s.across << ", inside " << s.inside;
@@ -324,21 +325,21 @@ namespace {
                     b = -1;
         const std::vector<double> u_cut = diffuse(cut, source, steps);
         const Smoothness c = smoothness(l, u_cut, source, 12.0f * cell, cell);
-        std::printf("resolution %d, seams cut: across %.3g, inside %.3g; beyond %.3g\n",
-                    resolution, c.across, c.inside, u_cut[beyond]);
-        EXPECT_GT(c.across, 3.0 * c.inside) << "cut: across " << c.across << ", inside "
-                                            << c.inside;
+        std::printf("resolution %d, seams cut: across %.3g, inside %.3g; beyond %.3g\n", resolution,
+                    c.across, c.inside, u_cut[beyond]);
+        EXPECT_GT(c.across, 3.0 * c.inside)
+            << "cut: across " << c.across << ", inside " << c.inside;
         EXPECT_EQ(u_cut[beyond], 0.0);
     }
 
     TEST(SurfaceLattice, AtlasCubeDiffusionIsContinuousAcrossSeamsAlignedTexels)
     {
-        check_atlas_cube_diffusion(64);  // 20 texels per cube edge
+        check_atlas_cube_diffusion(64); // 20 texels per cube edge
     }
 
     TEST(SurfaceLattice, AtlasCubeDiffusionIsContinuousAcrossSeamsPartialTexels)
     {
-        check_atlas_cube_diffusion(90);  // 28.125 texels per cube edge, starting mid-texel
+        check_atlas_cube_diffusion(90); // 28.125 texels per cube edge, starting mid-texel
     }
 
     TEST(SurfaceLattice, SphereSeamAtUZeroOne)
@@ -434,8 +435,9 @@ namespace {
         }
 
         const std::vector<float> wrong(l.size() + 1, 0.0f);
-        EXPECT_NE(test::message_of([&] { lattice_to_groups(l, wrong, grids); })
-                      .find("values for a lattice of"),
+        EXPECT_NE(test::message_of([&] {
+                      lattice_to_groups(l, wrong, grids);
+                  }).find("values for a lattice of"),
                   std::string::npos);
         std::vector<TexelGrid> other = grids;
         other[0].udim = 1002;
@@ -478,16 +480,15 @@ namespace {
             const Lattice two = build_with_threads(mesh, 90, 2);
             ASSERT_EQ(one.size(), two.size()) << mesh.name;
             EXPECT_EQ(one.neighbours, two.neighbours) << mesh.name;
-            EXPECT_EQ(std::memcmp(one.position.data(), two.position.data(),
-                                  one.size() * sizeof(V3f)),
-                      0)
+            EXPECT_EQ(
+                std::memcmp(one.position.data(), two.position.data(), one.size() * sizeof(V3f)), 0)
                 << mesh.name;
-            EXPECT_EQ(std::memcmp(one.cell_size.data(), two.cell_size.data(),
-                                  one.size() * sizeof(float)),
-                      0)
+            EXPECT_EQ(
+                std::memcmp(one.cell_size.data(), two.cell_size.data(), one.size() * sizeof(float)),
+                0)
                 << mesh.name;
         }
     }
 
-}  // namespace
-}  // namespace patina::texgen
+} // namespace
+} // namespace patina::texgen
