@@ -30,7 +30,10 @@
 //   texture    = "texture" "(" MODEL RATE STEP TOTAL { WORD "=" NUMBER } ")" ;
 //
 //   MATERIAL   = WORD { WORD } [ INTEGER ] ;   (* a name in the material library *)
-//   THICKNESS, HEIGHT, RADIUS, FRACTION, NUMBER = [ "-" ] number ;   (* never negative *)
+//   THICKNESS, HEIGHT, RADIUS = number ;        (* "-" before one is an error *)
+//   FRACTION   = number ;                       (* 0 <= FRACTION <= 1 *)
+//   STEP, TOTAL = INTEGER ;                     (* digits only *)
+//   NUMBER     = [ "-" ] number ;               (* 3, 0.35, .5, 1e-3 *)
 //
 // A statement ends at ";" or at the end of its line, except inside parentheses: a long
 // expression or curve continues over lines when it is in parentheses. "#" and "//" start a

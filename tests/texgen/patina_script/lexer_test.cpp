@@ -101,7 +101,7 @@ TEST(ScriptNames, TablesAreConsistent)
     for (const pt::BuiltinFunction& f : pt::builtin_functions()) {
         EXPECT_TRUE(seen.insert(std::string(f.name)).second) << f.name;
         const std::string_view d = f.description;
-        const size_t commas = static_cast<size_t>(std::count(d.begin(), d.begin() + d.find(')'), ','));
+        const auto commas = std::count(d.begin(), d.begin() + d.find(')'), ',');
         EXPECT_EQ(static_cast<int>(commas) + 1, f.arity) << f.name;
     }
     for (const std::string& k : pt::operator_keywords())

@@ -171,6 +171,8 @@ TEST(ScriptErrors, BadNumbersStringsAndCharacters)
     EXPECT_EQ(error_of("erode 1e"), "test.patina:1:7: error: bad number '1e'");
     EXPECT_EQ(error_of("map a = \"a.exr"),
               "test.patina:1:9: error: string is not closed on its line");
+    EXPECT_EQ(error_of("map a = \"a\\q.exr\""),
+              "test.patina:1:11: error: unknown escape '\\q' in a string");
     EXPECT_EQ(error_of("let a = 2 ^ 3"), "test.patina:1:11: error: unexpected character '^'");
     // A column counts characters, not bytes: "é" is one column.
     EXPECT_EQ(error_of("# é\nlet a = 2 € 3"),

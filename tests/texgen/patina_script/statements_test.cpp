@@ -165,6 +165,17 @@ TEST(Statements, EmptyStatementsAndBlankLinesAreSkipped)
     EXPECT_TRUE(parse("// nothing\n# at all").statements.empty());
 }
 
+TEST(Statements, ParenthesesCarryAStatementOverLines)
+{
+    const auto erode = only<pt::ErodeStatement>("erode 0.5 texture(BD linear\n   5 20)\n");
+    ASSERT_TRUE(erode.map.has_value());
+    EXPECT_EQ(erode.map->texture.total, 20);
+    // Comments and blank lines may follow "render maps".
+    const pt::Script script = parse("new copper\nrender maps;\n# done\n\n");
+    ASSERT_EQ(script.statements.size(), 2u);
+    EXPECT_TRUE(std::holds_alternative<pt::RenderStatement>(script.statements[1]));
+}
+
 TEST(Statements, ParseScriptFileReadsAFileAndNamesIt)
 {
     const std::string path = std::string(PATINA_TEST_BUILD_DIR) + "/patina_script_file.patina";
