@@ -432,8 +432,9 @@ namespace {
                 const float v = static_cast<float>(amount) * f.at(i);
                 if (!std::isfinite(v))
                     fail(map->location, fmt::format("the map {} is {} at node {} (uv {}, {})",
-                                                    to_string(*map), v, i, domain_.uv[i].x,
-                                                    domain_.uv[i].y));
+                                                    to_string(*map),
+                                                    std::isnan(v) ? "NaN" : "infinite", i,
+                                                    domain_.uv[i].x, domain_.uv[i].y));
                 out[i] = std::max(v, 0.0f);
             }
             (void)where;
