@@ -92,7 +92,7 @@ namespace {
         float cap_minus_r;
     };
 
-} // namespace
+}  // namespace
 
 std::vector<float> closing_fill(std::span<const float> heights_um, int width, int height,
                                 float cell_size_um, float radius_um)
@@ -183,7 +183,7 @@ namespace {
         struct Offset {
             int dx;
             int dy;
-            double planar; // |(dx, dy)| c
+            double planar;  // |(dx, dy)| c
         };
         std::vector<Offset> offsets;
         for (int dy = -S; dy <= S; ++dy) {
@@ -201,6 +201,27 @@ namespace {
         const int pw = width + 2 * S;
         auto at = [&](int x, int y) { return double(hp[static_cast<size_t>(y + S) * pw + x + S]); };
 
+        // The highest sample within S cells of each cell (a square window, separable; the
+        // disc of radius 2 rho_max lies inside it): a bound that ends the scan early.
+        std::vector<float> row_max(hp.size());
+        for_each_row(height + 2 * S, [&](int y) {
+            const float* src = hp.data() + static_cast<size_t>(y) * pw;
+            float* out = row_max.data() + static_cast<size_t>(y) * pw;
+            for (int x = S; x < S + width; ++x) {
+                out[x] = *std::max_element(src + x - S, src + x + S + 1);
+            }
+        });
+        std::vector<float> local_max(cells);
+        for_each_row(height, [&](int y) {
+            for (int x = 0; x < width; ++x) {
+                float m = -kInfinity;
+                for (int k = 0; k <= 2 * S; ++k) {
+                    m = std::max(m, row_max[static_cast<size_t>(y + k) * pw + x + S]);
+                }
+                local_max[static_cast<size_t>(y) * width + x] = m;
+            }
+        });
+
         for_each_row(height, [&](int y) {
             for (int x = 0; x < width; ++x) {
                 // Upward unit normal of the field at p, from central differences.
@@ -214,10 +235,18 @@ namespace {
 
                 // A sample q lies strictly inside the sphere of centre p + rho n, radius rho,
                 // iff |q - p|^2 < 2 rho n.(q - p): it bounds rho by |q - p|^2 / (2 n.(q - p)).
-                // That bound is at least |q - p| / 2 >= planar / 2: stop once that reaches rho.
+                // For q at planar distance d that bound is at least d / 2, and, as
+                // n.(q - p) <= a d + b (a = |n_xy|, b = n_z times the rise to the local
+                // maximum), at least d^2 / (2 (a d + b)). Both grow with d, and the offsets
+                // come nearest first: stop once either reaches rho (at once on flat ground
+                // with nothing higher near, where a d + b = 0).
+                const double a = std::sqrt(nx * nx + ny * ny);
+                const double b = nz * (local_max[static_cast<size_t>(y) * width + x] - p);
                 double rho = rho_max;
                 for (const Offset& o : offsets) {
-                    if (o.planar >= 2.0 * rho) {
+                    const double reach = a * o.planar + b;
+                    if (reach <= 0.0 || o.planar >= 2.0 * rho ||
+                        o.planar * o.planar >= 2.0 * rho * reach) {
                         break;
                     }
                     const double ex = o.dx * c;
@@ -234,7 +263,7 @@ namespace {
         return radius;
     }
 
-} // namespace
+}  // namespace
 
 std::vector<float> tangent_sphere_radius(std::span<const float> heights_um, int width, int height,
                                          float cell_size_um, float max_radius_um)
@@ -271,4 +300,4 @@ std::vector<float> tangent_sphere_fill(std::span<const float> heights_um, int wi
     return fill;
 }
 
-} // namespace patina::texgen
+}  // namespace patina::texgen

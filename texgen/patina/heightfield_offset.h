@@ -44,7 +44,8 @@ std::vector<float> closing_fill(std::span<const float> heights_um, int width, in
 /// rho of q), so the radius is the minimum of that over the samples within 2 max_radius:
 /// no bisection is needed on a sampled surface. Flat and convex ground reach the cap; a
 /// concave cylinder of radius R gives about R; a sharp crease gives about a cell (the
-/// sampled surface's resolution). O(cells * (max_radius / cell)^2), parallel over rows.
+/// sampled surface's resolution). At most O(cells * (max_radius / cell)^2), far less where the scan
+/// can stop early (flat ground with nothing higher near costs O(1)); parallel over rows.
 std::vector<float> tangent_sphere_radius(std::span<const float> heights_um, int width, int height,
                                          float cell_size_um, float max_radius_um);
 
@@ -67,4 +68,4 @@ float fill_from_tangent_radius(float tangent_radius, float radius);
 std::vector<float> tangent_sphere_fill(std::span<const float> heights_um, int width, int height,
                                        float cell_size_um, float radius_um);
 
-} // namespace patina::texgen
+}  // namespace patina::texgen

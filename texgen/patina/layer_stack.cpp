@@ -58,4 +58,4 @@ size_t drop_empty_layers(LayerStack& stack)
     return before - stack.layers.size();
 }
 
-} // namespace patina::texgen
+}  // namespace patina::texgen

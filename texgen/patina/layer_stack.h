@@ -49,4 +49,4 @@ struct LayerStack {
 /// their order are unchanged). Returns how many were removed.
 size_t drop_empty_layers(LayerStack& stack);
 
-} // namespace patina::texgen
+}  // namespace patina::texgen

@@ -93,33 +93,26 @@ namespace {
                           });
     }
 
-    /// The x in [lo, hi] that brings below + x closest to target from the side `at_least`
-    /// asks (>= target when true, <= target when false), in float; x0 = target - below is
-    /// within an ulp or two of it. Float sums round, so the exact difference may miss.
+    /// x0 = target - below, moved by an ulp at a time until below + x lands on the side of
+    /// the target that `at_least` asks (>= when true, <= when false), within [lo, hi]. The
+    /// float sum rounds, so the exact difference may miss by an ulp; when it does not, x0
+    /// is kept as it is.
     float adjust_to_target(float below, float x0, float target, bool at_least, float lo, float hi)
     {
         float x = std::clamp(x0, lo, hi);
         if (at_least) {
-            // Smallest x whose sum reaches the target.
             while (below + x < target && x < hi) {
                 x = std::nextafter(x, kInfinity);
             }
-            while (x > lo && below + std::nextafter(x, -kInfinity) >= target) {
-                x = std::nextafter(x, -kInfinity);
-            }
         } else {
-            // Largest x whose sum stays at or below the target.
             while (below + x > target && x > lo) {
                 x = std::nextafter(x, -kInfinity);
-            }
-            while (x < hi && below + std::nextafter(x, kInfinity) <= target) {
-                x = std::nextafter(x, kInfinity);
             }
         }
         return x;
     }
 
-} // namespace
+}  // namespace
 
 LayerStack new_stack(int material, size_t texel_count)
 {
@@ -299,4 +292,4 @@ void offset(LayerStack& stack, int material, std::span<const float> fill_thickne
     stack.layers.push_back(std::move(layer));
 }
 
-} // namespace patina::texgen
+}  // namespace patina::texgen

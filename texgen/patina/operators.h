@@ -82,4 +82,4 @@ float polish_until_exposed(LayerStack& stack, float fraction, std::span<const fl
 /// thickness at texel i is fill_thickness_um[i] (>= 0, finite, one per texel).
 void offset(LayerStack& stack, int material, std::span<const float> fill_thickness_um);
 
-} // namespace patina::texgen
+}  // namespace patina::texgen
