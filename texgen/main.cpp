@@ -3,6 +3,7 @@
 #include "texgen/cli/commands.h"
 
 #include "core/cancel.h"
+#include "texgen/patina/script_error.h"
 
 #include <CLI/CLI.hpp>
 
@@ -36,6 +37,15 @@ int main(int argc, char** argv)
     } catch (const patina::Cancelled& e) {
         std::fprintf(stderr, "\npatina-texgen: %s; no output was written\n", e.what());
         return 130;
+    } catch (const pt::ScriptError& e) {
+        // Like a compiler: the script's file, line and column first.
+        if (e.location().line > 0)
+            std::fprintf(stderr, "patina-texgen: error: %s:%d:%d: %s\n", e.file().c_str(),
+                         e.location().line, e.location().column, e.message().c_str());
+        else
+            std::fprintf(stderr, "patina-texgen: error: %s: %s\n", e.file().c_str(),
+                         e.message().c_str());
+        return 1;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "patina-texgen: error: %s\n", e.what());
         return 1;

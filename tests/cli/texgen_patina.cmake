@@ -58,13 +58,13 @@ function(expect_script_error name text message_part)
     message(FATAL_ERROR "a failed script (${name}) left ${WORK_DIR}/bad_${name} behind")
   endif()
 endfunction()
-expect_script_error(operator "new copper\nplate copper 1.0\n" "operator.patina:2:1: error:")
+expect_script_error(operator "new copper\nplate copper 1.0\n" "operator.patina:2:1:")
 expect_script_error(material "new copper\ncoat marine patina 5 1.0\n"
-  "material.patina:2:6: error: unknown material 'marine patina 5'")
+  "material.patina:2:6: unknown material 'marine patina 5'")
 expect_script_error(model "new copper\ncoat tarnish 1 0.35 texture(DBD linear 1 20);\n"
-  "model.patina:2:29: error:")
+  "model.patina:2:29:")
 expect_script_error(negative "new copper\ncoat tarnish 1 -0.35\n" "negative.patina:2:")
 expect_script_error(missing_map "map wet = \"nowhere.exr\"\nnew copper\ncoat dirt 1.0 wet\n"
-  "missing_map.patina:1:1: error:")
+  "missing_map.patina:1:1:")
 expect_failure("--times must ascend" "${PATINA_TEXGEN}" patina "${urban}" -o "${WORK_DIR}/bad_times"
   --times 6,0 --quiet)
