@@ -71,6 +71,9 @@ void pad_texels(std::vector<float>& pixels, int width, int height, int channels,
         throw std::runtime_error(
             fmt::format("padding margin {} must be -1 (fill all) or >= 0", margin));
 
+    // A tile the surface covers entirely (a flat strip) has no hole to fill.
+    if (std::all_of(covered.begin(), covered.end(), [](uint8_t c) { return c != 0; }))
+        return;
     const bool any_covered =
         std::any_of(covered.begin(), covered.end(), [](uint8_t c) { return c != 0; });
     if (margin == 0 || !any_covered) {
