@@ -19,31 +19,6 @@ namespace {
 
 Pcg32::Pcg32() : state_(kPcgDefaultState), inc_(kPcgDefaultStream) {}
 
-Pcg32::Pcg32(uint64_t sequence_index, uint64_t offset)
-{
-    set_sequence(sequence_index, offset);
-}
-
-void Pcg32::set_sequence(uint64_t sequence_index, uint64_t offset)
-{
-    // pcg32_srandom_r: the increment must be odd; mix the offset in after one step.
-    state_ = 0u;
-    inc_ = (sequence_index << 1u) | 1u;
-    uniform_u32();
-    state_ += offset;
-    uniform_u32();
-}
-
-uint32_t Pcg32::uniform_u32()
-{
-    // O'Neill 2014 §6.3.1: XSH RR output of the pre-advance state.
-    const uint64_t old = state_;
-    state_ = old * kPcgMult + inc_;
-    const auto xorshifted = static_cast<uint32_t>(((old >> 18u) ^ old) >> 27u);
-    const auto rot = static_cast<uint32_t>(old >> 59u);
-    return (xorshifted >> rot) | (xorshifted << ((~rot + 1u) & 31u));
-}
-
 uint32_t Pcg32::uniform_u32(uint32_t bound)
 {
     // Reject the low 2^32 mod bound values so every residue is equally likely.
@@ -53,11 +28,6 @@ uint32_t Pcg32::uniform_u32(uint32_t bound)
         if (r >= threshold)
             return r % bound;
     }
-}
-
-float Pcg32::uniform_float()
-{
-    return std::min(kOneMinusEpsilon, static_cast<float>(uniform_u32()) * 0x1p-32f);
 }
 
 double Pcg32::uniform_double()
@@ -84,17 +54,6 @@ void Pcg32::advance(int64_t delta)
     state_ = acc_mult * state_ + acc_plus;
 }
 
-uint64_t mix_bits(uint64_t v)
-{
-    // Stafford's "Mix13" variant of the MurmurHash3 64-bit finaliser.
-    v ^= (v >> 31);
-    v *= 0x7fb5d329728ea185ULL;
-    v ^= (v >> 27);
-    v *= 0x81dadef4bc2dd44dULL;
-    v ^= (v >> 33);
-    return v;
-}
-
 uint64_t hash_values(std::span<const uint64_t> values)
 {
     // Fold each value into the running hash through the bijective mixer; the position
@@ -109,8 +68,17 @@ Pcg32 pixel_sample_rng(uint64_t seed, int x, int y, uint64_t sample_index)
 {
     // The pixel picks the stream, a hash of the sample index the starting state: as
     // independent as advancing by sample_index * 65536, without the O(log n) jump per sample.
-    return Pcg32(hash_values(seed, static_cast<uint32_t>(x), static_cast<uint32_t>(y)),
-                 mix_bits(sample_index ^ (seed * 0x9E3779B97F4A7C15ull)));
+    return sample_rng(pixel_stream(seed, x, y), seed, sample_index);
+}
+
+uint64_t pixel_stream(uint64_t seed, int x, int y)
+{
+    return hash_values(seed, static_cast<uint32_t>(x), static_cast<uint32_t>(y));
+}
+
+Pcg32 sample_rng(uint64_t stream, uint64_t seed, uint64_t sample_index)
+{
+    return Pcg32(stream, mix_bits(sample_index ^ (seed * 0x9E3779B97F4A7C15ull)));
 }
 
 Distribution1D::Distribution1D(std::span<const float> f, float min, float max)

@@ -19,15 +19,39 @@ public:
     /// The generator's default state and stream.
     Pcg32();
     /// Stream `sequence_index` started at `offset`.
-    explicit Pcg32(uint64_t sequence_index, uint64_t offset = 0xcafef00dd15ea5e5ULL);
+    explicit Pcg32(uint64_t sequence_index, uint64_t offset = 0xcafef00dd15ea5e5ULL)
+    {
+        set_sequence(sequence_index, offset);
+    }
 
-    void set_sequence(uint64_t sequence_index, uint64_t offset = 0xcafef00dd15ea5e5ULL);
+    void set_sequence(uint64_t sequence_index, uint64_t offset = 0xcafef00dd15ea5e5ULL)
+    {
+        // pcg32_srandom_r: the increment must be odd; mix the offset in after one step.
+        state_ = 0u;
+        inc_ = (sequence_index << 1u) | 1u;
+        uniform_u32();
+        state_ += offset;
+        uniform_u32();
+    }
 
-    uint32_t uniform_u32();
+    /// O'Neill 2014 §6.3.1: XSH RR output of the pre-advance state. Inline: the renderer
+    /// draws a dozen of these per sample.
+    uint32_t uniform_u32()
+    {
+        const uint64_t old = state_;
+        state_ = old * 0x5851f42d4c957f2dULL + inc_;  // pcg-c's 64-bit LCG multiplier
+        const auto xorshifted = static_cast<uint32_t>(((old >> 18u) ^ old) >> 27u);
+        const auto rot = static_cast<uint32_t>(old >> 59u);
+        return (xorshifted >> rot) | (xorshifted << ((~rot + 1u) & 31u));
+    }
     /// Uniform in [0, bound) without modulo bias; bound > 0.
     uint32_t uniform_u32(uint32_t bound);
     /// Uniform in [0, 1): 32 random bits scaled by 2^-32, below 1 after rounding.
-    float uniform_float();
+    float uniform_float()
+    {
+        const float f = static_cast<float>(uniform_u32()) * 0x1p-32f;
+        return f < 0x1.fffffep-1f ? f : 0x1.fffffep-1f;
+    }
     double uniform_double();
 
     /// Skip ahead (or back, for negative delta) in O(log delta).
@@ -42,7 +66,16 @@ private:
 
 /// 64-bit finaliser (Stafford's Mix13 as used by pbrt-v4's MixBits): a bijection that
 /// spreads every input bit over the output.
-uint64_t mix_bits(uint64_t v);
+inline uint64_t mix_bits(uint64_t v)
+{
+    // Stafford's "Mix13" variant of the MurmurHash3 64-bit finaliser.
+    v ^= (v >> 31);
+    v *= 0x7fb5d329728ea185ULL;
+    v ^= (v >> 27);
+    v *= 0x81dadef4bc2dd44dULL;
+    v ^= (v >> 33);
+    return v;
+}
 
 /// Hash of a few integers, order-sensitive; for seeds such as (seed, x, y, sample).
 uint64_t hash_values(std::span<const uint64_t> values);
@@ -56,6 +89,11 @@ inline uint64_t hash_values(uint64_t a, uint64_t b, uint64_t c = 0, uint64_t d =
 /// state hashed from the sample index, so a pixel's samples are the same whichever thread
 /// or tile draws them.
 Pcg32 pixel_sample_rng(uint64_t seed, int x, int y, uint64_t sample_index);
+/// The two halves of pixel_sample_rng, for a loop over a pixel's samples: the pixel's
+/// stream (hashed once per pixel) and the generator of one of its samples;
+/// pixel_sample_rng(seed, x, y, s) == sample_rng(pixel_stream(seed, x, y), seed, s).
+uint64_t pixel_stream(uint64_t seed, int x, int y);
+Pcg32 sample_rng(uint64_t stream, uint64_t seed, uint64_t sample_index);
 
 /// A piecewise-constant density over [min, max] proportional to |f| (pbrt-v4's
 /// PiecewiseConstant1D). An all-zero (or empty) f is treated as constant.

@@ -88,6 +88,21 @@ namespace {
         EXPECT_NE(mix_bits(0), mix_bits(1));
     }
 
+    TEST(SamplingTest, PixelStreamAndSampleRngArePixelSampleRngInTwoSteps)
+    {
+        // The renderer hashes a pixel once and starts each sample from it: same numbers.
+        for (uint64_t seed : {0ull, 1ull, 0x5eedull})
+            for (int x : {0, 7, 511})
+                for (int y : {0, 3, 300})
+                    for (uint64_t s : {0ull, 1ull, 15ull, 1000ull}) {
+                        Pcg32 a = pixel_sample_rng(seed, x, y, s);
+                        Pcg32 b = sample_rng(pixel_stream(seed, x, y), seed, s);
+                        EXPECT_TRUE(a == b);
+                        for (int i = 0; i < 4; ++i)
+                            EXPECT_EQ(a.uniform_u32(), b.uniform_u32());
+                    }
+    }
+
     TEST(SamplingTest, Distribution1DSampleAndPdfAgree)
     {
         const std::vector<float> f = {1.0f, 0.0f, 3.0f, 4.0f, 2.0f};
