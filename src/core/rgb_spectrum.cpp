@@ -438,13 +438,32 @@ PatinaRgbSpectrum RgbToSpectrum::uplift(const std::array<float, 3>& rgb_in, bool
     return out;
 }
 
+namespace {
+    // 1 / Y of the embedded D65 table as a radiance (a function-local static: safe to use
+    // from other translation units' static initialisers).
+    float d65_unit_luminance()
+    {
+        static const float k = static_cast<float>(1.0 / emission_to_xyz(d65)[1]);
+        return k;
+    }
+}  // namespace
+
 float RgbToSpectrum::eval(const PatinaRgbSpectrum& s, float lambda_nm)
 {
     const float v = patina_rgb_spectrum_eval(&s, lambda_nm);
     // Illuminants carry the white (D65) normalised to luminance Y = 1, so that an emission
     // colour (1, 1, 1) renders as working-space (1, 1, 1), as rgb_of assumes.
-    static const float kD65UnitLuminance = static_cast<float>(1.0 / emission_to_xyz(d65)[1]);
-    return s.illuminant ? v * d65(lambda_nm) * kD65UnitLuminance : v;
+    return s.illuminant ? v * d65(lambda_nm) * d65_unit_luminance() : v;
+}
+
+float RgbToSpectrum::unit_d65(float lambda_nm)
+{
+    return d65(lambda_nm) * d65_unit_luminance();
+}
+
+float RgbToSpectrum::d65_to_unit_luminance()
+{
+    return d65_unit_luminance();
 }
 
 std::array<float, 3> RgbToSpectrum::rgb_of(const PatinaRgbSpectrum& s) const

@@ -37,6 +37,14 @@ public:
 
     /// Value of an uplifted spectrum at a wavelength (handles `illuminant`).
     static float eval(const PatinaRgbSpectrum& s, float lambda_nm);
+    /// The white of emission colours: CIE D65 scaled to luminance Y = 1, that is
+    /// d65(lambda_nm) * d65_to_unit_luminance(). eval() of an illuminant spectrum is its
+    /// reflectance-like value times this.
+    static float unit_d65(float lambda_nm);
+    static float d65_to_unit_luminance();
+    /// True when `s` is a grey: c0 = c1 = 0, so its reflectance-like value is the same at
+    /// every wavelength (an illuminant grey is that value times unit_d65).
+    static bool is_grey(const PatinaRgbSpectrum& s) { return s.c0 == 0.0f && s.c1 == 0.0f; }
 
     /// RGB of a reflectance spectrum under D65 (the inverse used for round-trip checks).
     /// For an illuminant spectrum: its emission colour, D65 of luminance 1 being (1, 1, 1),

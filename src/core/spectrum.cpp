@@ -2,7 +2,10 @@
 #include "core/spectrum.h"
 
 #include <algorithm>
+#include <bit>
+#include <cstdint>
 #include <cmath>
+#include <cstring>
 
 namespace patina {
 namespace {
@@ -65,6 +68,17 @@ constexpr float kD65[kCieSamples] = {
 };
     // clang-format on
 
+    // x̄, ȳ, z̄ and D65 side by side: one 16-byte load per table node for all four.
+    struct CieXyzNode {
+        float x, y, z, d65;
+    };
+    constexpr std::array<CieXyzNode, kCieSamples> kCieXyzNodes = [] {
+        std::array<CieXyzNode, kCieSamples> nodes{};
+        for (int i = 0; i < kCieSamples; ++i)
+            nodes[static_cast<size_t>(i)] = {kCieX[i], kCieY[i], kCieZ[i], kD65[i]};
+        return nodes;
+    }();
+
     // Linear interpolation in a 5 nm table; 0 outside 360-830 nm.
     float lerp_table(const float* table, float lambda_nm)
     {
@@ -85,6 +99,39 @@ constexpr float kD65[kCieSamples] = {
     constexpr double kVisT1MinusT0 = 1.8275019724100978;
     constexpr double kVisA = 0.003939804229324407;
 
+    // Four floats in one SIMD register (GCC/Clang vector extension: SSE on x86-64, NEON on
+    // ARM; no -m flags needed), for the four wavelengths a path usually carries.
+    using Float4 = float __attribute__((vector_size(16)));
+    using Int4 = int32_t __attribute__((vector_size(16)));
+
+    // ln(x) for finite normal x > 0, four at a time: x = m 2^e with m in [sqrt(1/2),
+    // sqrt(2)), then Cephes' logf polynomial for ln(m) (Moshier, Cephes Math Library,
+    // logf.c; relative error below 2e-7 over that range).
+    Float4 log_positive(Float4 x)
+    {
+        const Int4 bits = std::bit_cast<Int4>(x);
+        const Int4 mantissa = (bits & 0x007fffff) | 0x3f000000;  // m in [0.5, 1)
+        Float4 m = std::bit_cast<Float4>(mantissa);
+        Float4 e = __builtin_convertvector((bits >> 23) - 126, Float4);
+        const Int4 low = m < 0.707106781186547524f;
+        e = low ? e - 1.0f : e;
+        m = (low ? m + m : m) - 1.0f;
+        const Float4 z = m * m;
+        Float4 y = m * 7.0376836292e-2f - 1.1514610310e-1f;
+        y = y * m + 1.1676998740e-1f;
+        y = y * m - 1.2420140846e-1f;
+        y = y * m + 1.4249322787e-1f;
+        y = y * m - 1.6668057665e-1f;
+        y = y * m + 2.0000714765e-1f;
+        y = y * m - 2.4999993993e-1f;
+        y = y * m + 3.3333331174e-1f;
+        y = y * m * z;
+        // ln 2 in two parts (0.693359375 is exact in float) for the exponent's share.
+        y += e * -2.12194440e-4f;
+        y += z * -0.5f;
+        return m + y + e * 0.693359375f;
+    }
+
     // frac(u + i/count): hero-wavelength rotation of one uniform number.
     float rotate_u(float u, int i, int count)
     {
@@ -92,14 +139,6 @@ constexpr float kD65[kCieSamples] = {
         if (ui >= 1.0f)
             ui -= 1.0f;
         return std::clamp(ui, 0.0f, 0x1.fffffep-1f);
-    }
-
-    template <class Op> SampledSpectrum& apply(SampledSpectrum& a, const SampledSpectrum& b, Op op)
-    {
-        assert(a.count == b.count);
-        for (int i = 0; i < a.count; ++i)
-            a.v[i] = op(a.v[i], b.v[i]);
-        return a;
     }
 
 } // namespace
@@ -205,14 +244,26 @@ PatinaWavelengths sample_wavelengths_visible(float u, int count, SampledSpectrum
     PatinaWavelengths wl{};
     wl.count = count;
     pdf = SampledSpectrum(count, 0.0f);
-    for (int i = 0; i < count; ++i) {
-        // λ = 538 + atanh(t)/k, so tanh(k(λ − 538)) = t and the pdf A/cosh² is A(1 − t²):
-        // no tanh needed.
-        const float t =
-            static_cast<float>(kVisT0) + rotate_u(u, i, count) * static_cast<float>(kVisT1MinusT0);
-        const float l = 538.0f + std::atanh(t) / static_cast<float>(kVisK);
-        wl.lambda_nm[i] = std::clamp(l, kLambdaMinNm, kLambdaMaxNm);
-        pdf.v[i] = static_cast<float>(kVisA) * (1.0f - t * t);
+    const float step = 1.0f / static_cast<float>(count);
+    // Four wavelengths at a time, in SIMD registers.
+    for (int first = 0; first < count; first += 4) {
+        const Float4 lane = {0.0f, 1.0f, 2.0f, 3.0f};
+        // frac(u + i/count), as rotate_u.
+        Float4 ui = u + (lane + static_cast<float>(first)) * step;
+        ui = ui >= 1.0f ? ui - 1.0f : ui;
+        ui = ui < 0.0f ? 0.0f : ui;
+        ui = ui > 0x1.fffffep-1f ? 0x1.fffffep-1f : ui;
+        // λ = 538 + atanh(t)/k with atanh(t) = ln((1 + t)/(1 − t)) / 2; and since
+        // tanh(k(λ − 538)) = t, the pdf A/cosh² is A(1 − t²): no tanh needed.
+        const Float4 t = static_cast<float>(kVisT0) + ui * static_cast<float>(kVisT1MinusT0);
+        Float4 l = 538.0f + log_positive((1.0f + t) / (1.0f - t)) * static_cast<float>(0.5 / kVisK);
+        l = l < kLambdaMinNm ? kLambdaMinNm : l;
+        l = l > kLambdaMaxNm ? kLambdaMaxNm : l;
+        const Float4 density = static_cast<float>(kVisA) * (1.0f - t * t);
+        for (int i = 0; i < 4 && first + i < count; ++i) {
+            wl.lambda_nm[first + i] = l[i];
+            pdf.v[first + i] = density[i];
+        }
     }
     return wl;
 }
@@ -236,43 +287,6 @@ PatinaWavelengths sample_wavelengths_uniform(float u, int count)
     return wl;
 }
 
-SampledSpectrum SampledSpectrum::from_array(int n, const float* values)
-{
-    SampledSpectrum s(n, 0.0f);
-    for (int i = 0; i < n; ++i)
-        s.v[i] = values[i];
-    return s;
-}
-
-SampledSpectrum& SampledSpectrum::operator+=(const SampledSpectrum& o)
-{
-    return apply(*this, o, [](float a, float b) { return a + b; });
-}
-SampledSpectrum& SampledSpectrum::operator-=(const SampledSpectrum& o)
-{
-    return apply(*this, o, [](float a, float b) { return a - b; });
-}
-SampledSpectrum& SampledSpectrum::operator*=(const SampledSpectrum& o)
-{
-    return apply(*this, o, [](float a, float b) { return a * b; });
-}
-SampledSpectrum& SampledSpectrum::operator/=(const SampledSpectrum& o)
-{
-    return apply(*this, o, [](float a, float b) { return b != 0.0f ? a / b : 0.0f; });
-}
-SampledSpectrum& SampledSpectrum::operator*=(float s)
-{
-    for (int i = 0; i < count; ++i)
-        v[i] *= s;
-    return *this;
-}
-SampledSpectrum& SampledSpectrum::operator/=(float s)
-{
-    for (int i = 0; i < count; ++i)
-        v[i] = s != 0.0f ? v[i] / s : 0.0f;
-    return *this;
-}
-
 float SampledSpectrum::average() const
 {
     if (count == 0)
@@ -283,26 +297,11 @@ float SampledSpectrum::average() const
     return sum / static_cast<float>(count);
 }
 
-float SampledSpectrum::max_value() const
-{
-    if (count == 0)
-        return 0.0f;
-    return *std::max_element(v, v + count);
-}
-
 float SampledSpectrum::min_value() const
 {
     if (count == 0)
         return 0.0f;
     return *std::min_element(v, v + count);
-}
-
-bool SampledSpectrum::is_black() const
-{
-    for (int i = 0; i < count; ++i)
-        if (v[i] != 0.0f)
-            return false;
-    return true;
 }
 
 SampledSpectrum exp(const SampledSpectrum& s)
@@ -329,27 +328,70 @@ SampledSpectrum visible_wavelength_pdf(const PatinaWavelengths& wl)
 Xyz xyz_from_samples(const SampledSpectrum& L, const PatinaWavelengths& wl,
                      const SampledSpectrum& pdf)
 {
-    // Monte Carlo estimate of ∫ L x̄ dλ / ∫ ȳ dλ: one sample per wavelength, averaged.
-    Xyz xyz = {0.0, 0.0, 0.0};
+    // Monte Carlo estimate of ∫ L x̄ dλ / ∫ ȳ dλ: one sample per wavelength, averaged (in
+    // float: a handful of terms per sample; the film sums the samples in double).
     if (L.count == 0)
-        return xyz;
+        return {0.0, 0.0, 0.0};
+    float x = 0.0f, y = 0.0f, z = 0.0f;
     for (int i = 0; i < L.count; ++i) {
-        if (pdf.v[i] == 0.0f)
+        // Terminated secondary wavelengths and wavelengths outside the tables count as 0.
+        const float lambda = wl.lambda_nm[i];
+        if (pdf.v[i] == 0.0f || !(lambda >= kLambdaMinNm && lambda <= kLambdaMaxNm))
             continue;
-        // One table position for the three matching functions (0 outside the tables).
-        if (!(wl.lambda_nm[i] >= kLambdaMinNm && wl.lambda_nm[i] <= kLambdaMaxNm))
-            continue;
-        const float x = (wl.lambda_nm[i] - kLambdaMinNm) / kCieStepNm;
-        const int k = std::min(static_cast<int>(x), kCieSamples - 2);
-        const float f = x - static_cast<float>(k);
-        const double w = static_cast<double>(L.v[i]) / pdf.v[i];
-        xyz[0] += w * (kCieX[k] + f * (kCieX[k + 1] - kCieX[k]));
-        xyz[1] += w * (kCieY[k] + f * (kCieY[k + 1] - kCieY[k]));
-        xyz[2] += w * (kCieZ[k] + f * (kCieZ[k + 1] - kCieZ[k]));
+        // One table position for the three matching functions.
+        const float p = (lambda - kLambdaMinNm) / kCieStepNm;
+        const int k = std::min(static_cast<int>(p), kCieSamples - 2);
+        const float f = p - static_cast<float>(k);
+        const CieXyzNode& a = kCieXyzNodes[k];
+        const CieXyzNode& b = kCieXyzNodes[k + 1];
+        const float w = L.v[i] / pdf.v[i];
+        x += w * (a.x + f * (b.x - a.x));
+        y += w * (a.y + f * (b.y - a.y));
+        z += w * (a.z + f * (b.z - a.z));
     }
-    for (double& c : xyz)
-        c /= static_cast<double>(L.count) * kCieYIntegral;
-    return xyz;
+    const double norm = 1.0 / (static_cast<double>(L.count) * kCieYIntegral);
+    return {x * norm, y * norm, z * norm};
+}
+
+CieAtWavelengths cie_at_wavelengths(const PatinaWavelengths& wl)
+{
+    CieAtWavelengths cie;  // all entries 0
+    cie.x.count = cie.y.count = cie.z.count = cie.d65.count = wl.count;
+    for (int i = 0; i < wl.count; ++i) {
+        // lerp_table's position, shared by the four tables: one SIMD lerp of two nodes.
+        const float lambda = wl.lambda_nm[i];
+        if (!(lambda >= kLambdaMinNm && lambda <= kLambdaMaxNm))
+            continue;
+        const float p = (lambda - kLambdaMinNm) / kCieStepNm;
+        const int k = std::min(static_cast<int>(p), kCieSamples - 2);
+        const float f = p - static_cast<float>(k);
+        Float4 a, b;
+        std::memcpy(&a, &kCieXyzNodes[static_cast<size_t>(k)], sizeof a);
+        std::memcpy(&b, &kCieXyzNodes[static_cast<size_t>(k) + 1], sizeof b);
+        const Float4 v = a + f * (b - a);
+        cie.x.v[i] = v[0];
+        cie.y.v[i] = v[1];
+        cie.z.v[i] = v[2];
+        cie.d65.v[i] = v[3];
+    }
+    return cie;
+}
+
+Xyz xyz_from_samples(const SampledSpectrum& L, const CieAtWavelengths& cie,
+                     const SampledSpectrum& pdf)
+{
+    // As above: terminated wavelengths (pdf 0) count as 0, the average is over L.count.
+    if (L.count == 0)
+        return {0.0, 0.0, 0.0};
+    const SampledSpectrum w = L / pdf;
+    float x = 0.0f, y = 0.0f, z = 0.0f;
+    for (int i = 0; i < L.count; ++i) {
+        x += w.v[i] * cie.x.v[i];
+        y += w.v[i] * cie.y.v[i];
+        z += w.v[i] * cie.z.v[i];
+    }
+    const double norm = 1.0 / (static_cast<double>(L.count) * kCieYIntegral);
+    return {x * norm, y * norm, z * norm};
 }
 
 Xyz xyz_from_samples(const SampledSpectrum& L, const PatinaWavelengths& wl)

@@ -76,19 +76,32 @@ PatinaWavelengths sample_wavelengths_uniform(float u, int count);
 
 /// `count` values, one per wavelength of a PatinaWavelengths. Binary operations take the
 /// count of the left operand; both operands must have the same count.
+///
+/// Arithmetic runs over all PATINA_MAX_WAVELENGTHS entries, without a branch on the count:
+/// fixed-length loops the compiler turns into SIMD operations. The entries past `count`
+/// start at 0 and never mix with the others; reductions (average, max_value, min_value,
+/// is_black) and conversions look at the first `count` entries only.
 struct SampledSpectrum {
+    static constexpr int kLanes = PATINA_MAX_WAVELENGTHS;
     int count = 0;
-    float v[PATINA_MAX_WAVELENGTHS] = {};
+    float v[kLanes] = {};
 
     SampledSpectrum() = default;
     SampledSpectrum(int n, float value) : count(n)
     {
-        assert(n >= 0 && n <= PATINA_MAX_WAVELENGTHS);
-        for (int i = 0; i < n; ++i)
-            v[i] = value;
+        assert(n >= 0 && n <= kLanes);
+        for (int i = 0; i < kLanes; ++i)
+            v[i] = i < n ? value : 0.0f;
     }
     /// Copy n values (e.g. the float[PATINA_MAX_WAVELENGTHS] output of a plugin).
-    static SampledSpectrum from_array(int n, const float* values);
+    static SampledSpectrum from_array(int n, const float* values)
+    {
+        SampledSpectrum s;
+        s.count = n;
+        for (int i = 0; i < n; ++i)
+            s.v[i] = values[i];
+        return s;
+    }
     /// Evaluate fn at each wavelength.
     template <class Fn> static SampledSpectrum from_function(const PatinaWavelengths& wl, Fn&& fn)
     {
@@ -103,18 +116,66 @@ struct SampledSpectrum {
     float* data() { return v; }
     const float* data() const { return v; }
 
-    SampledSpectrum& operator+=(const SampledSpectrum& o);
-    SampledSpectrum& operator-=(const SampledSpectrum& o);
-    SampledSpectrum& operator*=(const SampledSpectrum& o);
+    SampledSpectrum& operator+=(const SampledSpectrum& o)
+    {
+        assert(count == o.count);
+        for (int i = 0; i < kLanes; ++i)
+            v[i] += o.v[i];
+        return *this;
+    }
+    SampledSpectrum& operator-=(const SampledSpectrum& o)
+    {
+        assert(count == o.count);
+        for (int i = 0; i < kLanes; ++i)
+            v[i] -= o.v[i];
+        return *this;
+    }
+    SampledSpectrum& operator*=(const SampledSpectrum& o)
+    {
+        assert(count == o.count);
+        for (int i = 0; i < kLanes; ++i)
+            v[i] *= o.v[i];
+        return *this;
+    }
     /// Elementwise division; a zero divisor gives 0 (never Inf or NaN).
-    SampledSpectrum& operator/=(const SampledSpectrum& o);
-    SampledSpectrum& operator*=(float s);
-    SampledSpectrum& operator/=(float s);
+    SampledSpectrum& operator/=(const SampledSpectrum& o)
+    {
+        assert(count == o.count);
+        for (int i = 0; i < kLanes; ++i)
+            v[i] = o.v[i] != 0.0f ? v[i] / o.v[i] : 0.0f;
+        return *this;
+    }
+    SampledSpectrum& operator*=(float s)
+    {
+        for (int i = 0; i < kLanes; ++i)
+            v[i] *= s;
+        return *this;
+    }
+    SampledSpectrum& operator/=(float s)
+    {
+        if (s == 0.0f)
+            return *this = SampledSpectrum(count, 0.0f);
+        for (int i = 0; i < kLanes; ++i)
+            v[i] /= s;
+        return *this;
+    }
 
     float average() const;
-    float max_value() const;
+    float max_value() const
+    {
+        float m = count > 0 ? v[0] : 0.0f;
+        for (int i = 1; i < count; ++i)
+            m = v[i] > m ? v[i] : m;
+        return m;
+    }
     float min_value() const;
-    bool is_black() const;
+    bool is_black() const
+    {
+        bool black = true;
+        for (int i = 0; i < kLanes; ++i)
+            black &= !(i < count && v[i] != 0.0f);
+        return black;
+    }
 };
 
 inline SampledSpectrum operator+(SampledSpectrum a, const SampledSpectrum& b)
@@ -162,5 +223,16 @@ Xyz xyz_from_samples(const SampledSpectrum& L, const PatinaWavelengths& wl,
                      const SampledSpectrum& pdf);
 /// As above, for wavelengths drawn by sample_wavelengths_visible.
 Xyz xyz_from_samples(const SampledSpectrum& L, const PatinaWavelengths& wl);
+
+/// x̄, ȳ, z̄ (cie_x, cie_y, cie_z) and D65 (d65) at every wavelength of a path, looked up
+/// once per path: one position in the 5 nm tables per wavelength serves all four.
+struct CieAtWavelengths {
+    SampledSpectrum x, y, z;
+    SampledSpectrum d65;
+};
+CieAtWavelengths cie_at_wavelengths(const PatinaWavelengths& wl);
+/// xyz_from_samples with the matching functions already looked up for L's wavelengths.
+Xyz xyz_from_samples(const SampledSpectrum& L, const CieAtWavelengths& cie,
+                     const SampledSpectrum& pdf);
 
 } // namespace patina

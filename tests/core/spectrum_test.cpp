@@ -1,6 +1,8 @@
 // CIE tables, colorimetric integration and wavelength sampling (core/spectrum.h).
 #include "core/spectrum.h"
 
+#include <patina/shading/spectral.h>
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -8,6 +10,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -317,4 +320,73 @@ TEST(SpectrumTest, SampledWavelengthPdfMatchesTheDensity)
                 EXPECT_NEAR(pdf[i], expected, 1e-4f * expected) << wl.lambda_nm[i];
             }
         }
+}
+
+// One table position per wavelength gives what the four single look-ups give, and the film's
+// XYZ from it equals the per-wavelength path.
+TEST(SpectrumTest, CieAtWavelengthsMatchesTheSingleLookups)
+{
+    for (float u : {0.0f, 0.13f, 0.5f, 0.77f, 0.999f})
+        for (int n : {1, 3, 4, 8}) {
+            patina::SampledSpectrum pdf;
+            const PatinaWavelengths wl = patina::sample_wavelengths_visible(u, n, pdf);
+            const patina::CieAtWavelengths cie = patina::cie_at_wavelengths(wl);
+            ASSERT_EQ(cie.x.count, n);
+            ASSERT_EQ(cie.d65.count, n);
+            patina::SampledSpectrum L(n, 0.0f);
+            for (int i = 0; i < n; ++i) {
+                const float l = wl.lambda_nm[i];
+                EXPECT_EQ(cie.x[i], patina::cie_x(l));
+                EXPECT_EQ(cie.y[i], patina::cie_y(l));
+                EXPECT_EQ(cie.z[i], patina::cie_z(l));
+                EXPECT_EQ(cie.d65[i], patina::d65(l));
+                L[i] = 0.5f + 0.1f * static_cast<float>(i);
+            }
+            const patina::Xyz a = patina::xyz_from_samples(L, cie, pdf);
+            const patina::Xyz b = patina::xyz_from_samples(L, wl, pdf);
+            for (int c = 0; c < 3; ++c)
+                EXPECT_NEAR(a[c], b[c], 1e-6 * std::abs(b[c]) + 1e-12) << c;
+        }
+    // Outside 360-830 nm every table is 0; a terminated wavelength (pdf 0) adds nothing.
+    PatinaWavelengths wl{};
+    wl.count = 2;
+    wl.lambda_nm[0] = 300.0f;
+    wl.lambda_nm[1] = 555.0f;
+    const patina::CieAtWavelengths cie = patina::cie_at_wavelengths(wl);
+    EXPECT_EQ(cie.y[0], 0.0f);
+    EXPECT_EQ(cie.d65[0], 0.0f);
+    patina::SampledSpectrum pdf(2, 0.0f);
+    EXPECT_EQ(patina::xyz_from_samples(patina::SampledSpectrum(2, 1.0f), cie, pdf)[1], 0.0);
+}
+
+// Arithmetic runs over every lane; what lies past `count` never shows in a result.
+TEST(SpectrumTest, SampledSpectrumIgnoresLanesPastCount)
+{
+    patina::SampledSpectrum a(3, 2.0f);
+    EXPECT_EQ(a[3], 0.0f);
+    EXPECT_EQ(a[7], 0.0f);
+    a *= std::numeric_limits<float>::infinity();  // 0 * inf in the unused lanes
+    EXPECT_EQ(a.count, 3);
+    EXPECT_FALSE(a.is_black());
+    EXPECT_EQ(a.max_value(), std::numeric_limits<float>::infinity());
+    patina::SampledSpectrum z(3, 0.0f);
+    z /= patina::SampledSpectrum(3, 0.0f);
+    EXPECT_TRUE(z.is_black());
+    EXPECT_TRUE((patina::SampledSpectrum(4, 1.0f) / 0.0f).is_black());
+}
+
+// The plugin helpers' exact path for greys (shading/spectral.h): eval_rgb of a spectrum with
+// c0 = c1 = 0 (of either sign) is patina_rgb_spectrum_eval at each wavelength, bit for bit.
+TEST(SpectrumTest, EvalRgbOfAGreyIsExact)
+{
+    const PatinaWavelengths wl = patina::sample_wavelengths_visible(0.37f, 4);
+    for (const PatinaRgbSpectrum& grey :
+         {PatinaRgbSpectrum{0.0f, 0.0f, 1.3f, 0.8f, 0}, PatinaRgbSpectrum{-0.0f, 0.0f, 0.0f, 1.0f, 0},
+          PatinaRgbSpectrum{0.0f, -0.0f, -4.0f, 0.5f, 0}}) {
+        const patina::shading::SpectralArray g = patina::shading::eval_rgb(grey, wl);
+        for (int i = 0; i < wl.count; ++i)
+            EXPECT_EQ(g[i], patina_rgb_spectrum_eval(&grey, wl.lambda_nm[i]));
+        for (int i = wl.count; i < PATINA_MAX_WAVELENGTHS; ++i)
+            EXPECT_EQ(g[i], 0.0f);
+    }
 }
