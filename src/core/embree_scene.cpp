@@ -7,6 +7,7 @@
 #include <cfloat>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -39,12 +40,16 @@ namespace {
 
     Imath::V3f abs(const Imath::V3f& v) { return {std::abs(v.x), std::abs(v.y), std::abs(v.z)}; }
 
-    /// Any unit vector perpendicular to unit `n`, and the third axis of a right-handed frame.
+    /// Any unit vector perpendicular to unit `n`, and the third axis of a right-handed frame
+    /// (Duff et al. 2017, "Building an Orthonormal Basis, Revisited": no square root, no
+    /// division but one, no branch but the sign).
     void tangent_frame(const Imath::V3f& n, Imath::V3f& t, Imath::V3f& b)
     {
-        const Imath::V3f helper = std::abs(n.x) < 0.9f ? Imath::V3f(1, 0, 0) : Imath::V3f(0, 1, 0);
-        t = (helper - n * n.dot(helper)).normalized();
-        b = n.cross(t);
+        const float sign = std::copysign(1.0f, n.z);
+        const float a = -1.0f / (sign + n.z);
+        const float c = n.x * n.y * a;
+        t = Imath::V3f(1.0f + sign * n.x * n.x * a, sign * c, -sign * n.x);
+        b = Imath::V3f(c, sign + n.y * n.y * a, -n.y);
     }
 
     // Bound on the rounding error of P = b0 p0 + b1 p1 + b2 p2 in floats: pbrt-v4's
@@ -63,22 +68,6 @@ Imath::V3f offset_ray_origin(const Imath::V3f& P, const Imath::V3f& Ng, const Im
     const float scale = std::max({std::abs(P.x), std::abs(P.y), std::abs(P.z)});
     const float d = kRelativeOffset * scale + kAbsoluteOffset;
     return P + (Ng.dot(dir) < 0.0f ? -d : d) * Ng;
-}
-
-Imath::V3f offset_ray_origin(const SurfacePoint& sp, const Imath::V3f& dir)
-{
-    // Offset along Ng by the error box's extent in that direction (pbrt-v4 OffsetRayOrigin).
-    // pbrt's own triangle test also rejects hits closer than its t error bound; Embree
-    // accepts t = 0, so a point computed exactly (error 0, e.g. on the plane y = 0) would
-    // hit its own triangle again: never offset by less than the scaled epsilon. That floor,
-    // 2^-16 of the largest coordinate, is 2^8 ulps of it, so the rounding of the sum below
-    // cannot undo the offset (pbrt's extra next-float step is not needed).
-    const float scale = std::max({std::abs(sp.P.x), std::abs(sp.P.y), std::abs(sp.P.z)});
-    const float d = std::max(abs(sp.Ng).dot(sp.p_error), kRelativeOffset * scale + kAbsoluteOffset);
-    Imath::V3f offset = d * sp.Ng;
-    if (sp.Ng.dot(dir) < 0.0f)
-        offset = -offset;
-    return sp.P + offset;
 }
 
 EmbreeScene::EmbreeScene()
@@ -142,6 +131,13 @@ int EmbreeScene::add_mesh(const TriangleMesh& mesh)
     rtcReleaseGeometry(geom); // the scene holds its own reference
     check(("adding " + context).c_str());
     meshes_.push_back(mesh);
+    std::vector<Imath::V3f>& normals = unit_normals_.emplace_back(mesh.triangle_count());
+    for (size_t t = 0; t < normals.size(); ++t) {
+        const Imath::V3f& p0 = mesh.positions[mesh.indices[3 * t]];
+        const Imath::V3f ng =
+            (mesh.positions[mesh.indices[3 * t + 1]] - p0).cross(mesh.positions[mesh.indices[3 * t + 2]] - p0);
+        normals[t] = ng.length2() > 0.0f ? ng.normalized() : Imath::V3f(0, 0, 0);
+    }
     committed_ = false;
     return id;
 }
@@ -160,7 +156,11 @@ std::optional<Hit> EmbreeScene::intersect(const Imath::V3f& origin, const Imath:
         throw std::runtime_error("EmbreeScene::intersect called before commit()");
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
-    RTCRayHit rh{};
+    // Every field Embree reads is set (no zeroing of the whole 80-byte struct).
+    RTCRayHit rh;
+    rh.ray.time = 0.0f;
+    rh.ray.id = 0;
+    rh.ray.flags = 0;
     rh.ray.org_x = origin.x;
     rh.ray.org_y = origin.y;
     rh.ray.org_z = origin.z;
@@ -248,7 +248,9 @@ size_t EmbreeScene::count_unoccluded(std::span<const ShadowRay> rays) const
 SurfacePoint EmbreeScene::interpolate(const Hit& hit, const Imath::V3f& origin,
                                       const Imath::V3f& dir) const
 {
-    const TriangleMesh& m = mesh(hit.mesh_id);
+    if (hit.mesh_id < 0 || hit.mesh_id >= mesh_count())
+        mesh(hit.mesh_id);  // throws, naming the id
+    const TriangleMesh& m = meshes_[static_cast<size_t>(hit.mesh_id)];
     if (hit.prim_id < 0 || static_cast<size_t>(hit.prim_id) >= m.triangle_count())
         throw std::runtime_error(fmt::format("EmbreeScene::interpolate: triangle {} out of range for mesh '{}'",
                                              hit.prim_id, m.name));
@@ -260,22 +262,26 @@ SurfacePoint EmbreeScene::interpolate(const Hit& hit, const Imath::V3f& origin,
     SurfacePoint sp;
     sp.mesh_id = hit.mesh_id;
     sp.prim_id = hit.prim_id;
-    sp.P = b0 * p0 + b1 * p1 + b2 * p2;
-    sp.p_error = kPositionErrorScale * (abs(b0 * p0) + abs(b1 * p1) + abs(b2 * p2));
+    const Imath::V3f w0 = b0 * p0, w1 = b1 * p1, w2 = b2 * p2;
+    sp.P = w0 + w1 + w2;
+    sp.p_error = kPositionErrorScale * (abs(w0) + abs(w1) + abs(w2));
     const Imath::V3f back = origin - sp.P;
-    sp.wo = back.length2() > 0.0f ? back.normalized() : -dir.normalized();
+    const float back_length2 = back.length2();
+    sp.wo = back_length2 > 0.0f ? back * (1.0f / std::sqrt(back_length2)) : -dir.normalized();
 
-    // Geometric normal from the winding; a degenerate triangle (never hit in practice)
-    // falls back to facing the ray.
-    Imath::V3f ng = (p1 - p0).cross(p2 - p0);
-    sp.Ng = ng.length2() > 0.0f ? ng.normalized() : -dir.normalized();
+    // Geometric normal from the winding (unit, from add_mesh); a degenerate triangle (never
+    // hit in practice) falls back to facing the ray.
+    sp.Ng = unit_normals_[static_cast<size_t>(hit.mesh_id)][static_cast<size_t>(hit.prim_id)];
+    if (sp.Ng.x == 0.0f && sp.Ng.y == 0.0f && sp.Ng.z == 0.0f)
+        sp.Ng = -dir.normalized();
 
     // Shading normal: interpolated; the file's normals decide which side is outside.
     sp.N = sp.Ng;
     if (m.has_normals()) {
         const Imath::V3f n = b0 * m.normals[i0] + b1 * m.normals[i1] + b2 * m.normals[i2];
-        if (n.length2() > 1e-20f && std::isfinite(n.length2())) {
-            sp.N = n.normalized();
+        const float n_length2 = n.length2();
+        if (n_length2 > 1e-20f && n_length2 < std::numeric_limits<float>::infinity()) {
+            sp.N = n * (1.0f / std::sqrt(n_length2));
             if (sp.N.dot(sp.Ng) < 0.0f)
                 sp.Ng = -sp.Ng;
         }

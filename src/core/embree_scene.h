@@ -8,6 +8,8 @@
 #include <Imath/ImathBox.h>
 #include <Imath/ImathVec.h>
 
+#include <algorithm>
+#include <cmath>
 #include <limits>
 #include <optional>
 #include <span>
@@ -55,7 +57,26 @@ struct ShadowRay {
 /// distance from the origin; the SurfacePoint overload uses the hit's error bound instead.
 Imath::V3f offset_ray_origin(const Imath::V3f& P, const Imath::V3f& Ng, const Imath::V3f& dir);
 /// pbrt-v4 style: offset by the error bound of the interpolated position, rounded away.
-Imath::V3f offset_ray_origin(const SurfacePoint& sp, const Imath::V3f& dir);
+/// Inline: the renderer calls it twice per bounce.
+inline Imath::V3f offset_ray_origin(const SurfacePoint& sp, const Imath::V3f& dir)
+{
+    // Offset along Ng by the error box's extent in that direction (pbrt-v4 OffsetRayOrigin).
+    // pbrt's own triangle test also rejects hits closer than its t error bound; Embree
+    // accepts t = 0, so a point computed exactly (error 0, e.g. on the plane y = 0) would
+    // hit its own triangle again: never offset by less than the scaled epsilon (that of the
+    // (P, Ng, dir) overload). That floor, 2^-16 of the largest coordinate, is 2^8 ulps of
+    // it, so the rounding of the sum below cannot undo the offset (pbrt's extra next-float
+    // step is not needed).
+    constexpr float kRelativeOffset = 1.0f / 65536.0f, kAbsoluteOffset = 1e-6f;
+    const float ax = std::abs(sp.P.x), ay = std::abs(sp.P.y), az = std::abs(sp.P.z);
+    const float scale = std::max(ax, std::max(ay, az));
+    const float error = std::abs(sp.Ng.x) * sp.p_error.x + std::abs(sp.Ng.y) * sp.p_error.y +
+                        std::abs(sp.Ng.z) * sp.p_error.z;
+    float d = std::max(error, kRelativeOffset * scale + kAbsoluteOffset);
+    if (sp.Ng.dot(dir) < 0.0f)
+        d = -d;
+    return sp.P + d * sp.Ng;
+}
 
 /// Triangle meshes in one Embree scene. Build (add_mesh, commit) from one thread; after
 /// commit, intersect/occluded/interpolate are thread-safe. Embree errors become
@@ -106,6 +127,9 @@ private:
     RTCScene scene_ = nullptr;
     bool committed_ = false;
     std::vector<TriangleMesh> meshes_;
+    /// Per mesh, per triangle: the unit winding normal cross(p1 - p0, p2 - p0), or 0 for a
+    /// degenerate triangle; computed once in add_mesh instead of at every hit.
+    std::vector<std::vector<Imath::V3f>> unit_normals_;
 };
 
 }  // namespace patina
