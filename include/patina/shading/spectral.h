@@ -117,6 +117,14 @@ inline void fill(float value, const PatinaWavelengths& wl, float* out)
 /// A reflectance PatinaRgbSpectrum (illuminant == 0) at the path's wavelengths.
 inline SpectralArray eval_rgb(const PatinaRgbSpectrum& s, const PatinaWavelengths& wl)
 {
+    // The exact path for greys: with c0 = c1 = 0 the polynomial is the constant c2, so
+    // the value is the same at every wavelength (bit for bit what the loop would give).
+    if (s.c0 == 0.0f && s.c1 == 0.0f) {
+        SpectralArray a;
+        const float value = patina_rgb_spectrum_eval(&s, 0.0f);
+        for_each_wavelength(wl, [&](int i, float) { a.v[i] = value; });
+        return a;
+    }
     SpectralArray a;
     for_each_wavelength(
         wl, [&](int i, float lambda) { a.v[i] = patina_rgb_spectrum_eval(&s, lambda); });
