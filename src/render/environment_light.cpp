@@ -258,6 +258,15 @@ void EnvironmentLight::build(const Host& host, const ImageData& image, std::stri
     distribution_ = Distribution2D(cells, nu, nv);
 }
 
+Imath::V3f EnvironmentLight::sample_uniform_sphere(Imath::V2f u)
+{
+    // pbrt-v4 SampleUniformSphere, with +y as the polar axis.
+    const float z = 1.0f - 2.0f * u.x;
+    const float r = std::sqrt(std::max(0.0f, 1.0f - z * z));
+    const float phi = 2.0f * kPiF * u.y;
+    return {r * std::cos(phi), z, r * std::sin(phi)};
+}
+
 Imath::V2f EnvironmentLight::direction_to_uv(const Imath::V3f& dir) const
 {
     // Undo the rotation about +y (rotate by -rotation_deg), then invert d(u, v).
@@ -290,23 +299,39 @@ const PatinaRgbSpectrum& EnvironmentLight::texel_at(float u, float v) const
 SampledSpectrum EnvironmentLight::radiance_of(const PatinaRgbSpectrum& s,
                                               const PatinaWavelengths& wl) const
 {
+    // The exact path for greys (a white sky): one sigmoid for all wavelengths.
+    if (RgbToSpectrum::is_grey(s)) {
+        const float grey = intensity_ * patina_rgb_spectrum_eval(&s, 0.0f);
+        if (!s.illuminant)
+            return SampledSpectrum(wl.count, grey);
+        return SampledSpectrum::from_function(
+            wl, [&](float lambda) { return grey * RgbToSpectrum::unit_d65(lambda); });
+    }
     return SampledSpectrum::from_function(
         wl, [&](float lambda) { return intensity_ * RgbToSpectrum::eval(s, lambda); });
+}
+
+SampledSpectrum EnvironmentLight::constant_radiance(const PatinaWavelengths& wl,
+                                                    const SampledSpectrum& d65_at_wl) const
+{
+    const PatinaRgbSpectrum& s = texels_[0];
+    if (!RgbToSpectrum::is_grey(s) || !s.illuminant)
+        return radiance_of(s, wl);
+    // radiance_of's grey emission: grey * d65 * (1 / Y of D65), with d65 given.
+    return d65_at_wl * (intensity_ * patina_rgb_spectrum_eval(&s, 0.0f) *
+                        RgbToSpectrum::d65_to_unit_luminance());
 }
 
 std::optional<LightSample> EnvironmentLight::sample(const Imath::V3f&, Imath::V2f u,
                                                     const PatinaWavelengths& wl) const
 {
     if (is_constant()) {
-        // A uniform sky: uniform directions over the sphere (pbrt-v4 SampleUniformSphere).
-        const float z = 1.0f - 2.0f * u.x;
-        const float r = std::sqrt(std::max(0.0f, 1.0f - z * z));
-        const float phi = 2.0f * kPiF * u.y;
+        // A uniform sky: uniform directions over the sphere.
         LightSample ls;
-        ls.wi = Imath::V3f(r * std::cos(phi), z, r * std::sin(phi));
+        ls.wi = sample_uniform_sphere(u);
         ls.distance = std::numeric_limits<float>::infinity();
         ls.L = radiance_of(texels_[0], wl);
-        ls.pdf = 1.0f / (4.0f * kPiF);
+        ls.pdf = kUniformSpherePdf;
         return ls;
     }
     // Choose (u, v) by the luminance distribution, then map it to a direction.
@@ -329,7 +354,7 @@ float EnvironmentLight::pdf(const Imath::V3f&, const Imath::V3f& wi, const Light
     if (!(len > 0.0f) || !std::isfinite(len))
         return 0.0f;
     if (is_constant())
-        return 1.0f / (4.0f * kPiF);
+        return kUniformSpherePdf;
     const Imath::V2f uv = direction_to_uv(wi);
     // sin θ from the direction itself (the rotation about +y leaves it unchanged).
     const float sin_theta = std::sqrt(wi.x * wi.x + wi.z * wi.z) / len;

@@ -91,6 +91,21 @@ public:
 
     /// A 1x1 map: a uniform sky, sampled uniformly over the sphere without the 2D table.
     bool is_constant() const { return width_ == 1 && height_ == 1; }
+    /// The radiance of a constant map (is_constant()) at wl, the same in every direction:
+    /// what sample() and escaped_radiance() return for it, so that an integrator can
+    /// evaluate it once per path instead of once per query.
+    SampledSpectrum constant_radiance(const PatinaWavelengths& wl) const
+    {
+        return radiance_of(texels_[0], wl);
+    }
+    /// The same, given D65 (core/spectrum.h d65) at wl, as cie_at_wavelengths looks it up
+    /// for the film: a grey sky then needs no table look-up of its own.
+    SampledSpectrum constant_radiance(const PatinaWavelengths& wl,
+                                      const SampledSpectrum& d65_at_wl) const;
+    /// The direction sample() draws for a constant map from `u`: uniform over the sphere
+    /// (pbrt-v4 SampleUniformSphere), with the density kUniformSpherePdf.
+    static Imath::V3f sample_uniform_sphere(Imath::V2f u);
+    static constexpr float kUniformSpherePdf = 1.0f / (4.0f * 3.14159265358979f);
     int width() const { return width_; }
     int height() const { return height_; }
     float intensity() const { return intensity_; }

@@ -1,6 +1,7 @@
 #include "render/integrator.h"
 
 #include "render/area_light.h"
+#include "render/environment_light.h"
 #include "render/light_sampler.h"
 #include "render/transmittance.h"
 
@@ -42,7 +43,8 @@ namespace {
         const ShadingFrame* frame;  // null for a medium point (world-space directions)
         PatinaVec3 wo;
 
-        // Value (times |cos| on surfaces) and pdf of scattering towards world direction wi.
+        // Value (times |cos| on surfaces) and pdf of scattering towards world direction wi;
+        // the pdf is left at 0 when the value is 0 (the sample is dropped).
         float eval(const Imath::V3f& wi, const PatinaWavelengths& wl, SampledSpectrum& f) const
         {
             float v[PATINA_MAX_WAVELENGTHS] = {};
@@ -50,11 +52,40 @@ namespace {
                 const PatinaVec3 wl_i = to_abi(frame->to_local(wi));
                 shader->bsdf()->eval(shader->get(), ctx, wo, wl_i, &wl, v);
                 f = SampledSpectrum::from_array(wl.count, v) * std::abs(wl_i.z);
+                if (f.is_black())
+                    return 0.0f;
                 return shader->bsdf()->pdf(shader->get(), ctx, wo, wl_i, &wl);
             }
             const float pdf = shader->medium()->phase_eval(shader->get(), ctx, wo, to_abi(wi), &wl, v);
             f = SampledSpectrum::from_array(wl.count, v);
             return pdf;
+        }
+    };
+
+    // A constant environment's radiance at the path's wavelengths, evaluated once per path
+    // (it is the same for every direction and every vertex), with its selection probability.
+    struct UniformSky {
+        const EnvironmentLight* light = nullptr;
+        SampledSpectrum L;
+        float pmf = 0.0f;
+
+        UniformSky(const Scene& scene, const PatinaWavelengths& wl, const SampledSpectrum& d65)
+            : light(scene.lights.uniform_sky())
+        {
+            if (light) {
+                L = light->constant_radiance(wl, d65);
+                pmf = scene.lights.pmf(light);
+            }
+        }
+        // EnvironmentLight::sample for a constant map, with the radiance from above.
+        std::optional<LightSample> sample(Imath::V2f u) const
+        {
+            LightSample ls;
+            ls.wi = EnvironmentLight::sample_uniform_sphere(u);
+            ls.distance = kInf;
+            ls.L = L;
+            ls.pdf = EnvironmentLight::kUniformSpherePdf;
+            return ls;
         }
     };
 
@@ -65,7 +96,7 @@ namespace {
     SampledSpectrum sample_direct(const Scene& scene, const Scatterer& at, const Imath::V3f& P,
                                   const SurfacePoint* sp, const SceneObject* obj,
                                   const Imath::V3f& incoming, const ShaderInstance* medium,
-                                  const PatinaWavelengths& wl, Pcg32& rng)
+                                  const PatinaWavelengths& wl, const UniformSky& sky, Pcg32& rng)
     {
         SampledSpectrum none(wl.count, 0.0f);
         const float u_light = rng.uniform_float();
@@ -73,7 +104,8 @@ namespace {
         const auto chosen = scene.lights.sample(u_light);
         if (!chosen)
             return none;
-        const auto ls = chosen->light->sample(P, u, wl);
+        const auto ls =
+            chosen->light == sky.light ? sky.sample(u) : chosen->light->sample(P, u, wl);
         if (!ls || !(ls->pdf > 0.0f) || ls->L.is_black())
             return none;
         SampledSpectrum f;
@@ -101,10 +133,16 @@ namespace {
     }
 
     SampledSpectrum escaped(const Scene& scene, const Ray& ray, const PrevVertex& prev,
-                            const PatinaWavelengths& wl)
+                            const PatinaWavelengths& wl, const UniformSky& sky)
     {
         SampledSpectrum L(wl.count, 0.0f);
         for (const Light* light : scene.lights.infinite_lights()) {
+            if (light == sky.light) {
+                if (!sky.L.is_black())
+                    L += sky.L * emission_mis_weight(scene, prev,
+                                                     sky.pmf * EnvironmentLight::kUniformSpherePdf);
+                continue;
+            }
             const SampledSpectrum Le = light->escaped_radiance(ray.dir, wl);
             if (Le.is_black())
                 continue;
@@ -130,11 +168,13 @@ namespace {
 }  // namespace
 
 SampledSpectrum trace_path(const Scene& scene, Ray ray, const PatinaWavelengths& wl,
-                           SampledSpectrum& pdf, Pcg32& rng, PathAovs* aovs)
+                           const CieAtWavelengths& cie, SampledSpectrum& pdf, Pcg32& rng,
+                           PathAovs* aovs)
 {
     SampledSpectrum L(wl.count, 0.0f), beta(wl.count, 1.0f);
     bool secondaries_terminated = false;
     PrevVertex prev;
+    const UniformSky sky(scene, wl, cie.d65);
     const ShaderInstance* medium = nullptr;  // the camera is in vacuum
     int pass_through = 0;
     for (int depth = 0;;) {
@@ -160,7 +200,7 @@ SampledSpectrum trace_path(const Scene& scene, Ray ray, const PatinaWavelengths&
                 const Scatterer phase{medium, &mctx, nullptr, wo};
                 if (scene.film.mis)
                     L += beta * sample_direct(scene, phase, P, nullptr, nullptr, ray.dir, medium,
-                                              wl, rng);
+                                              wl, sky, rng);
                 PatinaVec3 wi{};
                 float p[PATINA_MAX_WAVELENGTHS] = {};
                 const Imath::V2f u{rng.uniform_float(), rng.uniform_float()};
@@ -180,7 +220,7 @@ SampledSpectrum trace_path(const Scene& scene, Ray ray, const PatinaWavelengths&
 
         // Paths that escape see the infinite lights.
         if (!hit) {
-            L += beta * escaped(scene, ray, prev, wl);
+            L += beta * escaped(scene, ray, prev, wl, sky);
             break;
         }
         const SurfacePoint sp = scene.geometry->interpolate(*hit, ray.origin, ray.dir);
@@ -231,7 +271,8 @@ SampledSpectrum trace_path(const Scene& scene, Ray ray, const PatinaWavelengths&
         // medium there is this one unless it crosses into the object's interior.
         if (scene.film.mis) {
             const Scatterer surface{obj.bsdf.get(), &frame.ctx, &frame, wo};
-            L += beta * sample_direct(scene, surface, sp.P, &sp, &obj, ray.dir, medium, wl, rng);
+            L += beta * sample_direct(scene, surface, sp.P, &sp, &obj, ray.dir, medium, wl, sky,
+                                      rng);
         }
 
         // Sample the BSDF for the next direction.
@@ -241,9 +282,7 @@ SampledSpectrum trace_path(const Scene& scene, Ray ray, const PatinaWavelengths&
         if (!obj.bsdf->bsdf()->sample(obj.bsdf->get(), &frame.ctx, wo, u_lobe, u, &wl, &bs) ||
             !(bs.pdf > 0.0f))
             break;
-        const float cos_i = std::abs(bs.wi.z);
-        for (int i = 0; i < wl.count; ++i)
-            beta[i] *= bs.f[i] * cos_i / bs.pdf;
+        beta *= SampledSpectrum::from_array(wl.count, bs.f) * (std::abs(bs.wi.z) / bs.pdf);
         if ((bs.lobe & PATINA_LOBE_WAVELENGTH_DEPENDENT) && !secondaries_terminated &&
             wl.count > 1) {
             // Only the hero wavelength follows a dispersed direction.

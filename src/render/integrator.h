@@ -19,10 +19,12 @@ struct PathAovs {
     float depth = 0.0f;
 };
 
-/// Radiance along `ray` at the wavelengths `wl`. `pdf` holds the wavelength sampling pdf;
-/// when a lobe disperses light the secondary wavelengths are terminated by zeroing their
-/// pdf (pbrt-v4's TerminateSecondary). `aovs`, when given, receives the first hit.
+/// Radiance along `ray` at the wavelengths `wl`; `cie` holds the CIE tables at wl
+/// (cie_at_wavelengths(wl)). `pdf` holds the wavelength sampling pdf; when a lobe
+/// disperses light the secondary wavelengths are terminated by zeroing their pdf
+/// (pbrt-v4's TerminateSecondary). `aovs`, when given, receives the first hit.
 SampledSpectrum trace_path(const Scene& scene, Ray ray, const PatinaWavelengths& wl,
-                           SampledSpectrum& pdf, Pcg32& rng, PathAovs* aovs = nullptr);
+                           const CieAtWavelengths& cie, SampledSpectrum& pdf, Pcg32& rng,
+                           PathAovs* aovs = nullptr);
 
 }  // namespace patina::render

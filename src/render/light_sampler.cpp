@@ -1,6 +1,7 @@
 #include "render/light_sampler.h"
 
 #include "render/area_light.h"
+#include "render/environment_light.h"
 
 #include <cmath>
 
@@ -39,6 +40,9 @@ LightSampler::LightSampler(std::vector<std::unique_ptr<Light>> lights) : lights_
             infinite_.push_back(light);
         if (const auto* area = dynamic_cast<const AreaLight*>(light))
             by_mesh_[area->mesh_id()] = area;
+        if (const auto* sky = dynamic_cast<const EnvironmentLight*>(light))
+            if (sky->is_constant() && !uniform_sky_)
+                uniform_sky_ = sky;
         // A NaN or negative power must not poison the distribution; such a light counts as 0.
         const float p = light->power();
         power.push_back(std::isfinite(p) && p > 0.0f ? p : 0.0f);
@@ -53,6 +57,9 @@ std::optional<SampledLight> LightSampler::sample(float u) const
 {
     if (lights_.empty())
         return std::nullopt;
+    // One light is chosen with probability 1 (what the distribution gives, without its search).
+    if (lights_.size() == 1)
+        return SampledLight{lights_[0].get(), 1.0f};
     float pmf = 0.0f;
     const int i = distribution_.sample_discrete(u, &pmf);
     if (!(pmf > 0.0f))
@@ -62,6 +69,8 @@ std::optional<SampledLight> LightSampler::sample(float u) const
 
 float LightSampler::pmf(const Light* light) const
 {
+    if (lights_.size() == 1)
+        return light == lights_[0].get() ? 1.0f : 0.0f;
     const auto it = index_.find(light);
     return it == index_.end() ? 0.0f : distribution_.discrete_pmf(it->second);
 }

@@ -15,6 +15,7 @@
 namespace patina::render {
 
 class AreaLight;
+class EnvironmentLight;
 
 /// Fixed wavelengths (8, evenly spaced over 400-700 nm) at which lights estimate power().
 PatinaWavelengths power_wavelengths();
@@ -45,12 +46,16 @@ public:
     const std::vector<const Light*>& infinite_lights() const { return infinite_; }
     /// The area light of an emissive mesh, or nullptr when the mesh does not emit.
     const AreaLight* area_light_for_mesh(int mesh_id) const;
+    /// A constant environment among the lights (the first), or nullptr: its radiance is the
+    /// same for every direction, so the integrator evaluates it once per path.
+    const EnvironmentLight* uniform_sky() const { return uniform_sky_; }
 
 private:
     std::vector<std::unique_ptr<Light>> lights_;
     std::vector<const Light*> infinite_;
     std::unordered_map<const Light*, int> index_;
     std::unordered_map<int, const AreaLight*> by_mesh_;
+    const EnvironmentLight* uniform_sky_ = nullptr;
     Distribution1D distribution_;
 };
 

@@ -132,8 +132,10 @@ FilmResult render_region(const Scene& scene, const Region& region, const RenderC
                 for (int lx = tx0; lx < std::min(tx0 + kTileSize, w); ++lx) {
                     const int x = region.x0 + lx, y = region.y0 + ly;
                     const size_t i = static_cast<size_t>(ly) * w + lx;
+                    const uint64_t stream = pixel_stream(film.seed, x, y);
                     for (int s = s0; s < s1; ++s) {
-                        Pcg32 rng = pixel_sample_rng(film.seed, x, y, static_cast<uint64_t>(s));
+                        // pixel_sample_rng(seed, x, y, s), with the pixel's hash taken once.
+                        Pcg32 rng = sample_rng(stream, film.seed, static_cast<uint64_t>(s));
                         const float fx = (static_cast<float>(x) + rng.uniform_float()) /
                                          static_cast<float>(film.width);
                         const float fy = (static_cast<float>(y) + rng.uniform_float()) /
@@ -142,11 +144,12 @@ FilmResult render_region(const Scene& scene, const Region& region, const RenderC
                         SampledSpectrum pdf;
                         const PatinaWavelengths wl =
                             sample_wavelengths_visible(rng.uniform_float(), film.wavelengths, pdf);
+                        const CieAtWavelengths cie = cie_at_wavelengths(wl);
                         PathAovs aov;
                         const SampledSpectrum L = trace_path(
-                            scene, scene.camera.generate(fx, fy, lens), wl, pdf, rng,
+                            scene, scene.camera.generate(fx, fy, lens), wl, cie, pdf, rng,
                             want_aovs ? &aov : nullptr);
-                        const Xyz c = xyz_from_samples(L, wl, pdf);
+                        const Xyz c = xyz_from_samples(L, cie, pdf);
                         for (size_t k = 0; k < 3; ++k)
                             if (std::isfinite(c[k]))
                                 acc.xyz[i * 3 + k] += c[k];

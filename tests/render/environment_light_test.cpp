@@ -127,6 +127,28 @@ TEST(EnvironmentLight, ConstantColourMatchesItsUplift)
     }
 }
 
+// What the integrator evaluates once per path is what escaped_radiance and sample give.
+TEST(EnvironmentLight, ConstantRadianceIsWhatEveryQueryGives)
+{
+    for (const std::array<float, 3>& c :
+         {std::array<float, 3>{1.0f, 1.0f, 1.0f}, std::array<float, 3>{0.2f, 0.5f, 0.8f}}) {
+        const pr::EnvironmentLight light(host(), c, 1.5f);
+        const patina::CieAtWavelengths cie = patina::cie_at_wavelengths(kWl);
+        const patina::SampledSpectrum a = light.constant_radiance(kWl);
+        const patina::SampledSpectrum b = light.constant_radiance(kWl, cie.d65);
+        const patina::SampledSpectrum e = light.escaped_radiance(Imath::V3f(0.3f, -0.2f, -0.9f), kWl);
+        const auto ls = light.sample(kOrigin, Imath::V2f(0.3f, 0.6f), kWl);
+        ASSERT_TRUE(ls.has_value());
+        EXPECT_EQ(ls->pdf, pr::EnvironmentLight::kUniformSpherePdf);
+        EXPECT_EQ(ls->wi, pr::EnvironmentLight::sample_uniform_sphere(Imath::V2f(0.3f, 0.6f)));
+        for (int k = 0; k < kWl.count; ++k) {
+            EXPECT_EQ(a[k], e[k]);
+            EXPECT_EQ(a[k], ls->L[k]);
+            EXPECT_LT(relative_difference(b[k], a[k]), 1e-6f) << kWl.lambda_nm[k] << " nm";
+        }
+    }
+}
+
 TEST(EnvironmentLight, ConstantDensityIsUniformOverTheSphere)
 {
     const pr::EnvironmentLight light(host(), {0.3f, 0.6f, 0.1f});

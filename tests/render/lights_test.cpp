@@ -2,6 +2,7 @@
 // power-proportional light sampler, checked against closed-form irradiances.
 #include "render/area_light.h"
 #include "render/distant_light.h"
+#include "render/environment_light.h"
 #include "render/light_sampler.h"
 
 #include "core/host.h"
@@ -482,4 +483,31 @@ TEST(LightSampler, UniformWhenAllPowersAreZero)
 
     EXPECT_FALSE(pr::LightSampler().sample(0.5f));
     EXPECT_EQ(pr::LightSampler().pmf(first), 0.0f);
+}
+
+// One light is chosen with probability 1 whatever its power; a constant environment is the
+// uniform sky the integrator evaluates once per path, a map or a sun is not.
+TEST(LightSampler, OneLightAndTheUniformSky)
+{
+    for (float power : {0.0f, 1.0f}) {
+        std::vector<std::unique_ptr<pr::Light>> lights;
+        lights.push_back(std::make_unique<pr::DistantLight>(V3f(0, 0, 1), 0.0f, sun_colour(), power));
+        const pr::Light* sun = lights[0].get();
+        const pr::LightSampler sampler(std::move(lights));
+        for (float u : {0.0f, 0.5f, 0x1.fffffep-1f}) {
+            ASSERT_TRUE(sampler.sample(u));
+            EXPECT_EQ(sampler.sample(u)->light, sun);
+            EXPECT_EQ(sampler.sample(u)->pmf, 1.0f);
+        }
+        EXPECT_EQ(sampler.pmf(sun), 1.0f);
+        EXPECT_EQ(sampler.pmf(nullptr), 0.0f);
+        EXPECT_EQ(sampler.uniform_sky(), nullptr);
+    }
+    std::vector<std::unique_ptr<pr::Light>> lights;
+    lights.push_back(std::make_unique<pr::DistantLight>(V3f(0, 0, 1), 0.0f, sun_colour(), 1.0f));
+    lights.push_back(std::make_unique<pr::EnvironmentLight>(patina::default_host(),
+                                                            std::array<float, 3>{1, 1, 1}, 1.0f));
+    const pr::Light* sky = lights[1].get();
+    const pr::LightSampler sampler(std::move(lights));
+    EXPECT_EQ(sampler.uniform_sky(), sky);
 }
