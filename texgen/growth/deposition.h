@@ -23,9 +23,13 @@ namespace patina::texgen {
 ///   random one of those.
 /// - BallisticDeposition: h_i = max(h_i + 1, h_j over the neighbours j) (it sticks to the
 ///   first particle it touches, leaving voids below).
-/// One sequential run with a Pcg32 stream from `seed`: deterministic, and the snapshots of
-/// a longer run extend those of a shorter one. Throws std::invalid_argument for another
-/// model, decreasing counts, an empty lattice or a relaxation radius over 16 steps.
+/// Deterministic for (lattice, model, parameters, seed) whatever the thread count; a
+/// snapshot does not depend on the later counts asked for. Lattices of
+/// more than 32768 nodes run in blocks in parallel (see BlockedDeposition in the .cpp: exact
+/// for RD; for BD and RDR particles on either side of a block edge keep their order only at
+/// the scale of a quarter monolayer); RDR with a reach over one step runs sequentially.
+/// Throws std::invalid_argument for another model, decreasing counts, an empty lattice or a
+/// relaxation radius over 16 steps.
 std::vector<std::vector<int32_t>> deposit_heights(const Lattice& lattice, GrowthModelKind model,
                                                   const GrowthParameters& parameters,
                                                   uint64_t seed,

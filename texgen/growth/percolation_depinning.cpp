@@ -185,8 +185,8 @@ std::vector<std::vector<uint8_t>> percolation_depinning_levels(const Lattice& la
     // Level 0, the overall pattern: first-passage times by Dial's bucket queue. An edge's
     // delay is the sweeps until the patch advances onto its far end, much shorter onto an
     // unblocked node (D&H 1996 §3.3: "the rules for it are much less stringent").
-    const GeometricTable open_delay(p.advance_unblocked, 16);
-    const GeometricTable blocked_delay(p.advance_blocked, 16);
+    const GeometricTable open_delay(p.advance_unblocked, 12);
+    const GeometricTable blocked_delay(p.advance_blocked, 12);
     std::vector<int32_t> first(n, kNever);
     std::vector<std::vector<int32_t>> buckets(static_cast<size_t>(sweeps) + 1);
     std::vector<int32_t> patch;
@@ -210,6 +210,20 @@ std::vector<std::vector<uint8_t>> percolation_depinning_levels(const Lattice& la
             }
         }
         for (size_t k = 0; k < bucket.size(); ++k) {
+            // The bucket lists nodes all over the lattice: fetch what the entries a little
+            // ahead will read while this one is relaxed.
+            if (k + 16 < bucket.size()) {
+                __builtin_prefetch(&lattice.neighbours[bucket[k + 16]]);
+                __builtin_prefetch(&first[bucket[k + 16]]);
+            }
+            if (k + 8 < bucket.size()) {
+                for (int32_t w : lattice.neighbours[bucket[k + 8]]) {
+                    if (w >= 0) {
+                        __builtin_prefetch(&first[w]);
+                        __builtin_prefetch(&blocked[w]);
+                    }
+                }
+            }
             const int32_t v = bucket[k];
             if (first[v] != t)
                 continue; // a stale entry: reached earlier
@@ -219,7 +233,7 @@ std::vector<std::vector<uint8_t>> percolation_depinning_levels(const Lattice& la
                 const int32_t w = nb[s];
                 if (w < 0)
                     continue;
-                const uint64_t u = (bits >> (16 * s)) & 0xffff;
+                const uint64_t u = (bits >> (12 * s)) & 0xfff;
                 const int32_t delay = blocked[w] ? blocked_delay[u] : open_delay[u];
                 if (delay > sweeps - t)
                     continue;

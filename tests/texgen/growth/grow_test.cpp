@@ -85,7 +85,8 @@ namespace {
 
     TEST(Grow, SameBitsForOneAndTwoThreads)
     {
-        const Lattice grid = make_grid_lattice(200, 150, 0.01f);
+        // 75000 nodes: the deposition models run in three blocks.
+        const Lattice grid = make_grid_lattice(300, 250, 0.01f);
         const std::vector<double> fractions = {0.3, 0.9};
         for (GrowthModelKind model : kAllModels) {
             const GrowthSpec spec = spec_of(model, GrowthRate::Logarithmic);
