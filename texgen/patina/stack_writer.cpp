@@ -31,38 +31,9 @@ namespace {
     /// stack of fewer layers does not list stale ones.
     void forget_earlier_run(const fs::path& out_dir)
     {
-        const fs::path path = manifest_path(out_dir);
         std::error_code ec;
-        if (!fs::exists(path, ec))
-            return;
-        toml::table root;
-        try {
-            root = toml::parse_file(path.string());
-        } catch (const toml::parse_error& e) {
-            throw std::runtime_error(fmt::format("cannot update manifest {}:{}:{}: {} (fix or "
-                                                 "remove the file; it was left unchanged)",
-                                                 path.string(), e.source().begin.line,
-                                                 e.source().begin.column, e.description()));
-        }
-        bool changed = root.erase("patina") > 0;
-        if (toml::table* maps = root["maps"].as_table()) {
-            std::vector<std::string> stale;
-            for (const auto& [name, entry] : *maps)
-                if (const toml::table* t = entry.as_table();
-                    t && t->get("baker") && t->get("baker")->value<std::string>() == kBaker)
-                    stale.emplace_back(name.str());
-            for (const std::string& name : stale) {
-                if (const auto* file = (*maps)[name]["file"].as_string())
-                    fs::remove(out_dir / file->get(), ec);
-                maps->erase(name);
-                changed = true;
-            }
-        }
-        if (!changed)
-            return;
-        std::ostringstream text;
-        text << root << "\n";
-        write_file_atomic(path, {text.str()}, "manifest");
+        for (const std::string& file : forget_maps_of(out_dir, kBaker, "patina"))
+            fs::remove(out_dir / file, ec);
     }
 
     struct LayerStats {

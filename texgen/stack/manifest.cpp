@@ -219,4 +219,35 @@ void record_in_manifest(const fs::path& out_dir, const MapDescription& map,
     write_file_atomic(path, {text.str()}, "manifest");
 }
 
+std::vector<std::string> forget_maps_of(const fs::path& out_dir, const std::string& baker,
+                                        const std::string& table)
+{
+    const fs::path path = manifest_path(out_dir);
+    std::error_code ec;
+    if (!fs::exists(path, ec))
+        return {};
+    toml::table root = read_manifest(path);
+    bool changed = !table.empty() && root.erase(table) > 0;
+    std::vector<std::string> files;
+    if (toml::table* maps = root["maps"].as_table()) {
+        std::vector<std::string> stale;
+        for (const auto& [name, entry] : *maps)
+            if (const toml::table* t = entry.as_table();
+                t && t->get("baker") && t->get("baker")->value<std::string>() == baker)
+                stale.emplace_back(name.str());
+        for (const std::string& name : stale) {
+            if (const auto* file = (*maps)[name]["file"].as_string())
+                files.push_back(file->get());
+            maps->erase(name);
+            changed = true;
+        }
+    }
+    if (changed) {
+        std::ostringstream text;
+        text << root << "\n";
+        write_file_atomic(path, {text.str()}, "manifest");
+    }
+    return files;
+}
+
 }  // namespace patina::texgen

@@ -20,6 +20,7 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
 namespace patina::texgen {
 
@@ -35,5 +36,12 @@ std::string map_file_name(const std::string& name, int udim, bool lone_1001_tile
 
 /// The UDIM file pattern of a map, as renderers spell it: "<name>.<UDIM>.exr".
 std::string map_file_pattern(const std::string& name);
+
+/// Drop from `<out_dir>/stack.toml` every map whose baker is `baker` and, when `table` is
+/// not empty, the top-level table of that name; returns the files of the dropped maps
+/// (relative to out_dir). Nothing happens without a manifest; one that does not parse
+/// throws like record_in_manifest and is left unchanged.
+std::vector<std::string> forget_maps_of(const std::filesystem::path& out_dir,
+                                        const std::string& baker, const std::string& table = {});
 
 }  // namespace patina::texgen
