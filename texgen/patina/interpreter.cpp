@@ -415,7 +415,8 @@ namespace {
                 return map_fields(in, n, [](const float* v) { return std::abs(v[0]); });
             if (f == "step")
                 return map_fields(in, n, [](const float* v) { return v[1] < v[0] ? 0.0f : 1.0f; });
-            fail(e.location, fmt::format("function '{}' is not implemented", f));
+            fail(e.location, fmt::format("function '{}' is known to the parser but not to the "
+                                         "interpreter", f));
         }
 
         /// amount * map per node, checked: a NaN or infinity names the texel; negative
