@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs what is missing, builds, renders samples/basic into out/, then bakes the texgen
-# maps of the project's statue (samples/bake) and renders them.
+# maps of the project's statue (samples/bake) and renders them, and runs the three copper
+# strip scripts of Dorsey & Hanrahan 1996 §5.1 (samples/copper_strips).
 set -euo pipefail
 cd "$(dirname "$0")"
 ./scripts/build.sh
@@ -10,3 +11,5 @@ mkdir -p out
 echo "wrote out/basic.exr (scene-linear ACEScg, with albedo, normal and depth AOVs) and out/basic.png (sRGB display)"
 samples/bake/bake.sh "$build"
 echo "wrote out/bake/maps/ (texture stack + stack.toml) and out/bake.png (the maps on four statues)"
+samples/copper_strips/strips.sh "$build"
+echo "wrote out/copper_strips/ (patina stacks of the three §5.1 strips, 0-30 years) and out/copper_strips.png (their KM previews)"
