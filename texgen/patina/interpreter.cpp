@@ -421,8 +421,7 @@ namespace {
 
         /// amount * map per node, checked: a NaN or infinity names the texel; negative
         /// values (a map may dip below 0) count as 0.
-        std::vector<float> amounts(double amount, const std::optional<Expr>& map, size_t step,
-                                   SourceLocation where)
+        std::vector<float> amounts(double amount, const std::optional<Expr>& map, size_t step)
         {
             const size_t n = domain_.size();
             std::vector<float> out(n, static_cast<float>(amount));
@@ -438,7 +437,6 @@ namespace {
                                                     domain_.uv[i].x, domain_.uv[i].y));
                 out[i] = std::max(v, 0.0f);
             }
-            (void)where;
             return out;
         }
 
@@ -539,20 +537,20 @@ namespace {
                     } else if (const auto* c = std::get_if<CoatStatement>(&s)) {
                         LayerStack& k = need_stack(s);
                         coat(k, material_id(c->material, c->material_location), 1.0f,
-                             amounts(c->thickness_um, c->map, step, c->location));
+                             amounts(c->thickness_um, c->map, step));
                         origins.push_back(made_by(s));
                     } else if (const auto* er = std::get_if<ErodeStatement>(&s)) {
                         erode(need_stack(s), 1.0f,
-                              amounts(er->thickness_um, er->map, step, er->location));
+                              amounts(er->thickness_um, er->map, step));
                     } else if (const auto* fi = std::get_if<FillStatement>(&s)) {
                         LayerStack& k = need_stack(s);
                         fill(k, material_id(fi->material, fi->material_location), 1.0f,
-                             amounts(fi->height_um, fi->map, step, fi->location));
+                             amounts(fi->height_um, fi->map, step));
                         origins.push_back(made_by(s));
                     } else if (const auto* p = std::get_if<PolishStatement>(&s)) {
                         LayerStack& k = need_stack(s);
                         if (p->mode == PolishStatement::Mode::ToHeight)
-                            polish(k, 1.0f, amounts(p->height_um, p->map, step, p->location));
+                            polish(k, 1.0f, amounts(p->height_um, p->map, step));
                         else
                             polish_until_exposed(k, static_cast<float>(p->exposed_fraction),
                                                  domain_.area_weight);
