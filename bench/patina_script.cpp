@@ -8,7 +8,8 @@
 // prints the seconds to stream the same bytes the operators touch through memory (one
 // read + write of every layer's floats per operator), and the ratio to that.
 //
-//   bench_patina_script [--resolution N] [--threads T] [--no-output] [SOURCE_DIR]
+//   bench_patina_script [--resolution N] [--threads T] [--no-output] [--half] [SOURCE_DIR]
+//   (--half writes half-float maps, as patina-texgen patina --half does)
 #include "core/color_management.h"
 #include "texgen/growth/growth_model.h"
 #include "texgen/patina/interpreter.h"
@@ -44,7 +45,7 @@ double seconds_since(Clock::time_point start)
 int main(int argc, char** argv)
 {
     int resolution = 2048, threads = 2;
-    bool output = true;
+    bool output = true, half = false;
     fs::path source = fs::path(__FILE__).parent_path().parent_path();
     for (int i = 1; i < argc; ++i) {
         if (!std::strcmp(argv[i], "--resolution") && i + 1 < argc)
@@ -53,6 +54,8 @@ int main(int argc, char** argv)
             threads = std::atoi(argv[++i]);
         else if (!std::strcmp(argv[i], "--no-output"))
             output = false;
+        else if (!std::strcmp(argv[i], "--half"))
+            half = true;
         else
             source = argv[i];
     }
@@ -96,6 +99,8 @@ int main(int argc, char** argv)
         fs::remove_all(dir);
         PatinaOutputOptions out;
         out.script = "urban.patina";
+        if (half)
+            out.maps.format = OIIO::TypeDesc::HALF;
         start = Clock::now();
         write_patina_step(dir, steps.back(), strip, out, colors);
         write_s = seconds_since(start);

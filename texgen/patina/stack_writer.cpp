@@ -18,6 +18,8 @@ namespace fs = std::filesystem;
 namespace {
 
     constexpr const char* kBaker = "patina";
+    /// Largest side of preview.png (texels).
+    constexpr int kPreviewSize = 1024;
 
     std::string slug(const std::string& name)
     {
@@ -145,23 +147,41 @@ std::vector<fs::path> write_patina_step(const fs::path& out_dir, const PatinaSte
     written.push_back(manifest_path(out_dir));
 
     if (options.preview) {
-        // The preview shows the first tile as an image: each texel's KM colour.
-        std::vector<PreviewLayer> layers;
-        for (const ResultLayer& layer : step.layers)
-            layers.push_back({layer.material, layer.thickness_um});
-        const std::vector<Imath::V3f> node_colors =
-            stack_diffuse_color(*step.base, layers, domain.size());
+        // The preview shows the first tile as an image, every `stride`-th texel so that it
+        // stays at most kPreviewSize wide (a quick look, not a map): each texel's KM colour.
         const TexelGrid& grid = domain.grids.front();
-        std::vector<Imath::V3f> image(grid.texel_count());
-        std::vector<uint8_t> covered(grid.texel_count(), 0);
-        for (size_t t = 0; t < grid.texel_count(); ++t) {
-            if (const int32_t g = grid.group_of_texel[t]; g >= 0) {
-                image[t] = node_colors[g];
-                covered[t] = 1;
+        const int stride = (std::max(grid.width, grid.height) + kPreviewSize - 1) / kPreviewSize;
+        const int w = (grid.width + stride - 1) / stride, h = (grid.height + stride - 1) / stride;
+        std::vector<int32_t> node_of_pixel(static_cast<size_t>(w) * h, -1);
+        std::vector<size_t> nodes;
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x)
+                if (const int32_t g = grid.group_of_texel[static_cast<size_t>(y) * stride *
+                                                              grid.width + x * stride];
+                    g >= 0) {
+                    node_of_pixel[static_cast<size_t>(y) * w + x] =
+                        static_cast<int32_t>(nodes.size());
+                    nodes.push_back(static_cast<size_t>(g));
+                }
+        std::vector<std::vector<float>> thickness(step.layers.size());
+        std::vector<PreviewLayer> layers;
+        for (size_t l = 0; l < step.layers.size(); ++l) {
+            for (size_t n : nodes)
+                thickness[l].push_back(step.layers[l].thickness_um[n]);
+            layers.push_back({step.layers[l].material, thickness[l]});
+        }
+        const std::vector<Imath::V3f> node_colors =
+            stack_diffuse_color(*step.base, layers, nodes.size());
+        std::vector<Imath::V3f> image(node_of_pixel.size());
+        std::vector<uint8_t> covered(node_of_pixel.size(), 0);
+        for (size_t p = 0; p < node_of_pixel.size(); ++p) {
+            if (const int32_t k = node_of_pixel[p]; k >= 0) {
+                image[p] = node_colors[k];
+                covered[p] = 1;
             }
         }
         const fs::path png = out_dir / "preview.png";
-        write_preview_png(png, image, grid.width, grid.height, covered, colors);
+        write_preview_png(png, image, w, h, covered, colors);
         written.push_back(png);
     }
     return written;

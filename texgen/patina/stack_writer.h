@@ -26,8 +26,8 @@ struct PatinaOutputOptions {
 std::string layer_map_name(size_t index, const PatinaMaterial& material);
 
 /// Write `step` into `out_dir` (created if missing): layerNN_<material>.exr per layer
-/// (channel "thickness", µm), total_thickness.exr (channel "thickness", µm), preview.png and
-/// stack.toml. Maps of an earlier patina run in the folder that this step does not have are
+/// (channel "thickness", µm), total_thickness.exr (channel "thickness", µm), preview.png (of
+/// the first tile, every n-th texel so that it is at most 1024 wide) and stack.toml. Maps of an earlier patina run in the folder that this step does not have are
 /// dropped from its stack.toml (their files are removed). Every file is written under a
 /// temporary name and renamed. Returns the files written.
 std::vector<std::filesystem::path> write_patina_step(const std::filesystem::path& out_dir,
