@@ -74,6 +74,9 @@
  *    service; bump MAJOR whenever an existing plugin or host would break)
  * ---------------------------------------------------------------------------------------
  *   100  Patina 0.1: first version.
+ *   101  PATINA_PARAM_FILE (a data file resolved by the host); host services open_texture
+ *        and read_image, for shaders whose textures are named inside a data file (a patina
+ *        stack.toml, a slab volume). A 101 plugin that uses them checks host->size.
  */
 #ifndef PATINA_ABI_H
 #define PATINA_ABI_H
@@ -87,7 +90,7 @@ extern "C" {
 #endif
 
 #define PATINA_ABI_VERSION_MAJOR 1
-#define PATINA_ABI_VERSION_MINOR 0
+#define PATINA_ABI_VERSION_MINOR 1
 /** major*100 + minor, the value of the exported `patina_plugin_abi_version`. */
 #define PATINA_ABI_VERSION (PATINA_ABI_VERSION_MAJOR * 100 + PATINA_ABI_VERSION_MINOR)
 
@@ -181,7 +184,10 @@ typedef enum PatinaParamType {
                                     reflectance when max_value <= 1, else as an emission colour */
     PATINA_PARAM_SPECTRUM = 5, /**< tabulated spectrum, or a single number for a constant one */
     PATINA_PARAM_STRING = 6,   /**< free text, e.g. a file name or an enumerated choice */
-    PATINA_PARAM_TEXTURE = 7   /**< a texture file; the host opens it and passes a handle */
+    PATINA_PARAM_TEXTURE = 7,  /**< a texture file; the host opens it and passes a handle */
+    PATINA_PARAM_FILE = 8      /**< (1.1) a data file the plugin reads in create: the host resolves a
+                                    relative name against the file the value came from, checks
+                                    that it exists and passes the absolute path in `s` */
 } PatinaParamType;
 
 /**
@@ -285,7 +291,27 @@ struct PatinaHost {
         number of floats written, 0 when the attribute does not exist. */
     int (*attribute)(const PatinaHost* host, const PatinaShadingContext* ctx, const char* name,
                      int nfloats, float* out);
+
+    /* ---- 1.1: present when host->size >= offsetof(PatinaHost, read_image) + sizeof(void*) */
+
+    /** Open a texture named by the plugin (e.g. inside a PATINA_PARAM_FILE), in the declared
+        OCIO colour space ("raw" for data). Call during create only. The handle stays valid
+        until the host shuts down. Returns NULL after reporting why through host->error. */
+    const PatinaTexture* (*open_texture)(const PatinaHost* host, const char* path,
+                                         const char* colorspace);
+
+    /** Read every channel of one subimage (EXR part) of an image file as raw floats, rows
+        top to bottom, channels interleaved, without colour conversion. Call during create
+        only. dims receives {width, height, channels}; pass out = NULL to ask for the size
+        first. Returns 1 on success, 0 after reporting why through host->error (a missing
+        file or subimage, or `capacity` floats too few). */
+    int (*read_image)(const PatinaHost* host, const char* path, int subimage, int dims[3],
+                      float* out, size_t capacity);
 };
+
+/** True when `host` offers the 1.1 services (open_texture, read_image). */
+#define PATINA_HOST_HAS_READ_IMAGE(host)                                                      \
+    ((host)->size >= offsetof(PatinaHost, read_image) + sizeof(void*))
 
 /* ------------------------------------------------------------------------------------- */
 /* Function tables per kind                                                                */

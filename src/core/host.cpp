@@ -4,6 +4,7 @@
 #include "core/rgb_spectrum.h"
 #include "core/texture_access.h"
 
+#include <OpenImageIO/imageio.h>
 #include <fmt/format.h>
 
 #include <cstdio>
@@ -141,6 +142,59 @@ namespace {
         return 0;
     }
 
+    const PatinaTexture* host_open_texture(const PatinaHost* h, const char* path,
+                                           const char* colorspace)
+    {
+        const Host::Impl& impl = Host::Impl::of(h);
+        if (!path || !*path) {
+            host_error(h, nullptr, "open_texture: no file name given");
+            return nullptr;
+        }
+        try {
+            return impl.owner->open_texture(path, colorspace && *colorspace ? colorspace : "raw");
+        } catch (const std::exception& e) {
+            host_error(h, nullptr, e.what());
+            return nullptr;
+        }
+    }
+
+    int host_read_image(const PatinaHost* h, const char* path, int subimage, int dims[3],
+                        float* out, size_t capacity)
+    {
+        auto input = OIIO::ImageInput::open(path ? path : "");
+        if (!input) {
+            host_error(h, nullptr,
+                       fmt::format("cannot read '{}': {}", path ? path : "", OIIO::geterror())
+                           .c_str());
+            return 0;
+        }
+        if (subimage < 0 || !input->seek_subimage(subimage, 0)) {
+            host_error(h, nullptr,
+                       fmt::format("'{}' has no subimage {}", path, subimage).c_str());
+            return 0;
+        }
+        const OIIO::ImageSpec& spec = input->spec();
+        dims[0] = spec.width;
+        dims[1] = spec.height;
+        dims[2] = spec.nchannels;
+        if (!out)
+            return 1;
+        const size_t need = size_t(spec.width) * spec.height * spec.nchannels;
+        if (capacity < need) {
+            host_error(h, nullptr,
+                       fmt::format("read_image '{}': buffer of {} floats, need {}", path,
+                                   capacity, need)
+                           .c_str());
+            return 0;
+        }
+        if (!input->read_image(subimage, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, out)) {
+            host_error(h, nullptr,
+                       fmt::format("cannot read '{}': {}", path, input->geterror()).c_str());
+            return 0;
+        }
+        return 1;
+    }
+
 }  // namespace
 
 Host::Host(const ColorManager& colors, std::string host_name)
@@ -158,6 +212,8 @@ Host::Host(const ColorManager& colors, std::string host_name)
     t.eval_rgb_spectrum = host_eval_rgb_spectrum;
     t.texture_lookup = host_texture_lookup;
     t.attribute = host_attribute;
+    t.open_texture = host_open_texture;
+    t.read_image = host_read_image;
 }
 
 Host::~Host() = default;

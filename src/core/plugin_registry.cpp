@@ -78,7 +78,7 @@ namespace {
             if (std::find(seen.begin(), seen.end(), p.name) != seen.end())
                 fail(fmt::format("parameter '{}' is declared twice", p.name));
             seen.emplace_back(p.name);
-            if (p.type < PATINA_PARAM_FLOAT || p.type > PATINA_PARAM_TEXTURE)
+            if (p.type < PATINA_PARAM_FLOAT || p.type > PATINA_PARAM_FILE)
                 fail(fmt::format("parameter '{}' has an unknown type", p.name));
             if (p.min_value > p.max_value)
                 fail(fmt::format("parameter '{}' has min > max", p.name));

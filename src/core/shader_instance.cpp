@@ -31,6 +31,7 @@ namespace {
         case PATINA_PARAM_SPECTRUM: return "spectrum";
         case PATINA_PARAM_STRING: return "string";
         case PATINA_PARAM_TEXTURE: return "texture";
+        case PATINA_PARAM_FILE: return "file";
         }
         return "?";
     }
@@ -242,6 +243,7 @@ namespace {
             break;
         case PATINA_PARAM_STRING:
         case PATINA_PARAM_TEXTURE:
+        case PATINA_PARAM_FILE:
             v.s = d.default_string ? d.default_string : "";
             break;
         default:
@@ -343,6 +345,19 @@ std::shared_ptr<ShaderInstance> create_shader_instance(const PluginRegistry& reg
                 scratch.strings.push_back(**node->as_string());
                 v.s = scratch.strings.back().c_str();
                 break;
+            case PATINA_PARAM_FILE: {
+                if (!node->is_string())
+                    ctx.fail(node, d.name, fmt::format("expected a file name, got {}", node_type(*node)));
+                std::filesystem::path path(**node->as_string());
+                if (path.is_relative() && !source.base_dir.empty())
+                    path = source.base_dir / path;
+                std::error_code ec;
+                if (!std::filesystem::is_regular_file(path, ec))
+                    ctx.fail(node, d.name, fmt::format("no such file '{}'", path.string()));
+                scratch.strings.push_back(std::filesystem::absolute(path).string());
+                v.s = scratch.strings.back().c_str();
+                break;
+            }
             case PATINA_PARAM_TEXTURE: {
                 // A texture is "file" (in the declared colour space) or
                 // { file = "...", colorspace = "..." }.
@@ -408,6 +423,7 @@ std::string describe_shader(const PatinaShaderDesc& desc)
             break;
         case PATINA_PARAM_STRING:
         case PATINA_PARAM_TEXTURE:
+        case PATINA_PARAM_FILE:
             def = fmt::format("\"{}\"", d.default_string ? d.default_string : "");
             break;
         case PATINA_PARAM_BOOL:

@@ -5,7 +5,11 @@
 
 #include <gtest/gtest.h>
 
+#include <OpenImageIO/imageio.h>
+
 #include <cstring>
+#include <string>
+#include <vector>
 
 namespace {
 
@@ -90,4 +94,62 @@ TEST(Host, ErrorsAreCollectedPerThread)
     ASSERT_EQ(errors.size(), 2u);
     EXPECT_EQ(errors[0], "first");
     EXPECT_TRUE(patina::default_host().take_errors().empty());
+}
+
+TEST(Host, ReadImageGivesRawFloatsOfOneSubimage)
+{
+    // A two-part EXR: part 0 is 3x2 RGB, part 1 is 2x1 with one channel.
+    const std::string path = std::string(PATINA_TEST_BUILD_DIR) + "/host_read_image.exr";
+    {
+        auto out = OIIO::ImageOutput::create(path);
+        ASSERT_TRUE(out);
+        OIIO::ImageSpec specs[2] = {OIIO::ImageSpec(3, 2, 3, OIIO::TypeDesc::FLOAT),
+                                    OIIO::ImageSpec(2, 1, 1, OIIO::TypeDesc::FLOAT)};
+        specs[1].channelnames = {"density"};
+        specs[0].attribute("oiio:subimagename", "colour");  // EXR parts need names
+        specs[1].attribute("oiio:subimagename", "voxels");
+        specs[1].full_width = 3;  // every part of an EXR shares one display window
+        specs[1].full_height = 2;
+        ASSERT_TRUE(out->open(path, 2, specs)) << out->geterror();
+        std::vector<float> a(18);
+        for (size_t i = 0; i < a.size(); ++i)
+            a[i] = 0.5f * static_cast<float>(i) + 2.0f;  // beyond [0,1]: no clamping, no colour
+        ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, a.data()));
+        ASSERT_TRUE(out->open(path, specs[1], OIIO::ImageOutput::AppendSubimage));
+        const float b[2] = {-1.0f, 7.0f};
+        ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, b));
+        ASSERT_TRUE(out->close());
+    }
+    int dims[3] = {0, 0, 0};
+    ASSERT_EQ(host().read_image(&host(), path.c_str(), 1, dims, nullptr, 0), 1);
+    EXPECT_EQ(dims[0], 2);
+    EXPECT_EQ(dims[1], 1);
+    EXPECT_EQ(dims[2], 1);
+    float b[2];
+    ASSERT_EQ(host().read_image(&host(), path.c_str(), 1, dims, b, 2), 1);
+    EXPECT_EQ(b[0], -1.0f);
+    EXPECT_EQ(b[1], 7.0f);
+    std::vector<float> a(18);
+    ASSERT_EQ(host().read_image(&host(), path.c_str(), 0, dims, a.data(), a.size()), 1);
+    EXPECT_EQ(dims[2], 3);
+    EXPECT_EQ(a[17], 0.5f * 17 + 2.0f);
+
+    patina::default_host().take_errors();
+    EXPECT_EQ(host().read_image(&host(), path.c_str(), 0, dims, a.data(), 5), 0);  // too small
+    EXPECT_EQ(host().read_image(&host(), path.c_str(), 2, dims, nullptr, 0), 0);   // no part 2
+    EXPECT_EQ(host().read_image(&host(), "/nonexistent/x.exr", 0, dims, nullptr, 0), 0);
+    const auto errors = patina::default_host().take_errors();
+    ASSERT_EQ(errors.size(), 3u);
+    EXPECT_NE(errors[1].find("no subimage 2"), std::string::npos) << errors[1];
+    EXPECT_NE(errors[2].find("/nonexistent/x.exr"), std::string::npos) << errors[2];
+}
+
+TEST(Host, OpenTextureReportsAMissingFile)
+{
+    EXPECT_TRUE(PATINA_HOST_HAS_READ_IMAGE(&host()));
+    patina::default_host().take_errors();
+    EXPECT_EQ(host().open_texture(&host(), "/nonexistent/thickness.exr", "raw"), nullptr);
+    const auto errors = patina::default_host().take_errors();
+    ASSERT_EQ(errors.size(), 1u);
+    EXPECT_NE(errors[0].find("/nonexistent/thickness.exr"), std::string::npos) << errors[0];
 }
