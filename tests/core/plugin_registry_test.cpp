@@ -37,7 +37,7 @@ TEST(PluginRegistry, LoadsAPlainCPlugin)
     ASSERT_NE(s, nullptr);
     EXPECT_EQ(s->desc->kind, PATINA_SHADER_BSDF);
     EXPECT_EQ(s->plugin_name, "fixture");
-    EXPECT_EQ(s->desc->param_count, 7);
+    EXPECT_EQ(s->desc->param_count, 8);
     EXPECT_EQ(reg.find("no_such_shader"), nullptr);
 }
 

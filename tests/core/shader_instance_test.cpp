@@ -7,6 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include <fstream>
+
 #include <filesystem>
 
 namespace fs = std::filesystem;
@@ -159,7 +161,8 @@ TEST_F(ShaderInstanceTest, ShaderThatNoPluginProvides)
 TEST_F(ShaderInstanceTest, DescriptionListsEveryParameter)
 {
     const std::string text = patina::describe_shader(*registry.get("fixture_diffuse").desc);
-    for (const char* name : {"weight", "count", "flag", "color", "spectrum", "mode", "map"})
+    for (const char* name : {"weight", "count", "flag", "color", "spectrum", "mode", "map",
+                             "data"})
         EXPECT_NE(text.find(name), std::string::npos) << name;
     EXPECT_NE(text.find("[0, 1]"), std::string::npos) << text;
 }
@@ -181,4 +184,19 @@ TEST_F(ShaderInstanceTest, TextureIsOpenedRelativeToTheSceneAndLookedUpInMeshUv)
     const std::string msg = error_of("map = 'no_such_map.exr'");
     EXPECT_NE(msg.find("parameter 'map'"), std::string::npos) << msg;
     EXPECT_NE(msg.find("no_such_map.exr"), std::string::npos) << msg;
+}
+
+TEST_F(ShaderInstanceTest, DataFileIsResolvedAgainstTheSceneAndMustExist)
+{
+    // ABI 1.1 PATINA_PARAM_FILE: the plugin gets an absolute path (the fixture refuses a
+    // relative one) of a file that exists.
+    const fs::path file = fs::path(PATINA_TEST_BUILD_DIR) / "fixture_data.toml";
+    std::ofstream(file) << "x = 1\n";
+    EXPECT_FLOAT_EQ(bind("").at(7), 0.0f);
+    EXPECT_FLOAT_EQ(bind("data = 'fixture_data.toml'").at(7),
+                    static_cast<float>(fs::absolute(file).string().size()));
+    const std::string msg = error_of("data = 'no_such_stack.toml'");
+    EXPECT_NE(msg.find("parameter 'data'"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("no such file"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("no_such_stack.toml"), std::string::npos) << msg;
 }
