@@ -1,0 +1,89 @@
+// The layered fading simulation (Kimmel et al. 2013, §3-§4): a material's layer split into
+// N sublayers (§4.1), per wavelength the two-flux system for the fluence rate per sublayer,
+// then per time step (§4.2, Eq. 35) every colorant's volume fraction multiplied by
+//   exp(-dt sum_λ w_λ β_j(λ) a_j(λ) F_i(λ))
+// with a_j = mu_a / f its absorption per unit volume fraction (first order in f; see
+// colorant.h) and w_λ trapezoid weights; breakdown products (Eq. 15) gain what their
+// parent loses times γ/β, integrated exactly over the step with F held constant.
+// Absorption and scattering of a sublayer are the fraction-weighted sums over colorants
+// (Eqs. 12, 13): only absorbers fade (§3.1.1), so a colorant with a = 0 keeps its fraction.
+#pragma once
+
+#include "texgen/fade/fade_material.h"
+#include "texgen/fade/layer_optics.h"
+#include "texgen/fade/spectral_grid.h"
+
+#include <span>
+#include <vector>
+
+namespace patina::texgen::fade {
+
+/// Spectral irradiance (W m^-2 nm^-1) at every grid wavelength, entering from the top and,
+/// optionally, from below (illumination from both sides; empty: none). Light from below
+/// enters through the substrate, so it only makes sense over a transparent ground
+/// (substrate reflectance 0, a free sheet).
+struct Illumination {
+    std::vector<double> top;
+    std::vector<double> bottom;
+};
+
+/// R_top, T, R_bottom of the layer (see layer_optics.h) and its reflectance over the
+/// material's substrate, per grid wavelength.
+struct LayerSpectra {
+    std::vector<double> r_top, t, r_bottom;
+    std::vector<double> reflectance;  ///< over the substrate: reflectance_over(...)
+};
+
+class FadeSimulation {
+public:
+    /// Samples the material on `grid`; throws std::runtime_error for an invalid material,
+    /// an empty grid or sublayers < 1.
+    FadeSimulation(const FadeMaterial& material, const WavelengthGrid& grid, int sublayers);
+
+    /// One time step of dt seconds under `light` (Eq. 35 with the fluence of the state at
+    /// the start of the step). Throws std::runtime_error if the spectra do not match the grid.
+    void step(const Illumination& light, double dt_s);
+    /// `steps` equal steps over `duration_s`.
+    void run(const Illumination& light, double duration_s, int steps);
+
+    int sublayers() const { return sublayers_; }
+    size_t colorants() const { return colorant_names_.size(); }
+    const WavelengthGrid& grid() const { return grid_; }
+    /// Volume fraction of colorant j in sublayer i (0 = top).
+    double fraction(int sublayer, size_t colorant) const
+    {
+        return fractions_[static_cast<size_t>(sublayer) * colorants() + colorant];
+    }
+    /// All fractions, sublayer-major: [i * colorants() + j].
+    const std::vector<double>& fractions() const { return fractions_; }
+    /// Replace the state (e.g. a profile read back from a fade stack); same layout.
+    void set_fractions(std::vector<double> fractions);
+
+    /// The layer's spectra for the current fractions.
+    LayerSpectra spectra() const;
+    /// Top reflectance over the substrate, per wavelength (LayerSpectra::reflectance).
+    std::vector<double> reflectance() const { return spectra().reflectance; }
+    /// Absorption and scattering coefficients (1/m) of every sublayer at grid wavelength w.
+    std::vector<double> absorption_profile(size_t w) const;
+    std::vector<double> scattering_profile(size_t w) const;
+    /// The mean fluence rate per sublayer at grid wavelength w under `light` (W m^-2 nm^-1).
+    std::vector<double> fluence_rate(const Illumination& light, size_t w) const;
+
+private:
+    void sublayer_optics_at(size_t w, std::span<double> rho, std::span<double> tau) const;
+
+    WavelengthGrid grid_;
+    int sublayers_ = 0;
+    double dz_ = 0.0;
+    std::vector<std::string> colorant_names_;
+    std::vector<double> weights_;       // trapezoid weights, nm
+    std::vector<double> absorption_;    // [j * W + w], 1/m per unit fraction
+    std::vector<double> scattering_;    // [j * W + w]
+    std::vector<double> fading_;        // [j * W + w]: w_λ β_j a_j (m^2 J^-1 nm per unit)
+    std::vector<double> production_;    // [j * W + w]: w_λ γ_j a_j
+    std::vector<int> product_;          // breakdown product of colorant j, or -1
+    std::vector<double> substrate_;     // [w]
+    std::vector<double> fractions_;     // [i * J + j]
+};
+
+}  // namespace patina::texgen::fade
