@@ -1,0 +1,171 @@
+/*
+ * stone_surface — The boundary of a stone medium: Fresnel raised to a roughness exponent (bsdf)
+ * ===========================================================================================
+ *
+ *  Parameter            Type   Default  Description
+ *  -------------------  -----  -------  ------------------------------------------------
+ *  eta                  float  1.5      Index of the stone (below the normal) over the
+ *                                       outside, in [1, 4]; 1 is an invisible boundary.
+ *  roughness_exponent   float  1        Exponent k of the reflected fraction F_r^k, [1, 64].
+ *
+ * Dorsey et al. 1999 §5.1: "We compute the amount of reflected light at a surface as
+ * F_r(x, ω)^k, where k serves as a simple approximation of surface roughness. ... the
+ * remaining light is transmitted through the surface." F_r is the exact Fresnel reflectance
+ * of unpolarised light at a smooth dielectric (patina/shading/fresnel.h). Since F_r <= 1,
+ * raising it to k > 1 lowers the reflection, most where F_r is small (near the normal), and
+ * sends that light into the stone: a rougher stone looks less glossy and more translucent.
+ * k = 1 is the smooth interface.
+ *
+ * Two delta lobes, chosen with probabilities R = F_r^k and T = 1 − R:
+ *
+ *   reflection    the mirror direction, f |cos θi| / pdf = 1 (weight R / R)
+ *   transmission  the refracted direction (Snell), weight 1/η'² for radiance (η' = η_wi/η_wo;
+ *                 radiance is compressed entering a denser medium, Veach 1997 §5.2), 1 for
+ *                 importance
+ *
+ * Both sides are shaded: from inside the stone (wo.z < 0) F_r uses the inverted index and
+ * total internal reflection (F_r = 1) stays total for every k. F_r is the same for a pair of
+ * refracted directions seen from either side, so the lobes are reciprocal. eval and pdf are
+ * 0 (delta lobes, abi.h §3). With eta = 1, F_r = 0: light passes straight through, which is
+ * the index-matched boundary of the white-furnace test.
+ *
+ * The object's interior (interior = "<slab_volume shader>") is below the shading normal:
+ * the mesh's normals must point out of the stone.
+ */
+#include "slab_volume.h"
+
+#include <patina/shading/frame.h>
+#include <patina/shading/fresnel.h>
+#include <patina/shading/spectral.h>
+
+#include <cmath>
+
+namespace patina::slab_volume {
+namespace {
+
+    using namespace patina::shading;
+
+    constexpr const char* kName = "stone_surface";
+
+    // clang-format off
+    const PatinaParamDecl kParams[] = {
+        {"eta", PATINA_PARAM_FLOAT, {1.5f, 0.0f, 0.0f}, nullptr, nullptr, 1.0f, 4.0f, "",
+         "Index of refraction of the stone (below the normal) over the outside; 1 is an "
+         "invisible (index-matched) boundary."},
+        {"roughness_exponent", PATINA_PARAM_FLOAT, {1.0f, 0.0f, 0.0f}, nullptr, nullptr, 1.0f,
+         64.0f, "",
+         "Exponent k of the reflected fraction F_r^k (Dorsey et al. 1999 Sec. 5.1): 1 is smooth, "
+         "larger is rougher (less reflection, more light into the stone)."},
+    };
+    // clang-format on
+
+    struct StoneSurface {
+        float eta = 1.5f;
+        float k = 1.0f;
+    };
+
+    /// The reflected fraction F_r(cos θo)^k seen from wo's side (§5.1).
+    float reflected_fraction(const StoneSurface& s, float cos_theta_o)
+    {
+        const float fr = fresnel_dielectric(cos_theta_o, s.eta);
+        if (fr >= 1.0f)
+            return 1.0f; // total internal reflection, whatever k
+        return fr > 0.0f ? std::pow(fr, s.k) : 0.0f;
+    }
+
+    void* create(const PatinaHost* host, const PatinaParamValue* values)
+    {
+        const PatinaParamValue& eta = values[0];
+        const PatinaParamValue& k = values[1];
+        if (eta.type != PATINA_PARAM_FLOAT || !(eta.f >= 1.0f && eta.f <= 4.0f)) {
+            report_error(host, kName,
+                         "eta %g must lie in [1, 4] (stone index over the outside's)", eta.f);
+            return nullptr;
+        }
+        if (k.type != PATINA_PARAM_FLOAT || !(k.f >= 1.0f && k.f <= 64.0f)) {
+            report_error(host, kName, "roughness_exponent %g must lie in [1, 64]", k.f);
+            return nullptr;
+        }
+        auto* s = make_instance<StoneSurface>(host, kName);
+        if (!s)
+            return nullptr;
+        s->eta = eta.f;
+        s->k = k.f;
+        return s;
+    }
+
+    void destroy(void* instance)
+    {
+        delete static_cast<StoneSurface*>(instance);
+    }
+
+    void eval(const void*, const PatinaShadingContext*, PatinaVec3, PatinaVec3,
+              const PatinaWavelengths* wl, float* f)
+    {
+        fill(0.0f, *wl, f); // delta lobes only
+    }
+
+    float pdf(const void*, const PatinaShadingContext*, PatinaVec3, PatinaVec3,
+              const PatinaWavelengths*)
+    {
+        return 0.0f;
+    }
+
+    int sample(const void* instance, const PatinaShadingContext* ctx, PatinaVec3 wo_, float u_lobe,
+               PatinaVec2, const PatinaWavelengths* wl, PatinaBsdfSample* out)
+    {
+        const auto& s = *static_cast<const StoneSurface*>(instance);
+        const Vec3 wo = wo_;
+        if (wo.z == 0.0f || !is_finite(wo))
+            return 0;
+        const float R = reflected_fraction(s, cos_theta(wo));
+        if (u_lobe < R) {
+            // Reflected part F_r^k, mirror direction: f = R/|cos θi| against probability R
+            const Vec3 wi(-wo.x, -wo.y, wo.z);
+            fill(R / abs_cos_theta(wi), *wl, out->f);
+            out->wi = wi;
+            out->pdf = R;
+            out->lobe = PATINA_LOBE_REFLECTION | PATINA_LOBE_SPECULAR;
+            out->eta = 1.0f;
+            return 1;
+        }
+        // The remaining 1 − F_r^k refracts into (or out of) the stone by Snell's law
+        const float T = 1.0f - R;
+        Vec3 wi;
+        float etap = 1.0f;
+        if (!(T > 0.0f) || !refract(wo, Vec3(0.0f, 0.0f, 1.0f), s.eta, &etap, &wi) || wi.z == 0.0f)
+            return 0;
+        float ft = T / abs_cos_theta(wi);
+        if (!ctx || ctx->mode == PATINA_TRANSPORT_RADIANCE)
+            ft /= sqr(etap);
+        fill(ft, *wl, out->f);
+        out->wi = wi;
+        out->pdf = T;
+        out->lobe = PATINA_LOBE_TRANSMISSION | PATINA_LOBE_SPECULAR;
+        out->eta = etap;
+        return 1;
+    }
+
+    void albedo(const void*, const PatinaShadingContext*, PatinaVec3, const PatinaWavelengths* wl,
+                float* a)
+    {
+        // Reflection plus transmission: all of the light goes on somewhere
+        fill(1.0f, *wl, a);
+    }
+
+    const PatinaBsdfFuncs kFuncs = {eval, pdf, sample, albedo};
+
+} // namespace
+
+PatinaShaderDesc stone_surface_shader()
+{
+    PatinaShaderDesc d = describe(
+        kName, PATINA_SHADER_BSDF,
+        "Boundary of a stone medium (Dorsey et al. 1999 Sec. 5.1): reflects F_r^k of the light, "
+        "F_r the Fresnel reflectance and k a roughness exponent, and refracts the rest.",
+        kParams, create, destroy);
+    d.bsdf = &kFuncs;
+    return d;
+}
+
+} // namespace patina::slab_volume
