@@ -1,0 +1,231 @@
+// Writing and reading fade stacks (format in fade_stack.h).
+#include "texgen/fade/fade_stack.h"
+
+#include "core/image_io.h"
+
+#include <fmt/format.h>
+#include <toml++/toml.h>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#ifndef PATINA_VERSION_STRING
+#define PATINA_VERSION_STRING "(unknown version)"
+#endif
+
+namespace patina::texgen::fade {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+    const std::vector<std::string> kTableChannels = {"R_bottom", "R_top", "R_total", "T"};
+    const std::vector<std::string> kDoseChannels = {"coordinate", "dose"};
+
+    toml::array numbers(const std::vector<double>& values)
+    {
+        toml::array a;
+        for (double v : values)
+            a.push_back(v);
+        return a;
+    }
+
+    toml::array strings(const std::vector<std::string>& values)
+    {
+        toml::array a;
+        for (const std::string& v : values)
+            a.push_back(v);
+        return a;
+    }
+
+    std::vector<double> read_numbers(const toml::table& root, const char* section,
+                                     const char* key, const fs::path& file)
+    {
+        const toml::array* a = root[section][key].as_array();
+        if (!a)
+            throw std::runtime_error(fmt::format("{}: [{}] {} is missing or not an array",
+                                                 file.string(), section, key));
+        std::vector<double> out;
+        for (const toml::node& n : *a) {
+            const std::optional<double> v = n.value<double>();
+            if (!v)
+                throw std::runtime_error(fmt::format("{}: [{}] {} holds a non-number",
+                                                     file.string(), section, key));
+            out.push_back(*v);
+        }
+        return out;
+    }
+
+}  // namespace
+
+double table_coordinate(const DoseTable& table, double dose_j_m2)
+{
+    const DoseTable::Bracket b = table.locate(std::max(dose_j_m2, 0.0));
+    return static_cast<double>(b.lower) + b.upper_weight;
+}
+
+double interpolation_error(const DoseTable& table, const DoseTable& fine)
+{
+    if (fine.doses().size() != 2 * table.doses().size() - 1)
+        throw std::runtime_error("interpolation_error: the fine table needs 2n - 1 entries");
+    double worst = 0.0;
+    for (size_t k = 1; k < fine.doses().size(); k += 2) {
+        const LayerSpectra coarse = table.spectra_at(fine.doses()[k]);
+        const LayerSpectra& exact = fine.spectra(k);
+        for (size_t w = 0; w < exact.reflectance.size(); ++w)
+            worst = std::max(worst, std::abs(coarse.reflectance[w] - exact.reflectance[w]));
+    }
+    return worst;
+}
+
+void write_fade_stack(const fs::path& dir, const DoseTable& table, const FadeStackInfo& info,
+                      const std::vector<float>& dose_pixels)
+{
+    const size_t texels = static_cast<size_t>(info.width) * info.height;
+    if (info.width <= 0 || info.height <= 0 || dose_pixels.size() != 2 * texels)
+        throw std::runtime_error(fmt::format("fade stack '{}': {} dose values for a {}x{} map",
+                                             dir.string(), dose_pixels.size() / 2, info.width,
+                                             info.height));
+    const size_t rows = table.doses().size(), columns = table.grid().size();
+    if (info.substrate.size() != columns)
+        throw std::runtime_error(fmt::format("fade stack '{}': {} substrate values for {} "
+                                             "wavelengths",
+                                             dir.string(), info.substrate.size(), columns));
+    std::error_code ec;
+    fs::create_directories(dir, ec);
+    if (ec)
+        throw std::runtime_error("cannot create the fade stack folder '" + dir.string() +
+                                 "': " + ec.message());
+
+    // fade_table.exr: rows = doses, columns = wavelengths, channels in stored (sorted) order
+    std::vector<float> pixels(rows * columns * 4);
+    for (size_t k = 0; k < rows; ++k) {
+        const LayerSpectra& s = table.spectra(k);
+        for (size_t w = 0; w < columns; ++w) {
+            float* p = &pixels[(k * columns + w) * 4];
+            p[0] = static_cast<float>(s.r_bottom[w]);
+            p[1] = static_cast<float>(s.r_top[w]);
+            p[2] = static_cast<float>(s.reflectance[w]);
+            p[3] = static_cast<float>(s.t[w]);
+        }
+    }
+    const Metadata table_meta = {
+        {"patina:map", std::string("fade_table")},
+        {"patina:material", info.material},
+        {"patina:illuminant", info.illuminant},
+        {"patina:colorspace", std::string("raw")},
+        {"patina:description",
+         std::string("rows: dose samples (see fade.toml [table] dose); columns: wavelengths "
+                     "([table] wavelength_nm)")}};
+    write_image_atomic(dir / kFadeTableFile, pixels.data(), static_cast<int>(columns),
+                       static_cast<int>(rows), 4, kTableChannels, OIIO::TypeDesc::FLOAT,
+                       table_meta);
+
+    // dose.exr: the table coordinate and the dose of every texel
+    TextureOptions tex;
+    tex.format = OIIO::TypeDesc::FLOAT;
+    tex.metadata = {{"patina:map", std::string("dose")},
+                    {"patina:baker", std::string("fade")},
+                    {"patina:units", std::string("1, J/m^2")},
+                    {"patina:colorspace", std::string("raw")},
+                    {"patina:material", info.material},
+                    {"patina:illuminant", info.illuminant},
+                    {"patina:description",
+                     std::string("coordinate: fractional row of fade_table.exr; dose: radiant "
+                                 "exposure of the illuminant band, J/m^2")}};
+    make_texture_atomic(dir / kDoseMapFile, dose_pixels.data(), info.width, info.height, 2,
+                        kDoseChannels, tex);
+
+    // fade.toml, last: a stack is complete when its description exists
+    const DoseTableOptions& o = table.options();
+    toml::table fade{{"format", 1},
+                     {"generator", std::string("patina-texgen ") + PATINA_VERSION_STRING},
+                     {"material", info.material},
+                     {"material_file", info.material_file.string()},
+                     {"illuminant", info.illuminant},
+                     {"illuminant_band_nm", numbers({info.band_min_nm, info.band_max_nm})},
+                     {"dose_units", "J/m^2"},
+                     {"sublayers", o.sublayers},
+                     {"both_sides", o.both_sides}};
+    toml::table table_section{
+        {"file", kFadeTableFile},
+        {"channels", strings(kTableChannels)},
+        {"rule", "H_k = H_0 (exp(k du) - 1), du = ln(1 + H_max / H_0) / (entries - 1); linear "
+                 "in u = ln(1 + H / H_0) between rows"},
+        {"entries", o.entries},
+        {"knee_dose", o.knee_dose_j_m2},
+        {"max_dose", o.max_dose_j_m2},
+        {"substeps", o.substeps},
+        {"max_interpolation_error", info.max_interpolation_error},
+        {"wavelength_nm", numbers(table.grid().nm)},
+        {"dose", numbers(table.doses())}};
+    toml::table substrate_section{{"reflectance", numbers(info.substrate)}};
+    toml::table dose_map{{"file", kDoseMapFile},
+                         {"channels", strings(kDoseChannels)},
+                         {"resolution", numbers({double(info.width), double(info.height)})},
+                         {"min_dose", info.min_dose},
+                         {"mean_dose", info.mean_dose},
+                         {"max_dose", info.max_dose}};
+    toml::table exposure{{"file", info.exposure.file.string()},
+                         {"channel", info.exposure.channel},
+                         {"units", info.exposure.units},
+                         {"scale", info.exposure.scale},
+                         {"duration_s", info.exposure.duration_s},
+                         {"period_s", info.exposure.period_s}};
+    toml::table root{{"fade", fade},
+                     {"table", table_section},
+                     {"substrate", substrate_section},
+                     {"dose_map", dose_map},
+                     {"exposure", exposure}};
+    std::ostringstream text;
+    text << "# A fade stack (patina-texgen fade): see texgen/fade/fade_stack.h\n" << root << "\n";
+    write_file_atomic(dir / kFadeToml, {text.str()}, "fade stack description");
+}
+
+FadeStack read_fade_stack(const fs::path& dir)
+{
+    const fs::path file = dir / kFadeToml;
+    toml::table root;
+    try {
+        root = toml::parse_file(file.string());
+    } catch (const toml::parse_error& e) {
+        throw std::runtime_error(fmt::format("{}:{}: {}", file.string(), e.source().begin.line,
+                                             e.description()));
+    }
+    FadeStack s;
+    s.wavelength_nm = read_numbers(root, "table", "wavelength_nm", file);
+    s.doses = read_numbers(root, "table", "dose", file);
+    s.substrate = read_numbers(root, "substrate", "reflectance", file);
+    s.material = root["fade"]["material"].value_or(std::string());
+    s.illuminant = root["fade"]["illuminant"].value_or(std::string());
+    s.max_interpolation_error = root["table"]["max_interpolation_error"].value_or(0.0);
+    s.dose_map = dir / root["dose_map"]["file"].value_or(std::string(kDoseMapFile));
+    const fs::path table_file = dir / root["table"]["file"].value_or(std::string(kFadeTableFile));
+    const ImageData image = read_image(table_file);
+    if (image.width != static_cast<int>(s.wavelength_nm.size()) ||
+        image.height != static_cast<int>(s.doses.size()))
+        throw std::runtime_error(fmt::format("{}: {}x{} pixels, but {} describes {} wavelengths "
+                                             "x {} doses",
+                                             table_file.string(), image.width, image.height,
+                                             file.string(), s.wavelength_nm.size(),
+                                             s.doses.size()));
+    const int c_rb = image.channel("R_bottom"), c_rt = image.channel("R_top"),
+              c_r = image.channel("R_total"), c_t = image.channel("T");
+    if (c_rb < 0 || c_rt < 0 || c_r < 0 || c_t < 0)
+        throw std::runtime_error(table_file.string() +
+                                 ": needs channels R_bottom, R_top, R_total and T");
+    for (auto* v : {&s.r_total, &s.r_top, &s.t, &s.r_bottom})
+        v->assign(image.height, std::vector<double>(image.width));
+    for (int k = 0; k < image.height; ++k)
+        for (int w = 0; w < image.width; ++w) {
+            s.r_total[k][w] = image.at(w, k, c_r);
+            s.r_top[k][w] = image.at(w, k, c_rt);
+            s.t[k][w] = image.at(w, k, c_t);
+            s.r_bottom[k][w] = image.at(w, k, c_rb);
+        }
+    return s;
+}
+
+}  // namespace patina::texgen::fade

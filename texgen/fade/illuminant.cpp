@@ -1,0 +1,156 @@
+#include "texgen/fade/illuminant.h"
+
+#include "core/spectrum.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <stdexcept>
+
+namespace patina::texgen::fade {
+
+namespace {
+
+// Relative spectral power distributions of CIE 15:2004 (tables 1 and 10), as shipped by
+// Debian's colord-data (/usr/share/colord/illuminant/CIE-*.sp), scaled to the CIE tables'
+// convention (D65: 100 at 560 nm).
+// CIE D65, 300-830 nm every 5 nm (107 values).
+constexpr double kD65[] = {
+    0.0341, 1.6643, 3.2945, 11.7652, 20.236, 28.6447, 37.0535, 38.5011, 39.9488, 42.4302,
+    44.9117, 45.775, 46.6383, 49.3637, 52.0891, 51.0323, 49.9755, 52.3118, 54.6482, 68.7015,
+    82.7549, 87.1204, 91.486, 92.4589, 93.4318, 90.057, 86.6823, 95.7736, 104.865, 110.936,
+    117.008, 117.41, 117.812, 116.336, 114.861, 115.392, 115.923, 112.367, 108.811, 109.082,
+    109.354, 108.578, 107.802, 106.296, 104.79, 106.239, 107.689, 106.047, 104.405, 104.225,
+    104.046, 102.023, 100, 98.1671, 96.3342, 96.0611, 95.788, 92.2368, 88.6856, 89.3459, 90.0062,
+    89.8026, 89.5991, 88.6489, 87.6987, 85.4936, 83.2886, 83.4939, 83.6992, 81.863, 80.0268,
+    80.1207, 80.2146, 81.2462, 82.2778, 80.281, 78.2842, 74.0027, 69.7213, 70.6652, 71.6091,
+    72.979, 74.349, 67.9765, 61.604, 65.7448, 69.8856, 72.4863, 75.087, 69.3398, 63.5927,
+    55.0054, 46.4182, 56.6118, 66.8054, 65.0941, 63.3828, 63.8434, 64.304, 61.8779, 59.4519,
+    55.7054, 51.959, 54.6998, 57.4406, 58.8765, 60.3125
+};
+// CIE F2, 380-780 nm every 5 nm (81 values).
+constexpr double kF2[] = {
+    1.18, 1.48, 1.84, 2.15, 3.44, 15.69, 3.85, 3.74, 4.19, 4.62, 5.06, 34.98, 11.81, 6.27, 6.63,
+    6.93, 7.19, 7.4, 7.54, 7.62, 7.65, 7.62, 7.62, 7.45, 7.28, 7.15, 7.05, 7.04, 7.16, 7.47,
+    8.04, 8.88, 10.01, 24.88, 16.64, 14.59, 16.16, 17.56, 18.62, 21.47, 22.79, 19.29, 18.66,
+    17.73, 16.54, 15.21, 13.8, 12.36, 10.95, 9.65, 8.4, 7.32, 6.31, 5.43, 4.68, 4.02, 3.45, 2.96,
+    2.55, 2.19, 1.89, 1.64, 1.53, 1.27, 1.1, 0.99, 0.88, 0.76, 0.68, 0.61, 0.56, 0.54, 0.51,
+    0.47, 0.47, 0.43, 0.46, 0.47, 0.4, 0.33, 0.27
+};
+// CIE F11, 380-780 nm every 5 nm (81 values).
+constexpr double kF11[] = {
+    0.91, 0.63, 0.46, 0.37, 1.29, 12.68, 1.59, 1.79, 2.46, 3.33, 4.49, 33.94, 12.13, 6.95, 7.19,
+    7.12, 6.72, 6.13, 5.46, 4.79, 5.66, 14.29, 14.96, 8.97, 4.72, 2.33, 1.47, 1.1, 0.89, 0.83,
+    1.18, 4.9, 39.59, 72.84, 32.61, 7.52, 2.83, 1.96, 1.67, 4.43, 11.28, 14.76, 12.73, 9.74,
+    7.33, 9.72, 55.27, 42.58, 13.18, 13.16, 12.26, 5.11, 2.07, 2.34, 3.58, 3.01, 2.48, 2.14,
+    1.54, 1.33, 1.46, 1.94, 2, 1.2, 1.35, 4.1, 5.58, 2.51, 0.57, 0.27, 0.23, 0.21, 0.24, 0.24,
+    0.2, 0.24, 0.32, 0.26, 0.16, 0.12, 0.09
+};
+
+TabulatedSpectrum table_5nm(const double* v, size_t count, double first_nm)
+{
+    TabulatedSpectrum s;
+    // Zero one step beyond each end, so the SPD vanishes outside its table.
+    s.nm.push_back(first_nm - 5.0);
+    s.value.push_back(0.0);
+    for (size_t i = 0; i < count; ++i) {
+        s.nm.push_back(first_nm + 5.0 * static_cast<double>(i));
+        s.value.push_back(v[i]);
+    }
+    s.nm.push_back(s.nm.back() + 5.0);
+    s.value.push_back(0.0);
+    return s;
+}
+
+}  // namespace
+
+std::vector<double> Illuminant::spectral_irradiance(const WavelengthGrid& grid,
+                                                    double irradiance_w_m2) const
+{
+    // Normalise over the band at 1 nm (trapezoid): the band irradiance is irradiance_w_m2
+    // whatever the solver's grid.
+    const int n = std::max(1, static_cast<int>(std::ceil(band_max_nm - band_min_nm)));
+    const double h = (band_max_nm - band_min_nm) / n;
+    double band = 0.0;
+    for (int i = 0; i <= n; ++i)
+        band += (i == 0 || i == n ? 0.5 : 1.0) * h * relative.at(band_min_nm + i * h);
+    if (!(band > 0.0))
+        throw std::runtime_error(fmt::format("illuminant '{}': no power in {}-{} nm", name,
+                                             band_min_nm, band_max_nm));
+    std::vector<double> e = grid.sample(relative);
+    for (double& v : e)
+        v *= irradiance_w_m2 / band;
+    return e;
+}
+
+Illumination Illuminant::illumination(const WavelengthGrid& grid, double irradiance_w_m2,
+                                      bool both_sides) const
+{
+    Illumination light;
+    light.top = spectral_irradiance(grid, irradiance_w_m2);
+    if (both_sides)
+        light.bottom = light.top;
+    return light;
+}
+
+Illuminant illuminant_by_name(const std::string& name)
+{
+    std::string n = name;
+    std::transform(n.begin(), n.end(), n.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::toupper(c)); });
+    if (n == "D65")
+        return {"D65", table_5nm(kD65, std::size(kD65), 300.0), 300.0, 830.0,
+                "CIE 15:2004 table 1 (D65, 300-830 nm)"};
+    if (n == "F2")
+        return {"F2", table_5nm(kF2, std::size(kF2), 380.0), 380.0, 780.0,
+                "CIE 15:2004 table 10 (F2, cool white fluorescent, 380-780 nm)"};
+    if (n == "F11" || n == "FLUORESCENT")
+        return {"F11", table_5nm(kF11, std::size(kF11), 380.0), 380.0, 780.0,
+                "CIE 15:2004 table 10 (F11, narrow-band tri-phosphor fluorescent, 380-780 nm)"};
+    if (n == "A") {
+        // CIE A is defined by Planck's law at 2856 K (core spectrum.h), at any wavelength;
+        // tabulated here at 1 nm over the same 300-830 nm band as D65.
+        TabulatedSpectrum s;
+        for (int nm = 300; nm <= 830; ++nm) {
+            s.nm.push_back(nm);
+            s.value.push_back(patina::illuminant_a(static_cast<float>(nm)));
+        }
+        return {"A", s, 300.0, 830.0, "CIE 15:2004 (Planck, 2856 K, c2 = 1.435e-2 m K)"};
+    }
+    throw std::runtime_error(fmt::format(
+        "unknown illuminant '{}' (known: D65, A, F2, F11 or fluorescent)", name));
+}
+
+Illuminant illuminant_from_table(const std::string& name, std::vector<double> nm,
+                                 std::vector<double> relative)
+{
+    if (nm.size() != relative.size() || nm.size() < 2)
+        throw std::runtime_error(
+            fmt::format("illuminant '{}': need >= 2 wavelengths with one value each", name));
+    for (size_t i = 0; i < nm.size(); ++i) {
+        if (i > 0 && !(nm[i] > nm[i - 1]))
+            throw std::runtime_error(fmt::format("illuminant '{}': wavelengths must increase",
+                                                 name));
+        if (!(relative[i] >= 0.0))
+            throw std::runtime_error(fmt::format("illuminant '{}': negative value at {} nm",
+                                                 name, nm[i]));
+    }
+    Illuminant il;
+    il.name = name;
+    il.band_min_nm = nm.front();
+    il.band_max_nm = nm.back();
+    il.source = "table";
+    // Zero outside the table.
+    const double step = nm[1] - nm[0];
+    il.relative.nm.push_back(nm.front() - step);
+    il.relative.value.push_back(0.0);
+    il.relative.nm.insert(il.relative.nm.end(), nm.begin(), nm.end());
+    il.relative.value.insert(il.relative.value.end(), relative.begin(), relative.end());
+    il.relative.nm.push_back(nm.back() + (nm.back() - nm[nm.size() - 2]));
+    il.relative.value.push_back(0.0);
+    return il;
+}
+
+}  // namespace patina::texgen::fade
