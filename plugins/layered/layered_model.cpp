@@ -1,0 +1,452 @@
+#include "layered_model.h"
+
+#include <patina/shading/fresnel.h>
+#include <patina/shading/frame.h>
+#include <patina/shading/sampling.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace patina::layered {
+
+using namespace patina::shading;
+
+namespace {
+
+    /// Roughness below which an interface is treated as this smooth (no delta lobes: the
+    /// model sums rough lobes only).
+    constexpr float kMinRoughness = 0.03f;
+
+    /// `values` over `lambda` (linear, clamped ends) resampled onto the common grid.
+    Grid resample(const std::vector<float>& lambda, const std::vector<float>& values)
+    {
+        Grid g{};
+        if (values.empty())
+            return g;
+        PatinaTabulatedSpectrum table{static_cast<int>(values.size()), lambda.data(),
+                                      values.data()};
+        for (int i = 0; i < kGridSize; ++i)
+            g[i] = patina_tabulated_eval(&table, kGridStartNm + kGridStepNm * i);
+        return g;
+    }
+
+    /// Directional albedo tables of a GGX reflection lobe for F = 1 and F = (1 - cos θh)^5,
+    /// by stratified sampling of visible normals (weight G2 / G1, Heitz 2014/2018).
+    void tabulate_albedo(CompiledMaterial* m)
+    {
+        constexpr int kStrata = 48;
+        for (int node = 0; node < kAlbedoNodes; ++node) {
+            const float mu = std::max(1e-3f, static_cast<float>(node) / (kAlbedoNodes - 1));
+            const Vec3 wo(std::sqrt(std::max(0.0f, 1.0f - mu * mu)), 0.0f, mu);
+            double a = 0.0, b = 0.0;
+            for (int i = 0; i < kStrata; ++i)
+                for (int j = 0; j < kStrata; ++j) {
+                    const Vec2 u((i + 0.5f) / kStrata, (j + 0.5f) / kStrata);
+                    const Vec3 wm = m->distribution.sample_wm(wo, u);
+                    const Vec3 wi = reflect(wo, wm);
+                    if (wi.z <= 0.0f)
+                        continue;
+                    const float w = m->distribution.g(wo, wi) / m->distribution.g1(wo);
+                    const float c = std::clamp(1.0f - dot(wo, wm), 0.0f, 1.0f);
+                    a += w;
+                    b += w * (c * c) * (c * c) * c;
+                }
+            m->albedo_a[node] = static_cast<float>(a / (kStrata * kStrata));
+            m->albedo_b[node] = static_cast<float>(b / (kStrata * kStrata));
+        }
+    }
+
+    CompiledMaterial compile(const MaterialOptics& o)
+    {
+        CompiledMaterial m;
+        m.metal = o.metal;
+        m.roughness = std::max(o.roughness, kMinRoughness);
+        const float alpha = TrowbridgeReitz::roughness_to_alpha(m.roughness);
+        m.distribution = TrowbridgeReitz(alpha, alpha);
+        m.specular = resample(o.lambda_nm, o.specular);
+        if (o.metal) {
+            m.eta = resample(o.lambda_nm, o.n);
+            m.kappa = resample(o.lambda_nm, o.k);
+            // Hemispherical reflectance 2 ∫ F(μ) μ dμ of the smooth metal: what light that
+            // arrives diffusely from the layers above sees (midpoint rule, 64 nodes).
+            for (int i = 0; i < kGridSize; ++i) {
+                double sum = 0.0;
+                for (int q = 0; q < 64; ++q) {
+                    const float mu = (q + 0.5f) / 64.0f;
+                    sum += fresnel_conductor(mu, m.eta[i], m.kappa[i]) * mu;
+                }
+                m.base_reflectance[i] = static_cast<float>(2.0 * sum / 64.0);
+            }
+        } else {
+            m.absorption = resample(o.lambda_nm, o.absorption_per_um);
+            m.scattering = resample(o.lambda_nm, o.scattering_per_um);
+            for (int i = 0; i < kGridSize; ++i) {
+                // R_inf = 1 + K/S - sqrt((K/S)^2 + 2 K/S) (D&H 1996 §4.1), as 1 / (1 + q + sqrt)
+                const double K = m.absorption[i], S = m.scattering[i];
+                const double q = S > 0.0 ? K / S : (K > 0.0 ? 1e30 : 0.0);
+                m.base_reflectance[i] = static_cast<float>(1.0 / (1.0 + q + std::sqrt(q * q + 2.0 * q)));
+            }
+        }
+        tabulate_albedo(&m);
+        return m;
+    }
+
+    float mean(const SpectralArray& a, int count)
+    {
+        float s = 0.0f;
+        for (int i = 0; i < count; ++i)
+            s += a[i];
+        return count > 0 ? s / count : 0.0f;
+    }
+
+    /// Both directions in the upper hemisphere (the stack reflects alike on both sides);
+    /// false when they lie on different sides or in the tangent plane.
+    bool to_upper(Vec3* wo, Vec3* wi)
+    {
+        if (!(wo->z * wi->z > 0.0f))
+            return false;
+        wo->z = std::abs(wo->z);
+        wi->z = std::abs(wi->z);
+        return true;
+    }
+
+    /// Lobe selection probabilities at wo (glossy lobes, then the diffuse one), in proportion
+    /// to an estimate of each lobe's albedo; false when every estimate is 0.
+    bool lobe_probabilities(const PointState& s, float mu_o, float* p)
+    {
+        const int count = wavelength_count(s.wl);
+        SpectralArray coupling(1.0f);
+        float total = 0.0f;
+        for (int j = 0; j < s.interfaces; ++j) {
+            const Interface& lobe = s.lobe[j];
+            SpectralArray e;
+            if (lobe.material->metal)
+                e = lobe.hemispherical * albedo_table(lobe.material->albedo_a, mu_o);
+            else
+                e = LayeredModel::interface_albedo(lobe, mu_o, count);
+            p[j] = mean(coupling * lobe.attenuation * e, count);
+            total += p[j];
+            if (lobe.coupled)
+                for (int i = 0; i < count; ++i)
+                    coupling[i] *= 1.0f - lobe.fade * e[i];
+        }
+        p[s.interfaces] = mean(coupling * s.diffuse, count);
+        total += p[s.interfaces];
+        if (!(total > 0.0f) || !is_finite(total))
+            return false;
+        for (int j = 0; j <= s.interfaces; ++j)
+            p[j] /= total;
+        return true;
+    }
+
+}  // namespace
+
+GridPos grid_pos(float lambda_nm)
+{
+    const float x = std::clamp((lambda_nm - kGridStartNm) / kGridStepNm, 0.0f,
+                               static_cast<float>(kGridSize - 1));
+    GridPos p;
+    p.i = std::min(static_cast<int>(x), kGridSize - 2);
+    p.t = x - static_cast<float>(p.i);
+    return p;
+}
+
+float albedo_table(const std::array<float, kAlbedoNodes>& table, float mu)
+{
+    const float x = std::clamp(mu, 0.0f, 1.0f) * (kAlbedoNodes - 1);
+    const int i = std::min(static_cast<int>(x), kAlbedoNodes - 2);
+    const float t = x - static_cast<float>(i);
+    return table[i] + t * (table[i + 1] - table[i]);
+}
+
+void km_layer(float K, float S, float d, float* R, float* T)
+{
+    K = K > 0.0f ? K : 0.0f;
+    S = S > 0.0f ? S : 0.0f;
+    if (!(d > 0.0f)) {
+        *R = 0.0f;
+        *T = 1.0f;
+        return;
+    }
+    // D&H 1996 §4.1: R = sinh(bSd) / (a sinh(bSd) + b cosh(bSd)), T = b / (...), with
+    // a = (S + K)/S, b = sqrt(a² - 1). Multiplied through by S and by 2 e^-x / β
+    // (β = Sb = sqrt(K (K + 2S)), x = βd): R = S g / ((S + K) g + 1 + e^-2x),
+    // T = 2 e^-x / (...), g = (1 - e^-2x) / β → 2d as β → 0: finite at K = 0, S = 0 and
+    // for any thickness (the same form as src/core/kubelka_munk.cpp).
+    const float beta = std::sqrt(K * (K + 2.0f * S));
+    const float x = beta * d;
+    const float e = std::exp(-x);
+    const float g = x > 1e-4f ? -std::expm1(-2.0f * x) / beta : 2.0f * d * (1.0f - x);
+    const float denom = (S + K) * g + 1.0f + e * e;
+    *R = S * g / denom;
+    *T = 2.0f * e / denom;
+}
+
+LayeredModel::LayeredModel(const StackFile& stack, std::vector<const PatinaTexture*> textures,
+                           const PatinaHost* host, const ModelOptions& options)
+    : textures_(std::move(textures)), host_(host), options_(options)
+{
+    if (stack.layers.size() > static_cast<size_t>(kMaxLayers))
+        throw std::runtime_error(stack.path.string() + ": " +
+                                 std::to_string(stack.layers.size()) +
+                                 " layers; the layered shader takes at most " +
+                                 std::to_string(kMaxLayers));
+    // Compile each material once; pointers stay valid (reserve before taking them).
+    materials_.reserve(stack.materials.size());
+    std::map<std::string, const CompiledMaterial*> by_name;
+    for (const auto& [name, optics] : stack.materials) {
+        materials_.push_back(compile(optics));
+        by_name[name] = &materials_.back();
+    }
+    base_ = by_name.at(stack.base);
+    for (const StackLayer& l : stack.layers)
+        layers_.push_back(by_name.at(l.material));
+    textures_.resize(layers_.size(), nullptr);
+}
+
+SpectralArray LayeredModel::interface_albedo(const Interface& lobe, float mu, int count)
+{
+    const float a = albedo_table(lobe.material->albedo_a, mu);
+    const float b = albedo_table(lobe.material->albedo_b, mu);
+    SpectralArray e;
+    for (int i = 0; i < count; ++i)
+        e[i] = lobe.f0[i] * a + (1.0f - lobe.f0[i]) * b;
+    return e;
+}
+
+void LayeredModel::setup(const PatinaShadingContext* ctx, const PatinaWavelengths& wl,
+                         PointState* state) const
+{
+    std::array<float, kMaxLayers> thickness{};
+    const float u = ctx ? ctx->uv.x : 0.0f, v = ctx ? ctx->uv.y : 0.0f;
+    for (size_t l = 0; l < layers_.size(); ++l) {
+        float t = 0.0f;
+        if (textures_[l] && host_->texture_lookup(host_, textures_[l], ctx, u, v, 0, 1, &t))
+            thickness[l] = t * options_.thickness_scale;
+    }
+    setup_thickness(thickness.data(), wl, state);
+    state->u = u;
+    state->v = v;
+}
+
+void LayeredModel::setup_thickness(const float* thickness_um, const PatinaWavelengths& wl,
+                                   PointState* s) const
+{
+    s->wl = wl;
+    const int count = wavelength_count(wl);
+    std::array<GridPos, PATINA_MAX_WAVELENGTHS> gp;
+    for (int i = 0; i < count; ++i)
+        gp[i] = grid_pos(wl.lambda_nm[i]);
+
+    // The layers above the current depth as one composite, folded from the top down: its
+    // reflectance from above and from below and its transmittance (§4.2).
+    SpectralArray r_top(0.0f), r_bottom(0.0f), t_above(1.0f);
+    s->interfaces = 0;
+    s->layers = 0;
+    for (int l = static_cast<int>(layers_.size()) - 1; l >= 0; --l) {
+        const float d = thickness_um[l];
+        if (!(d > 0.0f) || !is_finite(d))
+            continue;
+        const CompiledMaterial& m = *layers_[l];
+        // The glossy lobe of this layer's top surface, seen through the layers above: its
+        // specular colour times T_above² (§4.3).
+        Interface& lobe = s->lobe[s->interfaces++];
+        lobe.material = &m;
+        lobe.fade = std::min(1.0f, d / kInterfaceFadeUm);
+        lobe.coupled = true;
+        for (int i = 0; i < count; ++i) {
+            lobe.attenuation[i] = lobe.fade * t_above[i] * t_above[i];
+            lobe.f0[i] = grid_eval(m.specular, gp[i]);
+        }
+        s->thickness_um[s->layers] = d;
+        s->layer_material[s->layers++] = &m;
+        // KM R, T of this layer (§4.1) composited under the layers above (§4.2).
+        for (int i = 0; i < count; ++i) {
+            float R, T;
+            km_layer(grid_eval(m.absorption, gp[i]), grid_eval(m.scattering, gp[i]), d, &R, &T);
+            const float denom = 1.0f - r_bottom[i] * R;
+            if (!(denom > 0.0f)) {
+                r_top[i] = 1.0f;
+                r_bottom[i] = 1.0f;
+                t_above[i] = 0.0f;
+                continue;
+            }
+            r_top[i] += t_above[i] * t_above[i] * R / denom;
+            r_bottom[i] = R + T * T * r_bottom[i] / denom;
+            t_above[i] = t_above[i] * T / denom;
+        }
+    }
+    // The base's own surface: a conductor (n, k) or a dielectric lobe (specular).
+    const CompiledMaterial& b = *base_;
+    Interface& lobe = s->lobe[s->interfaces++];
+    lobe.material = &b;
+    lobe.fade = 1.0f;
+    lobe.coupled = !b.metal;
+    s->base = &b;
+    for (int i = 0; i < count; ++i) {
+        lobe.attenuation[i] = t_above[i] * t_above[i];
+        const float r_base = grid_eval(b.base_reflectance, gp[i]);
+        if (b.metal) {
+            lobe.f0[i] = grid_eval(b.eta, gp[i]);
+            lobe.kappa[i] = grid_eval(b.kappa, gp[i]);
+            lobe.hemispherical[i] = r_base;
+        } else {
+            lobe.f0[i] = grid_eval(b.specular, gp[i]);
+        }
+        // The stack over the opaque base (§4.2, the base a layer with T = 0).
+        const float denom = 1.0f - r_bottom[i] * r_base;
+        float r = denom > 0.0f ? r_top[i] + t_above[i] * t_above[i] * r_base / denom : 1.0f;
+        // A metal's direct reflection is its glossy lobe: the diffuse part keeps only the
+        // light the layers scattered (zero for a bare metal).
+        if (b.metal)
+            r -= t_above[i] * t_above[i] * r_base;
+        s->diffuse[i] = std::clamp(r, 0.0f, 1.0f);
+    }
+    for (int i = count; i < PATINA_MAX_WAVELENGTHS; ++i)
+        s->diffuse[i] = 0.0f;
+}
+
+void LayeredModel::eval_km(const PointState& s, Vec3 wo, Vec3 wi, SpectralArray* f) const
+{
+    *f = SpectralArray(0.0f);
+    if (!to_upper(&wo, &wi))
+        return;
+    const int count = wavelength_count(s.wl);
+    const float mu_o = wo.z, mu_i = wi.z;
+    const Vec3 h = wo + wi;
+    if (length_squared(h) == 0.0f)
+        return;
+    const Vec3 wm = normalize(h);
+    const float c = std::clamp(dot(wo, wm), 0.0f, 1.0f);
+    const float c5 = (1.0f - c) * (1.0f - c) * (1.0f - c) * (1.0f - c) * (1.0f - c);
+    // Sum of the glossy lobes from the top interface down; `coupling` is the part of the
+    // light that passed the interfaces above, (1 - E(μo)) (1 - E(μi)) per interface.
+    SpectralArray coupling(1.0f);
+    for (int j = 0; j < s.interfaces; ++j) {
+        const Interface& lobe = s.lobe[j];
+        const TrowbridgeReitz& dist = lobe.material->distribution;
+        // Torrance-Sparrow with GGX and Smith G2: Walter et al. 2007 Eq. 20
+        const float dg = dist.d(wm) * dist.g(wo, wi) / (4.0f * mu_o * mu_i);
+        if (dg > 0.0f && is_finite(dg)) {
+            for (int i = 0; i < count; ++i) {
+                const float F = lobe.material->metal
+                                    ? fresnel_conductor(c, lobe.f0[i], lobe.kappa[i])
+                                    : lobe.f0[i] + (1.0f - lobe.f0[i]) * c5;
+                (*f)[i] += coupling[i] * lobe.attenuation[i] * F * dg;
+            }
+        }
+        if (lobe.coupled) {
+            const SpectralArray eo = interface_albedo(lobe, mu_o, count);
+            const SpectralArray ei = interface_albedo(lobe, mu_i, count);
+            for (int i = 0; i < count; ++i)
+                coupling[i] *= (1.0f - lobe.fade * eo[i]) * (1.0f - lobe.fade * ei[i]);
+        }
+    }
+    for (int i = 0; i < count; ++i)
+        (*f)[i] += coupling[i] * s.diffuse[i] * kInvPi;
+}
+
+void LayeredModel::eval(const PointState& s, Vec3 wo, Vec3 wi, float* f) const
+{
+    SpectralArray value;
+    if (options_.model == Model::random_walk)
+        eval_random_walk(s, wo, wi, &value);
+    else
+        eval_km(s, wo, wi, &value);
+    store(value, s.wl, f);
+}
+
+float LayeredModel::pdf(const PointState& s, Vec3 wo, Vec3 wi) const
+{
+    if (!to_upper(&wo, &wi))
+        return 0.0f;
+    float p[kMaxLayers + 2];
+    if (!lobe_probabilities(s, wo.z, p))
+        return 0.0f;
+    float pdf = p[s.interfaces] * cosine_hemisphere_pdf(wi.z);
+    const Vec3 h = wo + wi;
+    if (length_squared(h) > 0.0f) {
+        const Vec3 wm = normalize(h);
+        const float c = dot(wo, wm);
+        if (c > 0.0f)
+            for (int j = 0; j < s.interfaces; ++j)
+                if (p[j] > 0.0f)
+                    pdf += p[j] * s.lobe[j].material->distribution.pdf(wo, wm) / (4.0f * c);
+    }
+    return is_finite(pdf) ? pdf : 0.0f;
+}
+
+int LayeredModel::sample(const PointState& s, Vec3 wo, float u_lobe, Vec2 u,
+                         PatinaBsdfSample* out) const
+{
+    if (wo.z == 0.0f)
+        return 0;
+    const bool below = wo.z < 0.0f;
+    Vec3 w = wo;
+    w.z = std::abs(w.z);
+    float p[kMaxLayers + 2];
+    if (!lobe_probabilities(s, w.z, p))
+        return 0;
+    // Pick a lobe by u_lobe in proportion to its estimated albedo.
+    int chosen = s.interfaces;
+    float cdf = 0.0f;
+    for (int j = 0; j < s.interfaces; ++j) {
+        cdf += p[j];
+        if (u_lobe < cdf) {
+            chosen = j;
+            break;
+        }
+    }
+    Vec3 wi;
+    if (chosen < s.interfaces) {
+        const Vec3 wm = s.lobe[chosen].material->distribution.sample_wm(w, u);
+        wi = normalize(reflect(w, wm));
+        out->lobe = PATINA_LOBE_REFLECTION | PATINA_LOBE_GLOSSY;
+    } else {
+        wi = sample_cosine_hemisphere(u);
+        out->lobe = PATINA_LOBE_REFLECTION | PATINA_LOBE_DIFFUSE;
+    }
+    if (!(wi.z > 0.0f))
+        return 0;
+    if (below)
+        wi.z = -wi.z;
+    // f and pdf exactly as eval and pdf compute them.
+    const float pdf_value = pdf(s, wo, wi);
+    if (!(pdf_value > 0.0f))
+        return 0;
+    eval(s, wo, wi, out->f);
+    out->wi = wi;
+    out->pdf = pdf_value;
+    out->eta = 1.0f;
+    return 1;
+}
+
+void LayeredModel::albedo(const PointState& s, Vec3 wo, float* a) const
+{
+    SpectralArray value;
+    const int count = wavelength_count(s.wl);
+    if (options_.model == Model::random_walk) {
+        albedo_random_walk(s, wo, options_.walk_samples, 0x9e3779b97f4a7c15ULL, &value);
+    } else {
+        // Sum of the lobe estimates lobe selection uses.
+        const float mu = std::abs(wo.z);
+        SpectralArray coupling(1.0f);
+        for (int j = 0; j < s.interfaces; ++j) {
+            const Interface& lobe = s.lobe[j];
+            SpectralArray e;
+            if (lobe.material->metal)
+                e = lobe.hemispherical * albedo_table(lobe.material->albedo_a, mu);
+            else
+                e = interface_albedo(lobe, mu, count);
+            value += coupling * lobe.attenuation * e;
+            if (lobe.coupled)
+                for (int i = 0; i < count; ++i)
+                    coupling[i] *= 1.0f - lobe.fade * e[i];
+        }
+        value += coupling * s.diffuse;
+    }
+    store(value, s.wl, a);
+}
+
+}  // namespace patina::layered

@@ -1,0 +1,155 @@
+// The layered Kubelka-Munk BSDF of a patina stack (Dorsey & Hanrahan 1996 §4), compiled from
+// a stack.toml for fast evaluation: every material resampled onto one 5 nm grid, the
+// directional albedo of each interface's GGX lobe tabulated over cos θ. Per shading point
+// and wavelength, `setup` looks up the layer thicknesses and composites the layers (§4.1,
+// §4.2); `eval`, `pdf` and `sample` then sum one diffuse lobe and one glossy lobe per
+// interface (§4.3). The model and its deviations from the paper are described in
+// plugins/layered/README.md and at the top of layered.cpp.
+//
+// LayeredModel is immutable after construction and every member function is reentrant and
+// allocation-free; the plugin's C functions are thin wrappers around it (bench/
+// layered_shading.cpp calls it directly to measure the cost of the ABI).
+#pragma once
+
+#include "stack_file.h"
+
+#include <patina/abi.h>
+#include <patina/shading/microfacet.h>
+#include <patina/shading/spectral.h>
+
+#include <array>
+#include <vector>
+
+namespace patina::layered {
+
+using shading::SpectralArray;
+using shading::Vec2;
+using shading::Vec3;
+
+/// Most layers a stack may hold (the interfaces are one more).
+inline constexpr int kMaxLayers = 16;
+/// The common wavelength grid: 360-830 nm every 5 nm.
+inline constexpr int kGridSize = 95;
+inline constexpr float kGridStartNm = 360.0f;
+inline constexpr float kGridStepNm = 5.0f;
+/// Nodes of the directional albedo tables over cos θ in [0, 1].
+inline constexpr int kAlbedoNodes = 32;
+/// A layer thinner than this (µm) fades its interface in linearly: a film much thinner than a
+/// wavelength does not act as a separate reflecting surface, and a filtered coverage edge
+/// of a thickness map shows no sudden gloss.
+inline constexpr float kInterfaceFadeUm = 0.05f;
+
+enum class Model { kubelka_munk, random_walk };
+
+using Grid = std::array<float, kGridSize>;
+
+/// One material on the common grid.
+struct CompiledMaterial {
+    bool metal = false;
+    Grid absorption{};  ///< K per µm
+    Grid scattering{};  ///< S per µm
+    Grid specular{};    ///< Schlick F0 of its top surface (dielectric interfaces)
+    Grid eta{}, kappa{}; ///< metal: n, k
+    /// What the diffuse compositing sees below the layers: R_inf of a thick dielectric base,
+    /// or the hemispherical reflectance 2 ∫ F(μ) μ dμ of a smooth metal (see README).
+    Grid base_reflectance{};
+    shading::TrowbridgeReitz distribution{1.0f, 1.0f};
+    float roughness = 0.5f;
+    /// Directional albedo of the GGX lobe with Schlick Fresnel: E(μ) = F0 a(μ) + (1-F0) b(μ)
+    /// (a: F = 1, b: F = (1 - cos θh)^5), over μ = i / (kAlbedoNodes - 1).
+    std::array<float, kAlbedoNodes> albedo_a{}, albedo_b{};
+};
+
+/// Grid position of a wavelength: index and weight for linear interpolation.
+struct GridPos {
+    int i = 0;
+    float t = 0.0f;
+};
+
+/// One glossy lobe of a shading point, from the top interface down.
+struct Interface {
+    const CompiledMaterial* material = nullptr;
+    float fade = 1.0f;          ///< kInterfaceFadeUm fade-in of a thin layer
+    bool coupled = true;        ///< its reflection is taken out of what passes below it
+    SpectralArray attenuation;  ///< fade · T_above², T_above the KM transmittance above (§4.3)
+    SpectralArray f0;           ///< Schlick F0 (dielectric) or n (metal)
+    SpectralArray kappa;        ///< metal k
+    SpectralArray hemispherical; ///< metal: hemispherical reflectance (lobe selection)
+};
+
+/// Everything a shading point needs, computed once by setup (uv, wavelengths).
+struct PointState {
+    PatinaWavelengths wl{};
+    int interfaces = 0;
+    std::array<Interface, kMaxLayers + 1> lobe{};
+    SpectralArray diffuse;  ///< R of the stack over the base, seen by the diffuse lobe
+    /// For the random walk: layer thicknesses (µm) and materials, top to bottom.
+    int layers = 0;
+    std::array<float, kMaxLayers> thickness_um{};
+    std::array<const CompiledMaterial*, kMaxLayers> layer_material{};
+    const CompiledMaterial* base = nullptr;
+    float u = 0.0f, v = 0.0f;
+};
+
+struct ModelOptions {
+    Model model = Model::kubelka_munk;
+    float thickness_scale = 1.0f;
+    int walk_samples = 64;
+};
+
+class LayeredModel {
+public:
+    /// `textures[l]` is the thickness map of stack.layers[l] (bottom to top); a null texture
+    /// reads as thickness 0. Throws std::runtime_error for a stack deeper than kMaxLayers.
+    LayeredModel(const StackFile& stack, std::vector<const PatinaTexture*> textures,
+                 const PatinaHost* host, const ModelOptions& options);
+
+    /// Layer thicknesses at ctx->uv and the KM compositing (§4.1, §4.2) at wl.
+    void setup(const PatinaShadingContext* ctx, const PatinaWavelengths& wl,
+               PointState* state) const;
+    /// As setup, with given thicknesses (µm, bottom to top) instead of texture lookups.
+    void setup_thickness(const float* thickness_um, const PatinaWavelengths& wl,
+                         PointState* state) const;
+
+    void eval(const PointState& s, Vec3 wo, Vec3 wi, float* f) const;
+    float pdf(const PointState& s, Vec3 wo, Vec3 wi) const;
+    int sample(const PointState& s, Vec3 wo, float u_lobe, Vec2 u, PatinaBsdfSample* out) const;
+    void albedo(const PointState& s, Vec3 wo, float* albedo) const;
+
+    /// The Kubelka-Munk model whatever `options.model` says (the reference compares both).
+    void eval_km(const PointState& s, Vec3 wo, Vec3 wi, SpectralArray* f) const;
+    /// The random-walk reference: f estimated with `walk_samples` walks (random_walk.cpp).
+    void eval_random_walk(const PointState& s, Vec3 wo, Vec3 wi, SpectralArray* f) const;
+    /// Directional albedo by analog random walks (`walks` of them per wavelength).
+    void albedo_random_walk(const PointState& s, Vec3 wo, int walks, uint64_t seed,
+                            SpectralArray* albedo) const;
+
+    size_t layer_count() const { return layers_.size(); }
+    const ModelOptions& options() const { return options_; }
+
+    /// E(μ) of a dielectric interface at the point's wavelengths.
+    static SpectralArray interface_albedo(const Interface& i, float mu, int count);
+
+private:
+    std::vector<CompiledMaterial> materials_;
+    const CompiledMaterial* base_ = nullptr;
+    std::vector<const CompiledMaterial*> layers_;  ///< bottom to top
+    std::vector<const PatinaTexture*> textures_;
+    const PatinaHost* host_ = nullptr;
+    ModelOptions options_;
+};
+
+/// Grid lookup helpers shared with random_walk.cpp.
+GridPos grid_pos(float lambda_nm);
+inline float grid_eval(const Grid& g, GridPos p)
+{
+    return g[p.i] + p.t * (g[p.i + 1] - g[p.i]);
+}
+/// Linear interpolation in a kAlbedoNodes table over μ in [0, 1].
+float albedo_table(const std::array<float, kAlbedoNodes>& table, float mu);
+
+/// KM reflectance and transmittance of a layer (§4.1), exact and finite at K = 0, S = 0,
+/// d = 0 and for any thickness.
+void km_layer(float K, float S, float d, float* R, float* T);
+
+}  // namespace patina::layered
