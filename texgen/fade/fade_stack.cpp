@@ -168,7 +168,10 @@ void write_fade_stack(const fs::path& dir, const DoseTable& table, const FadeSta
                          {"min_dose", info.min_dose},
                          {"mean_dose", info.mean_dose},
                          {"max_dose", info.max_dose}};
-    toml::table exposure{{"file", info.exposure.file.string()},
+    toml::array exposure_files;
+    for (const fs::path& f : info.exposure.files)
+        exposure_files.push_back(f.string());
+    toml::table exposure{{"files", exposure_files},
                          {"channel", info.exposure.channel},
                          {"units", info.exposure.units},
                          {"scale", info.exposure.scale},

@@ -25,9 +25,10 @@
 //                table twice as fine), wavelength_nm = [...] (columns), dose = [...] (rows)
 //   [substrate]  reflectance = [...] (ρ*, one per column)
 //   [dose_map]   file, channels, resolution, min_dose, mean_dose, max_dose
-//   [exposure]   file, channel, units, scale, duration_s, period_s: how doses were made,
+//   [exposure]   files, channel, units, scale, duration_s, period_s: how doses were made,
 //                dose = scale × value × (duration / period) for a J/m² map, or
-//                scale × value × duration for a W/m² map
+//                scale × value × duration for a W/m² map, summed over the files (occluders
+//                moved between exposures); no files: a uniform dose (--dose)
 //
 // The table coordinate of a dose H follows DoseTable's rule: u = ln(1 + H / H_0) / du, so
 // linear interpolation between rows in the coordinate is DoseTable's own interpolation.
@@ -45,9 +46,10 @@ inline constexpr const char* kFadeToml = "fade.toml";
 inline constexpr const char* kFadeTableFile = "fade_table.exr";
 inline constexpr const char* kDoseMapFile = "dose.exr";
 
-/// How the doses of a stack were made from its exposure map.
+/// How the doses of a stack were made from its exposure maps (their doses add up; none: a
+/// uniform dose).
 struct ExposureSource {
-    std::filesystem::path file;
+    std::vector<std::filesystem::path> files;
     std::string channel = "exposure";
     std::string units = "J/m^2";   ///< "J/m^2" or "W/m^2"
     double scale = 1.0;            ///< dose per unit of the map

@@ -1,0 +1,193 @@
+// Reading a fade stack in create: fade.toml (toml++, header-only), the table through
+// host->read_image and the dose map through host->open_texture.
+#include "fade_table.h"
+
+#include <toml++/toml.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+
+namespace patina::spectral_km {
+
+namespace {
+
+    namespace fs = std::filesystem;
+
+    // The table's channels as fade.toml must list them (OpenEXR keeps channels sorted by name,
+    // which is the order read_image returns them in).
+    constexpr const char* kChannels[4] = {"R_bottom", "R_top", "R_total", "T"};
+
+    std::string read_numbers(const toml::table& root, const char* section, const char* key,
+                             const std::string& where, std::vector<float>* out)
+    {
+        const toml::array* array = root[section][key].as_array();
+        if (!array)
+            return where + ": [" + section + "] " + key + " is missing or not an array";
+        out->clear();
+        for (const toml::node& n : *array) {
+            const std::optional<double> v = n.value<double>();
+            if (!v || !std::isfinite(*v))
+                return where + ": [" + section + "] " + key + " holds a non-number";
+            out->push_back(static_cast<float>(*v));
+        }
+        return {};
+    }
+
+    std::string resolve(const toml::table& root, const char* section, const fs::path& dir,
+                        const std::string& where, std::string* out)
+    {
+        const std::optional<std::string> file = root[section]["file"].value<std::string>();
+        if (!file || file->empty())
+            return where + ": [" + section + "] file is missing";
+        const fs::path p(*file);
+        *out = (p.is_absolute() ? p : dir / p).lexically_normal().string();
+        return {};
+    }
+
+}  // namespace
+
+std::string FadeTable::load(const PatinaHost* host, const char* path)
+{
+    if (!PATINA_HOST_HAS_READ_IMAGE(host) || !host->read_image || !host->open_texture)
+        return "the host does not offer read_image/open_texture (ABI 1.1 services)";
+    const std::string where(path ? path : "");
+    toml::table root;
+    try {
+        root = toml::parse_file(where);
+    } catch (const toml::parse_error& e) {
+        return where + ":" + std::to_string(e.source().begin.line) + ": " +
+               std::string(e.description());
+    }
+    const std::optional<int64_t> format = root["fade"]["format"].value<int64_t>();
+    if (!format || *format != 1)
+        return where + ": [fade] format must be 1";
+    const fs::path dir = fs::path(where).parent_path();
+
+    // Wavelengths (columns), doses (rows) and the channel order
+    if (std::string e = read_numbers(root, "table", "wavelength_nm", where, &lambda_nm_);
+        !e.empty())
+        return e;
+    std::vector<float> doses;
+    if (std::string e = read_numbers(root, "table", "dose", where, &doses); !e.empty())
+        return e;
+    if (lambda_nm_.empty() || doses.empty())
+        return where + ": [table] needs at least one wavelength and one dose";
+    for (size_t i = 1; i < lambda_nm_.size(); ++i)
+        if (!(lambda_nm_[i] > lambda_nm_[i - 1]))
+            return where + ": [table] wavelength_nm must increase";
+    const toml::array* channels = root["table"]["channels"].as_array();
+    if (!channels || channels->size() != 4)
+        return where + ": [table] channels must list R_bottom, R_top, R_total, T";
+    for (size_t c = 0; c < 4; ++c)
+        if ((*channels)[c].value<std::string>().value_or("") != kChannels[c])
+            return where + ": [table] channels must be R_bottom, R_top, R_total, T in that order";
+    rows_ = static_cast<int>(doses.size());
+    columns_ = static_cast<int>(lambda_nm_.size());
+
+    // A uniform grid (within float rounding) finds its column without a search
+    const float step = columns_ > 1 ? (lambda_nm_.back() - lambda_nm_.front()) / (columns_ - 1) : 0;
+    uniform_ = columns_ > 1;
+    for (int i = 0; i < columns_ && uniform_; ++i)
+        uniform_ = std::abs(lambda_nm_[i] - (lambda_nm_.front() + step * i)) < 1e-3f * step;
+    lambda0_ = lambda_nm_.front();
+    inv_step_ = uniform_ ? 1.0f / step : 0.0f;
+
+    if (std::string e = read_numbers(root, "substrate", "reflectance", where, &substrate_);
+        !e.empty())
+        return e;
+    if (static_cast<int>(substrate_.size()) != columns_)
+        return where + ": [substrate] reflectance needs one value per wavelength";
+
+    // The table: rows x columns x 4 raw floats
+    std::string table_path, dose_path;
+    if (std::string e = resolve(root, "table", dir, where, &table_path); !e.empty())
+        return e;
+    if (std::string e = resolve(root, "dose_map", dir, where, &dose_path); !e.empty())
+        return e;
+    int dims[3] = {0, 0, 0};
+    if (!host->read_image(host, table_path.c_str(), 0, dims, nullptr, 0))
+        return "cannot read the fade table '" + table_path + "'";
+    if (dims[0] != columns_ || dims[1] != rows_ || dims[2] != 4)
+        return "fade table '" + table_path + "' is " + std::to_string(dims[0]) + "x" +
+               std::to_string(dims[1]) + "x" + std::to_string(dims[2]) + "; " + where +
+               " describes " + std::to_string(columns_) + " wavelengths x " +
+               std::to_string(rows_) + " doses x 4 channels";
+    std::vector<float> pixels(static_cast<size_t>(rows_) * columns_ * 4);
+    if (!host->read_image(host, table_path.c_str(), 0, dims, pixels.data(), pixels.size()))
+        return "cannot read the fade table '" + table_path + "'";
+    const size_t n = static_cast<size_t>(rows_) * columns_;
+    r_top_.resize(n);
+    t_.resize(n);
+    r_bottom_.resize(n);
+    for (size_t i = 0; i < n; ++i) {
+        r_bottom_[i] = pixels[4 * i + 0];
+        r_top_[i] = pixels[4 * i + 1];
+        t_[i] = pixels[4 * i + 3];
+        const float sum = r_top_[i] + t_[i];
+        if (!std::isfinite(sum) || r_top_[i] < 0.0f || t_[i] < 0.0f || r_bottom_[i] < 0.0f ||
+            sum > 1.0f + 1e-4f || r_bottom_[i] + t_[i] > 1.0f + 1e-4f)
+            return "fade table '" + table_path + "': row " + std::to_string(i / columns_) +
+                   ", column " + std::to_string(i % columns_) +
+                   " is not a passive layer (R, T >= 0, R + T <= 1)";
+    }
+    for (float rho : substrate_)
+        if (!(rho >= 0.0f && rho <= 1.0f))
+            return where + ": [substrate] reflectance must lie in [0, 1]";
+
+    dose_map_ = host->open_texture(host, dose_path.c_str(), "raw");
+    if (!dose_map_)
+        return "cannot open the dose map '" + dose_path + "'";
+    return {};
+}
+
+LayerState FadeTable::at(float row, float lambda_nm, float* rho) const
+{
+    // Row: clamp to the table, split into a cell and a fraction (NaN -> row 0)
+    const float r = std::clamp(row >= 0.0f ? row : 0.0f, 0.0f, static_cast<float>(rows_ - 1));
+    const int r0 = std::min(static_cast<int>(r), rows_ - 1);
+    const int r1 = std::min(r0 + 1, rows_ - 1);
+    const float fr = r - static_cast<float>(r0);
+
+    // Column: clamp to the wavelength range
+    int c0 = 0;
+    float fc = 0.0f;
+    if (columns_ > 1) {
+        if (lambda_nm <= lambda_nm_.front()) {
+            c0 = 0;
+        } else if (lambda_nm >= lambda_nm_.back()) {
+            c0 = columns_ - 2;
+            fc = 1.0f;
+        } else if (uniform_) {
+            const float x = (lambda_nm - lambda0_) * inv_step_;
+            c0 = std::min(static_cast<int>(x), columns_ - 2);
+            fc = x - static_cast<float>(c0);
+        } else {
+            const auto it = std::upper_bound(lambda_nm_.begin(), lambda_nm_.end(), lambda_nm);
+            c0 = static_cast<int>(it - lambda_nm_.begin()) - 1;
+            fc = (lambda_nm - lambda_nm_[c0]) / (lambda_nm_[c0 + 1] - lambda_nm_[c0]);
+        }
+    }
+    const int c1 = std::min(c0 + 1, columns_ - 1);
+
+    auto bilinear = [&](const std::vector<float>& v) {
+        const float a = v[static_cast<size_t>(r0) * columns_ + c0];
+        const float b = v[static_cast<size_t>(r0) * columns_ + c1];
+        const float c = v[static_cast<size_t>(r1) * columns_ + c0];
+        const float d = v[static_cast<size_t>(r1) * columns_ + c1];
+        const float top = a + fc * (b - a), bottom = c + fc * (d - c);
+        return top + fr * (bottom - top);
+    };
+    if (rho)
+        *rho = substrate_[c0] + fc * (substrate_[c1] - substrate_[c0]);
+    return {bilinear(r_top_), bilinear(t_), bilinear(r_bottom_)};
+}
+
+float FadeTable::reflectance(float row, float lambda_nm) const
+{
+    float rho = 0.0f;
+    const LayerState layer = at(row, lambda_nm, &rho);
+    return composite(layer, rho);
+}
+
+}  // namespace patina::spectral_km

@@ -1,0 +1,330 @@
+// `patina-texgen fade`: an exposure map and a fading material (Kimmel et al. 2013) -> a fade
+// stack (fade.toml, fade_table.exr, dose.exr) for the spectral_km shader, and optionally a
+// plot of the material's reflectance over time like the paper's figures 9-13.
+#include "texgen/cli/commands.h"
+
+#include "core/cancel.h"
+#include "core/progress.h"
+#include "texgen/fade/dose_table.h"
+#include "texgen/fade/fade_map.h"
+#include "texgen/fade/fade_material.h"
+#include "texgen/fade/fade_plot.h"
+#include "texgen/fade/fade_stack.h"
+#include "texgen/fade/illuminant.h"
+
+#include <fmt/format.h>
+#include <tbb/global_control.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+
+namespace patina::texgen {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct FadeOptions {
+    std::vector<fs::path> exposures;
+    double dose = -1.0;
+    std::string channel;
+    std::string material;
+    std::vector<fs::path> materials;
+    std::string rates;
+    fs::path out_dir;
+    std::string illuminant;
+    std::string duration;
+    double scale = 1.0;
+    std::string wavelengths = "300:830:5";
+    int entries = 64;
+    double max_dose = 0.0;
+    double knee_dose = 0.0;
+    int sublayers = 100;
+    int substeps = 2;
+    bool both_sides = false;
+    fs::path plot;
+    std::string plot_title;
+    int threads = 0;
+    bool quiet = false;
+};
+
+/// "7d", "6h", "30y", "90min", "3600s" or a bare number of seconds.
+double parse_duration(const std::string& text)
+{
+    if (text.empty())
+        return 0.0;
+    size_t used = 0;
+    double value = 0.0;
+    try {
+        value = std::stod(text, &used);
+    } catch (const std::exception&) {
+        used = 0;
+    }
+    const std::string unit = text.substr(used);
+    const std::pair<const char*, double> units[] = {
+        {"", 1.0}, {"s", 1.0}, {"min", 60.0}, {"h", 3600.0}, {"d", 86400.0},
+        {"y", 365.0 * 86400.0}};
+    if (used > 0 && value >= 0.0 && std::isfinite(value))
+        for (const auto& [name, seconds] : units)
+            if (unit == name)
+                return value * seconds;
+    throw std::runtime_error("--duration '" + text +
+                             "': expected a number with an optional unit s, min, h, d or y "
+                             "(e.g. 7d, 30y)");
+}
+
+fade::WavelengthGrid parse_grid(const std::string& text)
+{
+    double first = 0, last = 0, step = 0;
+    char c1 = 0, c2 = 0;
+    if (std::sscanf(text.c_str(), "%lf%c%lf%c%lf", &first, &c1, &last, &c2, &step) != 5 ||
+        c1 != ':' || c2 != ':' || !(step > 0.0) || !(last > first))
+        throw std::runtime_error("--wavelengths '" + text +
+                                 "': expected FIRST:LAST:STEP in nm, e.g. 300:830:5");
+    return fade::WavelengthGrid::uniform(first, last, step);
+}
+
+fade::Illuminant choose_illuminant(const FadeOptions& o, const fade::ExposureMap& map)
+{
+    if (!o.illuminant.empty())
+        return fade::illuminant_by_name(o.illuminant);
+    if (!map.illuminant_nm.empty())
+        return fade::illuminant_from_table(map.illuminant.empty() ? "exposure map"
+                                                                  : map.illuminant,
+                                           map.illuminant_nm, map.illuminant_value);
+    if (!map.illuminant.empty())
+        return fade::illuminant_by_name(map.illuminant);
+    return fade::illuminant_by_name("D65");
+}
+
+// The material's reflectance at doses spread like the paper's 0h, 6h, 1d, 7d over the
+// largest dose of the map, from the table (figures 9-13).
+void write_plot(const FadeOptions& o, const fade::DoseTable& table, double max_dose,
+                double duration_s, const std::string& title)
+{
+    const double fractions[] = {0.0, 6.0 / 168.0, 24.0 / 168.0, 1.0};
+    std::vector<fade::PlotCurve> curves;
+    for (size_t k = 0; k < std::size(fractions); ++k) {
+        const double dose = fractions[k] * max_dose;
+        fade::PlotCurve c;
+        c.label = duration_s > 0.0 ? fade::duration_label(fractions[k] * duration_s)
+                                   : fmt::format("{:.3g} J/m2", dose);
+        c.x = table.grid().nm;
+        c.y = table.spectra_at(dose).reflectance;
+        c.rgb = fade::time_ramp_color(k, std::size(fractions));
+        curves.push_back(std::move(c));
+    }
+    fade::PlotOptions p;
+    p.title = title;
+    fade::write_reflectance_plot(o.plot, curves, p);
+}
+
+// The dose of every texel: the sum over the exposure maps (each with its own period and
+// units), or a uniform --dose on a small map. `first` keeps the first map's header.
+struct Doses {
+    fade::ExposureMap map;    // values in J/m^2, factor 1
+    fade::ExposureMap first;  // header of the first map (illuminant, units, period)
+};
+
+Doses gather_doses(const FadeOptions& o, double duration_s)
+{
+    Doses d;
+    if (o.dose >= 0.0) {
+        if (!o.exposures.empty())
+            throw std::runtime_error("--dose and --exposure exclude each other");
+        if (!std::isfinite(o.dose))
+            throw std::runtime_error("--dose must be a finite number of J/m^2");
+        d.map.width = d.map.height = 4;
+        d.map.channel = "dose";
+        d.map.units = "J/m^2";
+        d.map.values.assign(16, static_cast<float>(o.dose * o.scale));
+        d.first = d.map;
+        return d;
+    }
+    if (o.exposures.empty())
+        throw std::runtime_error("--exposure MAP (or --dose) is required");
+    for (size_t k = 0; k < o.exposures.size(); ++k) {
+        const fade::ExposureMap m = fade::read_exposure_map(o.exposures[k], o.channel);
+        const double factor = fade::dose_factor(m, o.scale, duration_s);
+        fade::scan_doses(m, factor);  // names a NaN or negative texel of this file
+        if (k == 0) {
+            d.first = m;
+            d.map = m;
+            d.map.units = "J/m^2";
+            d.map.values.assign(m.values.size(), 0.0f);
+        } else if (m.width != d.map.width || m.height != d.map.height) {
+            throw std::runtime_error(fmt::format(
+                "exposure map '{}' is {}x{}, but '{}' is {}x{}: maps whose doses add up need "
+                "one resolution",
+                m.file.string(), m.width, m.height, d.first.file.string(), d.map.width,
+                d.map.height));
+        }
+        for (size_t i = 0; i < m.values.size(); ++i)
+            d.map.values[i] += static_cast<float>(factor * m.values[i]);
+    }
+    return d;
+}
+
+void run_fade(const FadeOptions& o)
+{
+    std::optional<tbb::global_control> threads;
+    if (o.threads > 0)
+        threads.emplace(tbb::global_control::max_allowed_parallelism, o.threads);
+    install_cancel_handler();
+    const auto start = std::chrono::steady_clock::now();
+
+    // Inputs first, so a bad one fails before any work or output
+    std::vector<fs::path> files = fade::FadeLibrary::default_files();
+    files.insert(files.end(), o.materials.begin(), o.materials.end());
+    if (files.empty())
+        throw std::runtime_error("no fading materials: none found under $PATINA_SHADER_PATH or "
+                                 "<exe>/../share/patina/shaders/fade; pass --materials FILE");
+    const fade::FadeLibrary library = fade::FadeLibrary::load_files(files);
+    fade::FadeMaterial material = library.material(o.material);
+    if (!o.rates.empty())
+        material = fade::with_rates(material, library.rate_set(o.rates));
+    const fade::WavelengthGrid grid = parse_grid(o.wavelengths);
+    const double duration_s = parse_duration(o.duration);
+    const Doses doses = gather_doses(o, duration_s);
+    const fade::ExposureMap& map = doses.map;
+    const fade::Illuminant illuminant = choose_illuminant(o, doses.first);
+    const fade::DoseRange range = fade::scan_doses(map, 1.0);
+
+    // The dose table, up to the map's largest dose (or --max-dose)
+    fade::DoseTableOptions t;
+    t.max_dose_j_m2 = o.max_dose > 0.0 ? o.max_dose : std::max(range.max, 1.0);
+    t.knee_dose_j_m2 = o.knee_dose > 0.0 ? o.knee_dose : t.max_dose_j_m2 * 1e-3;
+    t.entries = o.entries;
+    t.sublayers = o.sublayers;
+    t.substeps = o.substeps;
+    t.both_sides = o.both_sides;
+    if (!o.quiet)
+        std::fprintf(stderr,
+                     "fade: %s under %s, %zu wavelengths, %d sublayers; doses %.4g-%.4g J/m^2 "
+                     "(mean %.4g) -> table of %d entries up to %.4g J/m^2\n",
+                     material.name.c_str(), illuminant.name.c_str(), grid.size(), t.sublayers,
+                     range.min, range.max, range.mean, t.entries, t.max_dose_j_m2);
+    const fade::DoseTable table = fade::DoseTable::build(material, illuminant, grid, t);
+    throw_if_cancelled();
+    // The table's error: its interpolation against a table twice as fine
+    fade::DoseTableOptions fine_options = t;
+    fine_options.entries = 2 * t.entries - 1;
+    fine_options.substeps = std::max(1, t.substeps / 2);
+    const fade::DoseTable fine = fade::DoseTable::build(material, illuminant, grid, fine_options);
+    const double table_error = fade::interpolation_error(table, fine);
+    throw_if_cancelled();
+
+    // Per texel: dose and table row, in parallel
+    Progress progress(static_cast<size_t>(map.height), o.quiet, "fade");
+    const std::vector<float> pixels = fade::make_dose_pixels(
+        map, table, 1.0,
+        [](size_t rows, void* p) {
+            static_cast<Progress*>(p)->step(rows);
+            throw_if_cancelled();
+        },
+        &progress);
+    progress.finish();
+
+    fade::FadeStackInfo info;
+    info.material = material.name;
+    info.material_file = material.file;
+    info.illuminant = illuminant.name;
+    info.band_min_nm = illuminant.band_min_nm;
+    info.band_max_nm = illuminant.band_max_nm;
+    info.substrate = grid.sample(material.substrate_reflectance);
+    info.max_interpolation_error = table_error;
+    for (const fs::path& f : o.exposures)
+        info.exposure.files.push_back(fs::absolute(f));
+    info.exposure.channel = doses.first.channel;
+    info.exposure.units = doses.first.units;
+    info.exposure.scale = o.scale;
+    info.exposure.duration_s = duration_s;
+    info.exposure.period_s = doses.first.period_s;
+    info.width = map.width;
+    info.height = map.height;
+    info.min_dose = range.min;
+    info.mean_dose = range.mean;
+    info.max_dose = range.max;
+    fade::write_fade_stack(o.out_dir, table, info, pixels);
+
+    if (!o.plot.empty()) {
+        const double shown = duration_s > 0.0 ? duration_s : map.period_s;
+        const std::string title =
+            o.plot_title.empty()
+                ? fmt::format("{} under {}, up to {:.3g} J/m2", material.name, illuminant.name,
+                              range.max)
+                : o.plot_title;
+        write_plot(o, table, range.max, shown, title);
+    }
+    if (!o.quiet)
+        std::fprintf(stderr,
+                     "fade: wrote %s (%dx%d dose map; table error %.2g in reflectance) in "
+                     "%.2f s\n",
+                     (o.out_dir / fade::kFadeToml).string().c_str(), map.width, map.height,
+                     table_error,
+                     std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
+                         .count());
+}
+
+}  // namespace
+
+void register_fade_command(CLI::App& app)
+{
+    auto o = std::make_shared<FadeOptions>();
+    CLI::App* cmd = app.add_subcommand(
+        "fade",
+        "turn an exposure map into a fade stack (Kimmel et al. 2013): a dose table of the "
+        "material under one illuminant and a dose map, for the spectral_km shader");
+    cmd->add_option("--exposure", o->exposures,
+                    "exposure map from `patina-texgen exposure` (J/m^2, or W/m^2 with "
+                    "--duration); any EXR with an exposure or irradiance channel. Repeat it "
+                    "to add the doses of several maps (occluders moved between exposures)");
+    cmd->add_option("--dose", o->dose,
+                    "a uniform dose in J/m^2 instead of exposure maps (swatches, plots)");
+    cmd->add_option("--channel", o->channel,
+                    "channel of the map to read (default: exposure, else irradiance)");
+    cmd->add_option("--material", o->material, "fading material (shaders/fade/*.toml)")
+        ->required();
+    cmd->add_option("--materials", o->materials, "more fading material files (repeatable)")
+        ->check(CLI::ExistingFile);
+    cmd->add_option("--rates", o->rates,
+                    "a named set of fading rates from the material files (e.g. Table V's rows)");
+    cmd->add_option("-o,--out", o->out_dir, "fade stack folder")->required();
+    cmd->add_option("--illuminant", o->illuminant,
+                    "D65, A, F2, F11 or fluorescent (default: the exposure map's own spectrum, "
+                    "else D65)");
+    cmd->add_option("--duration", o->duration,
+                    "exposure time (7d, 30y, 6h, seconds): required for a W/m^2 map; for a "
+                    "J/m^2 map the map's period is repeated over it");
+    cmd->add_option("--scale", o->scale,
+                    "dose per unit of the map (e.g. the share of broadband solar energy in the "
+                    "illuminant's band)")
+        ->capture_default_str();
+    cmd->add_option("--wavelengths", o->wavelengths, "solver wavelengths FIRST:LAST:STEP, nm")
+        ->capture_default_str();
+    cmd->add_option("--entries", o->entries, "dose table entries")
+        ->capture_default_str()->check(CLI::Range(2, 4096));
+    cmd->add_option("--max-dose", o->max_dose,
+                    "largest dose of the table, J/m^2 (default: the map's largest)");
+    cmd->add_option("--knee-dose", o->knee_dose,
+                    "dose where the table's spacing turns logarithmic (default: max / 1000)");
+    cmd->add_option("--sublayers", o->sublayers, "sublayers of the two-flux solver (§4.1)")
+        ->capture_default_str()->check(CLI::Range(1, 100000));
+    cmd->add_option("--substeps", o->substeps, "time steps per table interval (§4.2)")
+        ->capture_default_str()->check(CLI::Range(1, 1000));
+    cmd->add_flag("--both-sides", o->both_sides, "light the layer from below too (a free sheet)");
+    cmd->add_option("--plot", o->plot,
+                    "write the material's reflectance at 0, 1/28, 1/7 and all of the largest "
+                    "dose (0h, 6h, 1d, 7d of a week) as a PNG");
+    cmd->add_option("--plot-title", o->plot_title, "title of the plot");
+    cmd->add_option("--threads", o->threads, "worker threads (0 = all cores)")
+        ->capture_default_str();
+    cmd->add_flag("--quiet", o->quiet, "no progress");
+    cmd->callback([o] { run_fade(*o); });
+}
+
+}  // namespace patina::texgen
