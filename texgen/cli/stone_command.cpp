@@ -1,0 +1,156 @@
+// `patina-texgen stone`: weathered stone (Dorsey et al. 1999 §4): slabs around a closed mesh,
+// the quarry, wet/dry cycles of moisture, dissolution, transport, crusts and erosion; writes
+// the world-grid volume (for the slab_volume medium), the slab volume, the eroded mesh and
+// surface maps, once or as a time series. The work is in texgen/stone/stone_job.h.
+#include "texgen/cli/commands.h"
+
+#include "texgen/stone/stone_job.h"
+
+#include <fmt/format.h>
+#include <tbb/global_control.h>
+
+#include <memory>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace patina::texgen {
+
+namespace {
+
+    struct StoneCommandOptions {
+        stone::StoneJobOptions job;
+        std::string stone = "sandstone";
+        std::string up = "y";
+        std::vector<double> rain_dir;
+        int threads = 0;
+    };
+
+    Imath::V3d axis_of(const std::string& text)
+    {
+        std::string name = text;
+        double sign = 1.0;
+        if (!name.empty() && (name[0] == '-' || name[0] == '+')) {
+            sign = name[0] == '-' ? -1.0 : 1.0;
+            name = name.substr(1);
+        }
+        if (name == "x")
+            return {sign, 0, 0};
+        if (name == "y")
+            return {0, sign, 0};
+        if (name == "z")
+            return {0, 0, sign};
+        throw std::runtime_error(
+            fmt::format("--up '{}' must be x, y or z (optionally -x, -y, -z)", text));
+    }
+
+    void run_stone(StoneCommandOptions o)
+    {
+        std::optional<tbb::global_control> threads;
+        if (o.threads > 0)
+            threads.emplace(tbb::global_control::max_allowed_parallelism, o.threads);
+        stone::StoneJobOptions& job = o.job;
+        job.quarry.kind = stone::stone_kind_from_name(o.stone);
+        job.quarry.up = job.params.up = axis_of(o.up);
+        job.params.seed = job.quarry.seed;
+        if (o.rain_dir.size() == 3)
+            job.rain_direction = Imath::V3d(o.rain_dir[0], o.rain_dir[1], o.rain_dir[2]);
+        if (job.rain_direction && !(job.rain_direction->length() > 0.0))
+            throw std::runtime_error("--rain-dir must not be zero");
+        stone::run_stone_job(job);
+    }
+
+} // namespace
+
+void register_stone_command(CLI::App& app)
+{
+    auto o = std::make_shared<StoneCommandOptions>();
+    stone::StoneJobOptions& j = o->job;
+    stone::StoneParameters& p = j.params;
+    CLI::App* cmd = app.add_subcommand(
+        "stone",
+        "weather stone (Dorsey et al. 1999): slabs around a closed mesh, a procedural quarry, "
+        "wet/dry cycles of moisture, dissolution, transport, crusts and erosion; writes "
+        "volume.exr (world grid for the slab_volume medium), slabs.exr, eroded.obj and the "
+        "stone_colour / stone_crust maps");
+    cmd->add_option("--mesh", j.mesh, "the closed stone mesh (any Assimp format; metres)")
+        ->required()
+        ->check(CLI::ExistingFile);
+    cmd->add_option("--slab-mesh", j.slab_mesh,
+                    "a coarse closed mesh to build the slabs on (default: --mesh; each triangle "
+                    "makes three slabs)")
+        ->check(CLI::ExistingFile);
+    cmd->add_option("--out", j.out_dir, "output folder")->capture_default_str();
+    cmd->add_option("--stone", o->stone, "granite, marble or sandstone")->capture_default_str();
+    cmd->add_option("--feature-size", j.quarry.feature_size,
+                    "grain size, vein spacing or bed thickness (m)")
+        ->capture_default_str()
+        ->check(CLI::PositiveNumber);
+    cmd->add_option("--up", o->up, "the up axis: x, y or z (or -x, -y, -z)")->capture_default_str();
+    cmd->add_option("--depth", j.depth,
+                    "shell depth below the surface (m; default 15% of the largest extent)")
+        ->check(CLI::PositiveNumber);
+    cmd->add_option("--tangential-res", j.tangential_res, "voxels along each slab edge")
+        ->capture_default_str()
+        ->check(CLI::Range(2, 256));
+    cmd->add_option("--depth-res", j.depth_res, "voxels through the shell's depth")
+        ->capture_default_str()
+        ->check(CLI::Range(2, 256));
+    cmd->add_option("--cycles", j.cycles, "wet/dry cycles")->capture_default_str()->check(
+        CLI::NonNegativeNumber);
+    cmd->add_option("--steps", j.snapshots,
+                    "write a time series: the fresh stone and N snapshots evenly over the "
+                    "cycles, one folder each (cycle_0000, ...); 0: the end state into --out")
+        ->capture_default_str()
+        ->check(CLI::NonNegativeNumber);
+    cmd->add_option("--wetness", j.wetness_map,
+                    "wetness map from `patina-texgen wetness` (channel 'wetness'; needs uvs)");
+    cmd->add_option("--rain-dir", o->rain_dir,
+                    "X Y Z: without --wetness, wetness = max(0, -N . dir) (rain travelling along "
+                    "dir)")
+        ->expected(3);
+    cmd->add_option("--wetness-value", j.wetness_value,
+                    "constant wetness in [0, 1] (scales --rain-dir)")
+        ->capture_default_str();
+    cmd->add_option("--deposit", j.deposit_map,
+                    "deposit map from `patina-texgen deposit` (channel 'deposit'): black crusts");
+    cmd->add_option("--deposit-value", j.deposit_value, "constant deposit without --deposit")
+        ->capture_default_str();
+    cmd->add_option("--permeability-scale", p.permeability_scale,
+                    "multiplies the quarry's permeability")
+        ->capture_default_str();
+    cmd->add_option("--gravity", p.gravity, "rho g in surface-pressure units per metre")
+        ->capture_default_str();
+    cmd->add_option("--wet-steps", p.wet_steps, "explicit steps per wet phase")
+        ->capture_default_str();
+    cmd->add_option("--dry-steps", p.dry_steps, "explicit steps per dry phase")
+        ->capture_default_str();
+    cmd->add_option("--erosion-events", p.erosion_events,
+                    "erosion events per surface voxel per cycle")
+        ->capture_default_str();
+    cmd->add_option("--erosion-amount", p.erosion_amount, "density an event removes at its centre")
+        ->capture_default_str();
+    cmd->add_option("--black-crust-rate", p.black_crust_rate,
+                    "binder turned into black crust per unit deposit and time")
+        ->capture_default_str();
+    cmd->add_option("--salt-supply", p.salt_supply,
+                    "salt brought in per unit deposit and time in wet phases")
+        ->capture_default_str();
+    cmd->add_option("--grid", j.grid_resolution,
+                    "world-grid voxels along the longest side of volume.exr")
+        ->capture_default_str()
+        ->check(CLI::Range(4, 2048));
+    cmd->add_option("--map-resolution", j.map_resolution,
+                    "texels per side of the surface maps (0: none)")
+        ->capture_default_str()
+        ->check(CLI::Range(0, 16384));
+    cmd->add_flag("!--no-mesh", j.write_mesh, "do not write eroded.obj");
+    cmd->add_option("--seed", j.quarry.seed, "quarry and erosion seed")->capture_default_str();
+    cmd->add_option("--threads", o->threads, "worker threads (0: all cores)")
+        ->capture_default_str();
+    cmd->add_flag("--quiet", j.quiet, "no progress on stderr");
+    cmd->callback([o] { run_stone(*o); });
+}
+
+} // namespace patina::texgen

@@ -1,0 +1,85 @@
+// Erosion: transformation to clay (Dorsey et al. 1999 §4.3.4). The decay index d of a voxel
+// grows with the time it is moist and with the binder dissolved there (transport.cpp). Each
+// cycle, erosion events are scattered over the surface voxels with probability proportional
+// to d; an event lowers the density within its zone of influence (a cone of `erosion_radius`
+// depth steps); a voxel whose density falls below 1/2 is no longer stone, and whatever crust
+// it carried falls off with it.
+#include "texgen/stone/stone_state.h"
+
+#include "core/sampling.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace patina::texgen::stone {
+
+void erosion_events(StoneState& st)
+{
+    const StoneParameters& prm = st.params;
+    if (prm.erosion_events <= 0.0 || prm.erosion_amount <= 0.0)
+        return;
+    const SlabLattice& lat = *st.lattice;
+    const SlabGrid& g = lat.grid();
+
+    // Surface voxels and the running sum of their decay (serial: deterministic).
+    std::vector<uint32_t> cells;
+    std::vector<double> cdf;
+    double total = 0.0;
+    for (size_t c = 0; c < g.cell_count(); ++c)
+        if ((st.flags[c] & kSurface) && st.decay[c] > 0.0f) {
+            total += st.decay[c];
+            cells.push_back(uint32_t(c));
+            cdf.push_back(total);
+        }
+    if (cells.empty() || !(total > 0.0))
+        return;
+    size_t n_surface = 0;
+    for (uint8_t f : st.flags)
+        n_surface += (f & kSurface) ? 1 : 0;
+    Pcg32 rng(hash_values(prm.seed, 0xe705, uint64_t(st.cycles_done)));
+    // A fractional expected count becomes one more event with that probability.
+    const double expected = prm.erosion_events * double(n_surface);
+    size_t events = size_t(expected);
+    if (rng.uniform_double() < expected - double(events))
+        ++events;
+
+    const int r = int(std::ceil(prm.erosion_radius));
+    const float amount = float(prm.erosion_amount);
+    for (size_t e = 0; e < events; ++e) {
+        const double x = rng.uniform_double() * total;
+        const size_t pick = size_t(std::upper_bound(cdf.begin(), cdf.end(), x) - cdf.begin());
+        const size_t centre = cells[std::min(pick, cells.size() - 1)];
+        const size_t local = centre % g.slab_size;
+        const int s = int(centre / g.slab_size);
+        const int ci = int(local % g.sx) - 1, cj = int((local / g.sx) % g.sy) - 1,
+                  ck = int(local / (size_t(g.sx) * g.sy)) - 1;
+        const Imath::V3f pc = lat.position()[centre];
+        // Depth step at the centre: the zone's radius is measured in it.
+        const auto& w = lat.weights();
+        const float h = 1.0f / std::sqrt(w[2][centre] + w[4][centre] + w[5][centre]);
+        const float radius = float(prm.erosion_radius) * h;
+        for (int k = std::max(0, ck - r); k <= std::min(g.n_d - 1, ck + r); ++k)
+            for (int j = std::max(0, cj - r); j <= std::min(g.n_t - 1, cj + r); ++j)
+                for (int i = std::max(0, ci - r); i <= std::min(g.n_t - 1, ci + r); ++i) {
+                    const size_t c = g.index(s, i, j, k);
+                    const float d = (lat.position()[c] - pc).length();
+                    if (d >= radius)
+                        continue;
+                    st.density[c] = std::max(0.0f, st.density[c] - amount * (1.0f - d / radius));
+                    if (st.density[c] < 0.5f && (st.flags[c] & kStone)) {
+                        // The voxel crumbled: crust and minerals leave with it.
+                        for (int m = 0; m < kSpecies; ++m) {
+                            st.crust[m][c] = 0.0f;
+                            st.dissolved[m][c] = 0.0f;
+                        }
+                        st.black[c] = 0.0f;
+                        st.moisture[c] = 0.0f;
+                        st.flags[c] = 0;
+                    }
+                }
+    }
+    update_flags(st);
+    lat.fill_halo(st.moisture.data());
+}
+
+} // namespace patina::texgen::stone

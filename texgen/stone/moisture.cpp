@@ -1,0 +1,185 @@
+// Travel of moisture (Dorsey et al. 1999 §4.3.2): pressure diffusion with Dirichlet
+// conditions at the surface and at the moist/dry front, and the front moved by Darcy's law.
+//
+// The paper prints dp/dt = -div(phi grad p) = -phi lap p - grad phi . grad p; with that sign
+// the pressure would un-diffuse (blow up), so we integrate the diffusion equation
+// dp/dt = div(alpha phi grad p) = alpha (phi lap p + grad phi . grad p), alpha a scale.
+// lap p is the 13-point stencil (§4.3.5); the gradients are central differences along the
+// lattice axes, dotted through the inverse metric H (stencil.h): grad a . grad b = Da^T H Db.
+//
+// Darcy's law v = -K/eta (grad p - rho g): along a lattice direction d (from a moist voxel y
+// into a dry voxel x), v . d = -K/eta ((p_x - p_y) + (psi_x - psi_y)) with the head
+// psi = rho |g| up . x. The front advances into x by the pore velocity (v . d / phi) over the
+// spacing |d| (1/|d|^2 ~ H_aa), as a moisture fraction theta in [0, 1] that makes x moist at
+// 1/2. In dry phases the surface dries at `evaporation_speed`, and the dry zone spreads
+// inwards down each column (water evaporates from the surface side); dissolved minerals in
+// a voxel that dries recrystallise in place.
+#include "texgen/stone/stone_state.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace patina::texgen::stone {
+
+namespace {
+
+    /// The surface pressure of a column in this phase.
+    inline float boundary_pressure(const StoneState& st, size_t column, bool wet)
+    {
+        return wet ? float(st.params.surface_pressure) * st.column_wetness[column] : 0.0f;
+    }
+
+    /// H_aa of axis a from the stored weights (stencil.h metric_from_weights).
+    inline float axis_metric(const std::array<std::vector<float>, 6>& w, int a, size_t c)
+    {
+        return a == 0 ? w[0][c] + w[3][c] + w[5][c]
+             : a == 1 ? w[1][c] + w[3][c] + w[4][c]
+                      : w[2][c] + w[4][c] + w[5][c];
+    }
+
+    void pressure_step(StoneState& st, bool wet)
+    {
+        const SlabLattice& lat = *st.lattice;
+        const SlabGrid& g = lat.grid();
+        float* p = st.pressure.data();
+        // Dirichlet values: the surface and the air above it carry the surface pressure.
+        tbb::parallel_for(0, g.slab_count, [&](int s) {
+            for (int j = 0; j < g.n_t; ++j)
+                for (int i = 0; i < g.n_t; ++i) {
+                    const float pb = boundary_pressure(st, column_index(g, s, i, j), wet);
+                    for (int k = 0; k < g.n_d; ++k) {
+                        const size_t c = g.index(s, i, j, k);
+                        if (!(st.flags[c] & kStone) || (st.flags[c] & kSurface))
+                            p[c] = pb;
+                    }
+                }
+        });
+        lat.fill_halo(p);
+
+        const float rate = float(st.dt * st.params.pressure_diffusivity);
+        const auto& w = lat.weights();
+        float* out = st.scratch.data();
+        const float* phi = st.porosity.data();
+        tbb::parallel_for(0, g.slab_count * g.n_d, [&](int sk) {
+            const int s = sk / g.n_d, k = sk % g.n_d;
+            const auto& o = lat.offsets(s);
+            const long ax0 = o[0], ax1 = o[1], ax2 = o[2];
+            for (int j = 0; j < g.n_t; ++j) {
+                const size_t row = g.index(s, 0, j, k);
+                for (size_t c = row; c < row + size_t(g.n_t); ++c) {
+                    const uint8_t f = st.flags[c];
+                    if (!(f & kStone) || (f & kSurface)) {
+                        out[c] = p[c];
+                        continue;
+                    }
+                    if (st.moisture[c] < 0.5f) { // dry: the front's Dirichlet p = 0
+                        out[c] = 0.0f;
+                        continue;
+                    }
+                    const float pc = p[c];
+                    float lap = 0.0f;
+                    for (int d = 0; d < 6; ++d)
+                        lap += w[d][c] * (p[c + o[d]] + p[c - o[d]] - 2.0f * pc);
+                    // Central differences along the axes, through H.
+                    const float dp0 = 0.5f * (p[c + ax0] - p[c - ax0]),
+                                dp1 = 0.5f * (p[c + ax1] - p[c - ax1]),
+                                dp2 = 0.5f * (p[c + ax2] - p[c - ax2]);
+                    const float df0 = 0.5f * (phi[c + ax0] - phi[c - ax0]),
+                                df1 = 0.5f * (phi[c + ax1] - phi[c - ax1]),
+                                df2 = 0.5f * (phi[c + ax2] - phi[c - ax2]);
+                    const StencilSigns& sg = lat.signs(s);
+                    const float h00 = w[0][c] + w[3][c] + w[5][c],
+                                h11 = w[1][c] + w[3][c] + w[4][c],
+                                h22 = w[2][c] + w[4][c] + w[5][c];
+                    const float h01 = sg.s[0] * w[3][c], h12 = sg.s[1] * w[4][c],
+                                h02 = sg.s[2] * w[5][c];
+                    const float cross = df0 * (h00 * dp0 + h01 * dp1 + h02 * dp2) +
+                                        df1 * (h01 * dp0 + h11 * dp1 + h12 * dp2) +
+                                        df2 * (h02 * dp0 + h12 * dp1 + h22 * dp2);
+                    out[c] = pc + rate * (phi[c] * lap + cross);
+                }
+            }
+        });
+        std::swap(st.pressure, st.scratch);
+        lat.fill_halo(st.pressure.data());
+    }
+
+    void front_step(StoneState& st, bool wet)
+    {
+        const SlabLattice& lat = *st.lattice;
+        const SlabGrid& g = lat.grid();
+        const auto& w = lat.weights();
+        const float* p = st.pressure.data();
+        const float* psi = st.head.data();
+        const float* K = st.permeability.data();
+        const float* rho = st.density.data();
+        const float* theta = st.moisture.data();
+        float* out = st.scratch.data();
+        const float dt = float(st.dt);
+        const float inv_eta = float(1.0 / st.params.viscosity);
+        const float evap = float(st.params.evaporation_speed);
+        tbb::parallel_for(0, g.slab_count * g.n_d, [&](int sk) {
+            const int s = sk / g.n_d, k = sk % g.n_d;
+            for (int j = 0; j < g.n_t; ++j)
+                for (int i = 0; i < g.n_t; ++i) {
+                    const size_t c = g.index(s, i, j, k);
+                    const uint8_t f = st.flags[c];
+                    float th = theta[c];
+                    if (!(f & kStone)) {
+                        out[c] = 0.0f;
+                        continue;
+                    }
+                    const size_t col = column_index(g, s, i, j);
+                    if (f & kSurface) {
+                        if (wet && st.column_wetness[col] > 0.05f)
+                            th = 1.0f;
+                        else if (!wet)
+                            th -= dt * evap * std::sqrt(axis_metric(w, 2, c));
+                    } else if (th < 0.5f) {
+                        // Darcy inflow from the moist face neighbours.
+                        float speed = 0.0f;
+                        for (int a = 0; a < 3; ++a)
+                            for (int sign = -1; sign <= 1; sign += 2) {
+                                const size_t y = c + sign * lat.axis_offset(a);
+                                if (rho[y] < 0.5f || theta[y] < 0.5f)
+                                    continue;
+                                const float kf = 0.5f * (K[c] + K[y]);
+                                const float vd = -kf * inv_eta * ((p[c] - p[y]) + (psi[c] - psi[y]));
+                                if (vd > 0.0f)
+                                    speed += vd * axis_metric(w, a, c);
+                            }
+                        th += dt * speed / st.porosity[c];
+                    } else if (!wet) {
+                        // Drying spreads inwards along the column from a dry outer voxel.
+                        const size_t above = c - lat.axis_offset(2);
+                        if (rho[above] < 0.5f || theta[above] < 0.5f)
+                            th -= dt * evap * std::sqrt(axis_metric(w, 2, c));
+                    }
+                    th = std::clamp(th, 0.0f, 1.0f);
+                    if (theta[c] >= 0.5f && th < 0.5f) {
+                        // The voxel dried: what the water held recrystallises in place.
+                        for (int m = 0; m < kSpecies; ++m) {
+                            st.solid[m][c] += st.dissolved[m][c];
+                            st.dissolved[m][c] = 0.0f;
+                        }
+                    }
+                    if (th >= 0.5f)
+                        st.wet_time[c] += dt;
+                    out[c] = th;
+                }
+        });
+        std::swap(st.moisture, st.scratch);
+        lat.fill_halo(st.moisture.data());
+    }
+
+} // namespace
+
+void moisture_step(StoneState& st, bool wet)
+{
+    pressure_step(st, wet);
+    front_step(st, wet);
+}
+
+} // namespace patina::texgen::stone

@@ -1,0 +1,225 @@
+// Set-up and the cycle driver of the weathering simulation (Dorsey et al. 1999 §4.3).
+#include "texgen/stone/stone_state.h"
+
+#include <fmt/format.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace patina::texgen::stone {
+
+using Imath::V3d;
+
+namespace {
+
+    void check_parameters(const StoneParameters& p)
+    {
+        auto positive = [](double v, const char* name) {
+            if (!(v > 0.0) || !std::isfinite(v))
+                throw std::runtime_error(fmt::format("stone: {} must be > 0 (got {})", name, v));
+        };
+        auto non_negative = [](double v, const char* name) {
+            if (!(v >= 0.0) || !std::isfinite(v))
+                throw std::runtime_error(fmt::format("stone: {} must be >= 0 (got {})", name, v));
+        };
+        positive(p.pressure_diffusivity, "pressure diffusivity");
+        positive(p.viscosity, "viscosity");
+        non_negative(p.surface_pressure, "surface pressure");
+        non_negative(p.gravity, "gravity");
+        non_negative(p.permeability_scale, "permeability scale");
+        non_negative(p.evaporation_speed, "evaporation speed");
+        for (int i = 0; i < kSpecies; ++i) {
+            non_negative(p.solubility[i], "solubility");
+            non_negative(p.saturation[i], "saturation");
+            non_negative(p.diffusivity[i], "diffusivity");
+        }
+        non_negative(p.crystallisation_rate, "crystallisation rate");
+        non_negative(p.black_crust_rate, "black crust rate");
+        non_negative(p.salt_supply, "salt supply");
+        non_negative(p.erosion_events, "erosion events");
+        positive(p.erosion_radius, "erosion radius");
+        non_negative(p.erosion_amount, "erosion amount");
+        if (p.wet_steps < 0 || p.dry_steps < 0 || p.wet_steps + p.dry_steps == 0)
+            throw std::runtime_error("stone: a cycle needs at least one wet or dry step");
+        if (!(p.up.length() > 0.0))
+            throw std::runtime_error("stone: the up direction is zero");
+    }
+
+} // namespace
+
+void initialise_state(StoneState& st, const SlabLattice& lattice, const TriangleMesh& mesh,
+                      const Quarry& quarry, const StoneParameters& params,
+                      std::vector<float> wetness, std::vector<float> deposit)
+{
+    check_parameters(params);
+    st = StoneState{};
+    st.lattice = &lattice;
+    st.params = params;
+    const SlabGrid& g = lattice.grid();
+    const size_t cells = g.cell_count();
+    voxelize(lattice, mesh, st.density, st.columns);
+    const size_t n_columns = st.columns.size();
+    if (wetness.empty())
+        wetness.assign(n_columns, 1.0f);
+    if (deposit.empty())
+        deposit.assign(n_columns, 0.0f);
+    if (wetness.size() != n_columns || deposit.size() != n_columns)
+        throw std::runtime_error("stone: wetness and deposit need one value per slab column");
+    st.column_wetness = std::move(wetness);
+    st.column_deposit = std::move(deposit);
+
+    for (std::vector<float>* f : {&st.porosity, &st.permeability, &st.head, &st.moisture,
+                                  &st.pressure, &st.scratch, &st.black, &st.decay, &st.wet_time})
+        f->assign(cells, 0.0f);
+    for (int i = 0; i < kSpecies; ++i)
+        for (auto* f : {&st.solid[i], &st.dissolved[i], &st.crust[i], &st.concentration[i]})
+            f->assign(cells, 0.0f);
+    st.colour.assign(cells, Imath::V3f(0.0f));
+    st.flags.assign(cells, 0);
+
+    // The quarry at every voxel centre; the head rho g (up . x) for Darcy's gravity term.
+    const V3d up = params.up.normalized();
+    tbb::parallel_for(0, g.slab_count, [&](int s) {
+        for (int k = 0; k < g.n_d; ++k)
+            for (int j = 0; j < g.n_t; ++j)
+                for (int i = 0; i < g.n_t; ++i) {
+                    const size_t c = g.index(s, i, j, k);
+                    const Imath::V3f& pf = lattice.position()[c];
+                    const V3d p(pf.x, pf.y, pf.z);
+                    const StoneSample q = quarry.at(p);
+                    st.porosity[c] = std::max(q.porosity, 1e-4f);
+                    st.permeability[c] = float(q.permeability * params.permeability_scale);
+                    for (int m = 0; m < kSpecies; ++m)
+                        st.solid[m][c] = q.mineral[m] * st.density[c];
+                    st.colour[c] = q.colour;
+                    st.head[c] = float(params.gravity * up.dot(p));
+                }
+    });
+    for (std::vector<float>* f : {&st.porosity, &st.permeability, &st.head})
+        lattice.fill_halo(f->data());
+    update_flags(st);
+
+    // dt: forward Euler is stable for dt <= 2 / rho(L); Gershgorin bounds rho(L) by
+    // |centre| + sum |off-diagonal| = 2 sum c + 2 sum |c|; keep a margin of 0.4.
+    double g_max = 0.0;
+    float phi_max = 0.0f;
+    for (size_t c = 0; c < cells; ++c) {
+        if (!(st.flags[c] & kStone))
+            continue;
+        double sum = 0.0, abs_sum = 0.0;
+        for (int d = 0; d < 6; ++d) {
+            sum += lattice.weights()[d][c];
+            abs_sum += std::abs(lattice.weights()[d][c]);
+        }
+        g_max = std::max(g_max, 2.0 * std::abs(sum) + 2.0 * abs_sum);
+        phi_max = std::max(phi_max, st.porosity[c]);
+    }
+    if (!(g_max > 0.0))
+        throw std::runtime_error("stone: no stone voxel inside the slab shell (is the mesh "
+                                 "closed and the shell around its surface?)");
+    double d_max = 1.0;
+    for (double d : params.diffusivity)
+        d_max = std::max(d_max, d);
+    st.dt = 0.4 * 2.0 / (params.pressure_diffusivity * d_max * phi_max * g_max);
+}
+
+void update_flags(StoneState& st)
+{
+    const SlabLattice& lat = *st.lattice;
+    const SlabGrid& g = lat.grid();
+    lat.fill_halo(st.density.data());
+    tbb::parallel_for(0, g.slab_count, [&](int s) {
+        for (int k = 0; k < g.n_d; ++k)
+            for (int j = 0; j < g.n_t; ++j)
+                for (int i = 0; i < g.n_t; ++i) {
+                    const size_t c = g.index(s, i, j, k);
+                    uint8_t f = 0;
+                    if (st.density[c] >= 0.5f) {
+                        f = kStone;
+                        // A surface voxel touches air across a face; the outer layer always
+                        // counts as surface (above it is air).
+                        bool air = k == 0;
+                        for (int a = 0; a < 3 && !air; ++a) {
+                            const long o = lat.axis_offset(a);
+                            air = st.density[c + o] < 0.5f || st.density[c - o] < 0.5f;
+                        }
+                        if (air)
+                            f |= kSurface;
+                    }
+                    st.flags[c] = f;
+                }
+    });
+}
+
+double species_mass(const StoneState& st, int m)
+{
+    const SlabGrid& g = st.lattice->grid();
+    const auto& vol = st.lattice->volume();
+    return tbb::parallel_deterministic_reduce(
+        tbb::blocked_range<int>(0, g.slab_count), 0.0,
+        [&](const tbb::blocked_range<int>& r, double acc) {
+            for (int s = r.begin(); s < r.end(); ++s)
+                for (int k = 0; k < g.n_d; ++k)
+                    for (int j = 0; j < g.n_t; ++j)
+                        for (int i = 0; i < g.n_t; ++i) {
+                            const size_t c = g.index(s, i, j, k);
+                            double a = double(st.solid[m][c]) + st.dissolved[m][c] +
+                                       st.crust[m][c];
+                            if (m == kSoluble)
+                                a += st.black[c];
+                            acc += a * vol[c];
+                        }
+            return acc;
+        },
+        std::plus<double>());
+}
+
+double moist_depth(const StoneState& st, const std::vector<char>* selector)
+{
+    const SlabLattice& lat = *st.lattice;
+    const SlabGrid& g = lat.grid();
+    double sum = 0.0;
+    size_t n = 0;
+    for (int s = 0; s < g.slab_count; ++s)
+        for (int j = 0; j < g.n_t; ++j)
+            for (int i = 0; i < g.n_t; ++i) {
+                const size_t col = column_index(g, s, i, j);
+                if (selector && !(*selector)[col])
+                    continue;
+                // Depth: moist stone voxels times the depth step, along the column.
+                double depth = 0.0;
+                for (int k = 0; k < g.n_d; ++k) {
+                    const size_t c = g.index(s, i, j, k);
+                    if ((st.flags[c] & kStone) && st.moisture[c] >= 0.5f) {
+                        const float h = 1.0f / std::sqrt(lat.weights()[2][c] +
+                                                         lat.weights()[4][c] +
+                                                         lat.weights()[5][c]);
+                        depth += h;
+                    }
+                }
+                sum += depth;
+                ++n;
+            }
+    return n ? sum / double(n) : 0.0;
+}
+
+void run_cycle(StoneState& st)
+{
+    for (int i = 0; i < st.params.wet_steps; ++i) {
+        moisture_step(st, true);
+        transport_step(st, true);
+        st.time += st.dt;
+    }
+    for (int i = 0; i < st.params.dry_steps; ++i) {
+        moisture_step(st, false);
+        transport_step(st, false);
+        st.time += st.dt;
+    }
+    erosion_events(st);
+    ++st.cycles_done;
+}
+
+} // namespace patina::texgen::stone

@@ -1,0 +1,141 @@
+#include "texgen/stone/slab_lattice.h"
+
+#include <fmt/format.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace patina::texgen::stone {
+
+using Imath::V3d;
+
+SlabGrid::SlabGrid(int tangential, int depth, int slabs)
+    : n_t(tangential), n_d(depth), slab_count(slabs), sx(tangential + 2), sy(tangential + 2),
+      sz(depth + 2), slab_size(size_t(sx) * sy * sz)
+{
+    if (tangential < 2 || depth < 2 || slabs < 1)
+        throw std::runtime_error(fmt::format("slab lattice: need at least 2 voxels along each "
+                                             "axis and one slab (got {} x {} x {}, {} slabs)",
+                                             tangential, tangential, depth, slabs));
+}
+
+std::array<GhostSource, 8> trilinear_sources(const SlabGrid& g, const SlabPoint& p,
+                                             bool clamp_to_interior)
+{
+    const int n[3] = {g.n_t, g.n_t, g.n_d};
+    int i0[3];
+    double f[3];
+    for (int a = 0; a < 3; ++a) {
+        // Continuous voxel coordinate: centres at integers.
+        double x = p.uvw[a] * n[a] - 0.5;
+        const double lo = clamp_to_interior ? 0.0 : -1.0;
+        const double hi = clamp_to_interior ? n[a] - 1.0 : double(n[a]);
+        x = std::clamp(x, lo, hi);
+        i0[a] = std::min(int(std::floor(x)), int(hi) - 1);
+        f[a] = x - i0[a];
+    }
+    std::array<GhostSource, 8> out;
+    for (int c = 0; c < 8; ++c) {
+        const int di = c & 1, dj = (c >> 1) & 1, dk = (c >> 2) & 1;
+        out[c].cell = uint32_t(g.index(p.slab, i0[0] + di, i0[1] + dj, i0[2] + dk));
+        out[c].weight = float((di ? f[0] : 1 - f[0]) * (dj ? f[1] : 1 - f[1]) *
+                              (dk ? f[2] : 1 - f[2]));
+    }
+    return out;
+}
+
+SlabLattice::SlabLattice(const SlabShell& shell, int n_t, int n_d)
+    : shell_(shell), grid_(n_t, n_d, int(shell.slabs.size())), locator_(shell_.slabs)
+{
+    const size_t cells = grid_.cell_count();
+    for (auto& w : weights_)
+        w.assign(cells, 0.0f);
+    volume_.assign(cells, 0.0f);
+    position_.assign(cells, Imath::V3f(0.0f));
+    signs_.resize(size_t(grid_.slab_count));
+    offsets_.resize(size_t(grid_.slab_count));
+
+    // Per voxel: lattice vectors from the Jacobian, the stencil weights, volume, centre.
+    tbb::parallel_for(0, grid_.slab_count, [&](int s) {
+        const SlabCorners& c = shell_.slabs[size_t(s)];
+        V3d du, dv, dw;
+        slab_derivatives(c, V3d(0.5), du, dv, dw);
+        const StencilSigns signs = shorter_diagonals(du / n_t, dv / n_t, dw / n_d);
+        signs_[size_t(s)] = signs;
+        const long ax[3] = {1, grid_.sx, long(grid_.sx) * grid_.sy};
+        offsets_[size_t(s)] = {ax[0], ax[1], ax[2], ax[0] + signs.s[0] * ax[1],
+                               ax[1] + signs.s[1] * ax[2], ax[0] + signs.s[2] * ax[2]};
+        for (int k = 0; k < n_d; ++k)
+            for (int j = 0; j < n_t; ++j)
+                for (int i = 0; i < n_t; ++i) {
+                    const V3d uvw = grid_.uvw(i, j, k);
+                    slab_derivatives(c, uvw, du, dv, dw);
+                    const V3d lu = du / n_t, lv = dv / n_t, lw = dw / n_d;
+                    const StencilWeights w = thirteen_point_weights(lu, lv, lw, signs);
+                    const size_t cell = grid_.index(s, i, j, k);
+                    for (int d = 0; d < 6; ++d)
+                        weights_[d][cell] = float(w.c[d]);
+                    volume_[cell] = float(std::abs(lu.cross(lv).dot(lw)));
+                    const V3d p = slab_to_world(c, uvw);
+                    position_[cell] = Imath::V3f(float(p.x), float(p.y), float(p.z));
+                }
+    });
+
+    // Ghosts: halo cells beside the slab's four sides, at every depth of the slab.
+    for (int s = 0; s < grid_.slab_count; ++s)
+        for (int k = 0; k < n_d; ++k)
+            for (int j = -1; j <= n_t; ++j)
+                for (int i = -1; i <= n_t; ++i)
+                    if (i < 0 || j < 0 || i >= n_t || j >= n_t)
+                        ghost_cell_.push_back(uint32_t(grid_.index(s, i, j, k)));
+    ghost_sources_.resize(ghost_cell_.size());
+    std::vector<char> connected(ghost_cell_.size(), 1);
+    const int per_slab = int(ghost_cell_.size()) / grid_.slab_count;
+    tbb::parallel_for(size_t(0), ghost_cell_.size(), [&](size_t g) {
+        const int s = int(g) / per_slab;
+        const size_t local = ghost_cell_[g] - size_t(s) * grid_.slab_size;
+        const int i = int(local % grid_.sx) - 1, j = int((local / grid_.sx) % grid_.sy) - 1,
+                  k = int(local / (size_t(grid_.sx) * grid_.sy)) - 1;
+        const V3d p = slab_to_world(shell_.slabs[size_t(s)], grid_.uvw(i, j, k));
+        std::optional<SlabPoint> at = locator_.locate(p, 1e-6);
+        if (at && at->slab == s)
+            at.reset();
+        if (!at) {
+            connected[g] = 0;
+            at = SlabPoint{s, grid_.uvw(i, j, k)};
+        }
+        ghost_sources_[g] = trilinear_sources(grid_, *at, true);
+    });
+    unconnected_ = size_t(std::count(connected.begin(), connected.end(), 0));
+}
+
+void SlabLattice::fill_halo(float* field) const
+{
+    tbb::parallel_for(size_t(0), ghost_cell_.size(), [&](size_t g) {
+        const auto& src = ghost_sources_[g];
+        float v = 0.0f;
+        for (const GhostSource& s : src)
+            v += s.weight * field[s.cell];
+        field[ghost_cell_[g]] = v;
+    });
+    const SlabGrid& g = grid_;
+    tbb::parallel_for(0, g.slab_count, [&](int s) {
+        for (int j = -1; j <= g.n_t; ++j)
+            for (int i = -1; i <= g.n_t; ++i) {
+                field[g.index(s, i, j, -1)] = field[g.index(s, i, j, 0)];
+                field[g.index(s, i, j, g.n_d)] = field[g.index(s, i, j, g.n_d - 1)];
+            }
+    });
+}
+
+float SlabLattice::sample(const float* field, const SlabPoint& p) const
+{
+    float v = 0.0f;
+    for (const GhostSource& s : trilinear_sources(grid_, p, false))
+        v += s.weight * field[s.cell];
+    return v;
+}
+
+} // namespace patina::texgen::stone

@@ -1,0 +1,102 @@
+// The voxels of a slab shell: n_t x n_t x n_d voxels per slab on the (u, v, w) lattice, each
+// slab stored with a one-voxel halo so the 13-point stencil (§4.3.5) reads its neighbours
+// without branches. Halo voxels across a slab's side are ghosts: their world position (the
+// slab's lattice extrapolated by one voxel) is located in the neighbouring slab, and the
+// ghost is the trilinear interpolation of that slab's voxels, so slabs are connected
+// whatever their relative orientation (the valence of a base vertex varies). A ghost whose
+// position lies in no slab (the shell's rim at a sharp edge) copies its own slab's nearest
+// voxel, and the halo above and below the shell copies the first and last layer (no flux
+// through the inner face; the outer face lies in the air).
+#pragma once
+
+#include "texgen/stone/slab_mapping.h"
+#include "texgen/stone/slab_shell.h"
+#include "texgen/stone/stencil.h"
+
+#include <Imath/ImathVec.h>
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace patina::texgen::stone {
+
+/// Index arithmetic of the haloed voxel arrays.
+struct SlabGrid {
+    int n_t = 0;            ///< voxels along u and v
+    int n_d = 0;            ///< voxels along w (depth)
+    int slab_count = 0;
+    int sx = 0, sy = 0, sz = 0;  ///< haloed extents: n_t + 2, n_t + 2, n_d + 2
+    size_t slab_size = 0;
+
+    SlabGrid() = default;
+    SlabGrid(int tangential, int depth, int slabs);
+    /// Cell (i, j, k) of slab s, with i, j in [-1, n_t] and k in [-1, n_d].
+    size_t index(int s, int i, int j, int k) const
+    {
+        return size_t(s) * slab_size + (size_t(k + 1) * sy + size_t(j + 1)) * sx + size_t(i + 1);
+    }
+    size_t cell_count() const { return slab_size * size_t(slab_count); }
+    size_t voxel_count() const { return size_t(n_t) * n_t * n_d * slab_count; }
+    /// Slab coordinates of the centre of voxel (i, j, k) (outside [0,1] for halo cells).
+    Imath::V3d uvw(int i, int j, int k) const
+    {
+        return Imath::V3d((i + 0.5) / n_t, (j + 0.5) / n_t, (k + 0.5) / n_d);
+    }
+};
+
+/// One source of a ghost cell.
+struct GhostSource {
+    uint32_t cell = 0;
+    float weight = 0.0f;
+};
+
+class SlabLattice {
+public:
+    /// Lay out `shell` with n_t voxels along each slab edge and n_d through its depth.
+    SlabLattice(const SlabShell& shell, int n_t, int n_d);
+
+    const SlabGrid& grid() const { return grid_; }
+    const std::vector<SlabCorners>& slabs() const { return shell_.slabs; }
+    const SlabShell& shell() const { return shell_; }
+    const SlabLocator& locator() const { return locator_; }
+
+    /// Per cell (interior voxels; 0 in the halo): the six stencil weights (SoA), the voxel's
+    /// volume |det J| / (n_t^2 n_d), and its centre in world space.
+    const std::array<std::vector<float>, 6>& weights() const { return weights_; }
+    const std::vector<float>& volume() const { return volume_; }
+    const std::vector<Imath::V3f>& position() const { return position_; }
+    /// Per slab: the stencil's diagonal signs and the cell offsets of the six directions.
+    const StencilSigns& signs(int slab) const { return signs_[size_t(slab)]; }
+    const std::array<long, 6>& offsets(int slab) const { return offsets_[size_t(slab)]; }
+    /// Axis offsets (1, sx, sx*sy): the same in every slab.
+    long axis_offset(int a) const { return a == 0 ? 1 : a == 1 ? grid_.sx : long(grid_.sx) * grid_.sy; }
+
+    /// Fill the halo of `field` (cell_count floats) from the neighbours (see above).
+    void fill_halo(float* field) const;
+    /// Ghost cells whose position lies in no other slab (copied from their own slab).
+    size_t unconnected_ghosts() const { return unconnected_; }
+
+    /// Trilinear sample of a field at slab point `p` (halo filled), between voxel centres.
+    float sample(const float* field, const SlabPoint& p) const;
+
+private:
+    SlabShell shell_;
+    SlabGrid grid_;
+    SlabLocator locator_;
+    std::array<std::vector<float>, 6> weights_;
+    std::vector<float> volume_;
+    std::vector<Imath::V3f> position_;
+    std::vector<StencilSigns> signs_;
+    std::vector<std::array<long, 6>> offsets_;
+    std::vector<uint32_t> ghost_cell_;
+    std::vector<std::array<GhostSource, 8>> ghost_sources_;
+    size_t unconnected_ = 0;
+};
+
+/// Trilinear interpolation weights of the voxel centres of a slab around (u, v, w), clamped
+/// to the interior voxels; used for ghosts and for sampling.
+std::array<GhostSource, 8> trilinear_sources(const SlabGrid& grid, const SlabPoint& p,
+                                             bool clamp_to_interior);
+
+} // namespace patina::texgen::stone

@@ -1,0 +1,161 @@
+#include "texgen/stone/stone_job.h"
+
+#include "core/cancel.h"
+#include "core/mesh_export.h"
+#include "core/progress.h"
+#include "texgen/stack/surface_map.h"
+#include "texgen/stone/eroded_mesh.h"
+#include "texgen/stone/surface_maps.h"
+#include "texgen/stone/volume_export.h"
+#include "texgen/texels/mesh_merge.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+
+namespace patina::texgen::stone {
+
+namespace fs = std::filesystem;
+using Imath::V3d;
+
+std::string snapshot_folder(int cycle, int last)
+{
+    const int digits = std::max(4, int(std::to_string(last).size()));
+    return fmt::format("cycle_{:0{}}", cycle, digits);
+}
+
+namespace {
+
+    Metadata job_metadata(const StoneJobOptions& o, const StoneState& st)
+    {
+        return {
+            {"patina:baker", std::string("stone")},
+            {"patina:stone", std::string(stone_kind_name(o.quarry.kind))},
+            {"patina:seed", int(o.quarry.seed)},
+            {"patina:cycles", st.cycles_done},
+            {"patina:time", float(st.time)},
+            {"patina:n_t", st.lattice->grid().n_t},
+            {"patina:n_d", st.lattice->grid().n_d},
+            {"patina:slabs", st.lattice->grid().slab_count},
+            {"patina:mesh", o.mesh.string()},
+            {"patina:wetness", o.wetness_map.empty() ? fmt::format("{}", o.wetness_value)
+                                                     : o.wetness_map.string()},
+        };
+    }
+
+} // namespace
+
+void write_stone_outputs(const fs::path& dir, const StoneState& st, const TriangleMesh& mesh,
+                         const StoneJobOptions& o)
+{
+    fs::create_directories(dir);
+    const Metadata meta = job_metadata(o, st);
+    const WorldVolume world = resample_to_world(st, mesh, o.grid_resolution);
+    write_world_volume(dir / "volume.exr", world, meta);
+    write_slab_volume(dir / "slabs.exr", st, meta);
+    if (o.write_mesh)
+        save_mesh(dir / "eroded.obj", extract_eroded_surface(world));
+    if (o.map_resolution > 0 && mesh.has_uvs())
+        write_surface_maps(dir, st, mesh, o.map_resolution, meta);
+}
+
+void run_stone_job(const StoneJobOptions& o)
+{
+    const auto start = std::chrono::steady_clock::now();
+    const TriangleMesh mesh = load_merged_mesh(o.mesh);
+    const TriangleMesh base = o.slab_mesh.empty() ? mesh : load_merged_mesh(o.slab_mesh);
+    if (o.cycles < 0 || o.snapshots < 0)
+        throw std::runtime_error("stone: --cycles and --steps must be >= 0");
+    if (o.map_resolution > 0 && !mesh.has_uvs() && !o.quiet)
+        std::fprintf(stderr, "stone: '%s' has no uvs: no surface maps\n", o.mesh.string().c_str());
+
+    // The shell: by default 15% of the largest extent, a tenth of it outside the surface.
+    Imath::Box3d box;
+    for (const auto& p : mesh.positions)
+        box.extendBy(V3d(p.x, p.y, p.z));
+    const V3d size = box.max - box.min;
+    ShellOptions shell_options;
+    shell_options.depth = o.depth > 0.0 ? o.depth : 0.15 * std::max({size.x, size.y, size.z});
+    shell_options.outer_margin = 1.5 * shell_options.depth / o.depth_res;
+    shell_options.depth += shell_options.outer_margin;
+    const SlabShell shell = build_slab_shell(base, shell_options);
+    const SlabLattice lattice(shell, o.tangential_res, o.depth_res);
+    if (!o.quiet)
+        std::fprintf(stderr, "stone: %d slabs of %d x %d x %d voxels (%zu voxels), shell %.4g m "
+                     "deep, %d slabs pulled in against folding\n", lattice.grid().slab_count,
+                     o.tangential_res, o.tangential_res, o.depth_res, lattice.grid().voxel_count(),
+                     shell_options.depth, shell.folded_fixes);
+
+    // Boundary values per column: wetness and deposit at the column's surface point.
+    std::vector<ColumnSurface> columns;
+    {
+        std::vector<float> density;
+        voxelize(lattice, mesh, density, columns);
+    }
+    auto per_column = [&](const fs::path& map, const std::vector<std::string>& channels,
+                          const char* what, float constant,
+                          const std::optional<V3d>& rain) -> std::vector<float> {
+        std::vector<float> v(columns.size(), constant);
+        if (!map.empty()) {
+            if (!mesh.has_uvs())
+                throw std::runtime_error(fmt::format("{} '{}' needs a mesh with uvs ('{}' has "
+                                                     "none)", what, map.string(), o.mesh.string()));
+            const SurfaceMap m(map, channels, what);
+            for (size_t c = 0; c < columns.size(); ++c)
+                if (columns[c].hit)
+                    v[c] = m.at(columns[c].uv);
+        } else if (rain) {
+            const V3d d = rain->normalized();
+            for (size_t c = 0; c < columns.size(); ++c) {
+                const auto& N = columns[c].N;
+                v[c] = float(std::max(0.0, -(d.x * N.x + d.y * N.y + d.z * N.z))) * constant;
+            }
+        }
+        return v;
+    };
+    std::vector<float> wetness = per_column(o.wetness_map, {"wetness"}, "wetness map",
+                                            o.wetness_value, o.rain_direction);
+    for (float& w : wetness)
+        w = std::clamp(w, 0.0f, 1.0f);
+    std::vector<float> deposit =
+        per_column(o.deposit_map, {"deposit"}, "deposit map", o.deposit_value, std::nullopt);
+
+    const Quarry quarry(o.quarry);
+    StoneState st;
+    initialise_state(st, lattice, mesh, quarry, o.params, std::move(wetness), std::move(deposit));
+
+    // Snapshots: the fresh stone, then evenly over the cycles; or only the end.
+    std::vector<int> at;
+    if (o.snapshots > 0)
+        for (int k = 0; k <= o.snapshots; ++k)
+            at.push_back(int((long long)o.cycles * k / o.snapshots));
+    else
+        at.push_back(o.cycles);
+    at.erase(std::unique(at.begin(), at.end()), at.end());
+    Progress progress(size_t(o.cycles), o.quiet, "stone");
+    size_t next = 0;
+    for (int c = 0; c <= o.cycles; ++c) {
+        if (next < at.size() && at[next] == c) {
+            const fs::path dir = o.snapshots > 0 ? o.out_dir / snapshot_folder(c, o.cycles)
+                                                 : o.out_dir;
+            write_stone_outputs(dir, st, mesh, o);
+            ++next;
+        }
+        if (c == o.cycles)
+            break;
+        throw_if_cancelled();
+        run_cycle(st);
+        progress.step();
+    }
+    progress.finish();
+    if (!o.quiet) {
+        const double seconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        std::fprintf(stderr, "stone: %d cycles, moist depth %.4g m, %.1f s, written to %s\n",
+                     o.cycles, moist_depth(st), seconds, o.out_dir.string().c_str());
+    }
+}
+
+} // namespace patina::texgen::stone

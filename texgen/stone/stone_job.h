@@ -1,0 +1,51 @@
+// `patina-texgen stone` as a library call: build the slab shell of a mesh, fill it from the
+// quarry, run wet/dry cycles driven by a wetness map, and write the volumes, the eroded mesh
+// and the surface maps (one folder per snapshot of a time series).
+#pragma once
+
+#include "texgen/stone/quarry.h"
+#include "texgen/stone/stone_state.h"
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace patina::texgen::stone {
+
+struct StoneJobOptions {
+    std::filesystem::path mesh;         ///< the closed stone mesh (world space, metres)
+    std::filesystem::path slab_mesh;    ///< coarser base for the slabs (empty: `mesh`)
+    std::filesystem::path out_dir = "stone";
+    QuarryOptions quarry;
+    StoneParameters params;
+    double depth = 0.0;                 ///< shell depth (m); 0: 15% of the largest extent
+    int tangential_res = 16;
+    int depth_res = 16;
+    int cycles = 100;
+    int snapshots = 0;                  ///< 0: the final state only, in out_dir itself
+    // Wetness: a texgen wetness map, else rain from a direction, else a constant.
+    std::filesystem::path wetness_map;
+    std::optional<Imath::V3d> rain_direction;  ///< wetness = max(0, -N . dir) (normalised)
+    float wetness_value = 1.0f;
+    std::filesystem::path deposit_map;
+    float deposit_value = 0.0f;
+    int grid_resolution = 128;          ///< world grid voxels along the longest side
+    int map_resolution = 512;           ///< surface maps (0: none; needs uvs)
+    bool write_mesh = true;
+    bool quiet = false;
+};
+
+/// Run the job; progress on stderr unless quiet. Throws std::runtime_error naming the input
+/// or option at fault.
+void run_stone_job(const StoneJobOptions& options);
+
+/// The snapshot folder name of cycle `c` in a series ending at `last`: "cycle_0050".
+std::string snapshot_folder(int cycle, int last);
+
+/// Write every output of the current state into `dir` (volume.exr, slabs.exr, eroded.obj,
+/// maps).
+void write_stone_outputs(const std::filesystem::path& dir, const StoneState& st,
+                         const TriangleMesh& mesh, const StoneJobOptions& options);
+
+} // namespace patina::texgen::stone

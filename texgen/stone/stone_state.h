@@ -1,0 +1,100 @@
+// The state of a weathering simulation (Dorsey et al. 1999 §4.3, Table 1) on a slab
+// lattice, and its parameters. Every field is one float per cell of the haloed slab arrays
+// (SlabGrid); amounts of minerals are volume fractions of the voxel (volume per voxel
+// volume), so sum(volume * amount) is a mass (at unit density) and conserved.
+#pragma once
+
+#include "texgen/stone/quarry.h"
+#include "texgen/stone/slab_lattice.h"
+#include "texgen/stone/voxelizer.h"
+
+#include <Imath/ImathVec.h>
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace patina::texgen::stone {
+
+struct StoneParameters {
+    // Moisture (§4.3.2). Pressure is in units of the surface pressure of a wetness of 1.
+    double surface_pressure = 1.0;      ///< p on the surface in a wet phase, times wetness
+    double pressure_diffusivity = 1.0;  ///< alpha in dp/dt = div(alpha phi grad p)
+    double viscosity = 1.0;             ///< eta in Darcy's law v = -K/eta (grad p - rho g)
+    double gravity = 10.0;              ///< rho |g| in pressure units per metre
+    Imath::V3d up{0.0, 1.0, 0.0};       ///< against gravity
+    double permeability_scale = 1.0;    ///< multiplies the quarry's permeability
+    double evaporation_speed = 0.02;    ///< m per unit time the moist zone dries in dry phases
+    // Dissolution and transport (§4.3.3), per species (soluble binder, iron, salt).
+    std::array<double, kSpecies> solubility{2.0, 1.0, 20.0};     ///< k_i (rate, 1/time)
+    std::array<double, kSpecies> saturation{0.02, 0.005, 0.05};  ///< m_i (volume fraction)
+    std::array<double, kSpecies> diffusivity{0.5, 0.5, 0.5};     ///< D_i, times alpha
+    double crystallisation_rate = 20.0; ///< 1/time: dissolved matter crystallising at the
+                                        ///< surface in dry phases
+    // Crusts from the environment.
+    double black_crust_rate = 0.5;   ///< binder turned to black crust per unit deposit/time
+    double salt_supply = 0.0;        ///< salt brought in per unit deposit/time, wet phases
+    // Decay and erosion (§4.3.4).
+    double decay_water = 1.0;        ///< decay per unit time of being moist
+    double decay_dissolution = 200.0;///< decay per volume fraction of binder dissolved
+    double erosion_events = 0.05;    ///< events per surface voxel per cycle
+    double erosion_radius = 1.5;     ///< zone of influence, in voxels (depth step)
+    double erosion_amount = 0.3;     ///< density removed at the centre of an event
+    // Cycles.
+    int wet_steps = 8;               ///< explicit steps per wet phase
+    int dry_steps = 8;               ///< explicit steps per dry phase
+    uint64_t seed = 1;
+    // Output scales: the amount that counts as a full crust (volume fraction).
+    double crust_scale = 0.02, iron_scale = 0.005, salt_scale = 0.02;
+};
+
+enum CellFlags : uint8_t { kStone = 1, kSurface = 2 };
+
+struct StoneState {
+    const SlabLattice* lattice = nullptr;
+    StoneParameters params;
+    double dt = 0.0;      ///< explicit step (stability limit of the pressure diffusion)
+    double time = 0.0;
+    int cycles_done = 0;
+
+    std::vector<float> density, porosity, permeability, head, moisture, pressure;
+    std::vector<float> scratch;  ///< double buffer
+    std::array<std::vector<float>, kSpecies> solid, dissolved, crust, concentration;
+    std::vector<float> black, decay, wet_time;
+    std::vector<uint8_t> flags;
+    std::vector<Imath::V3f> colour;        ///< fresh stone albedo
+    std::vector<ColumnSurface> columns;
+    std::vector<float> column_wetness;     ///< per column, [0, 1]
+    std::vector<float> column_deposit;     ///< per column, >= 0
+};
+
+/// Set up the state: voxelise `mesh`, fill the quarry, boundary values per column
+/// (`wetness` and `deposit` are per column, see voxelizer.h; empty: 1 and 0), the head
+/// rho g z, flags and dt. Throws std::runtime_error for bad parameters.
+void initialise_state(StoneState& st, const SlabLattice& lattice, const TriangleMesh& mesh,
+                      const Quarry& quarry, const StoneParameters& params,
+                      std::vector<float> wetness = {}, std::vector<float> deposit = {});
+
+/// Stone and surface flags from the density (refills the density halo).
+void update_flags(StoneState& st);
+
+/// Total of species i (solid + dissolved + crust, and black crust for the binder), volume
+/// weighted over the interior voxels.
+double species_mass(const StoneState& st, int species);
+
+/// Mean depth of the moist zone below the surface, in metres, over the columns whose
+/// surface lies in `selector` (nullptr: all).
+double moist_depth(const StoneState& st, const std::vector<char>* column_selector = nullptr);
+
+/// Mean density loss (1 - density of the stone voxels below the initial surface) per
+/// column group; see erosion.h.
+
+// The steps; `wet` selects the phase.
+void moisture_step(StoneState& st, bool wet);   // moisture.cpp: pressure and front
+void transport_step(StoneState& st, bool wet);  // transport.cpp: dissolution, transport, crusts
+void erosion_events(StoneState& st);            // erosion.cpp: events from the decay index
+
+/// One wet/dry cycle: wet_steps wet steps, dry_steps dry ones, then erosion events.
+void run_cycle(StoneState& st);
+
+} // namespace patina::texgen::stone

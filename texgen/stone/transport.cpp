@@ -1,0 +1,164 @@
+// Dissolution at the front and convective diffusion of the dissolved minerals (Dorsey et al.
+// 1999 §4.3.3), and the crusts they leave on the surface.
+//
+// Dissolution: at a front voxel (moist, beside a dry stone voxel) dC_i/dt = k_i (m_i - C_i),
+// drawing on the solid mineral and stopping at saturation m_i. (The paper prints
+// -k_i (m_i - C_i), which would precipitate below saturation; its own text, "the quantity m_i
+// cuts off dissolution upon saturation", needs the + sign.)
+//
+// Transport: d(phi C)/dt + v . grad(phi C) = div(phi D grad C) in conservative form between
+// pairs of moist voxels: the 13-point stencil's weight for a direction is the coupling of
+// the pair (made symmetric by averaging both ends' weight x water volume), and advection by
+// Darcy's velocity is upwinded across each face; a flux leaving one voxel enters the other,
+// so the total is conserved exactly inside a slab (across slab seams the ghosts interpolate,
+// which conserves only up to the interpolation error).
+//
+// Crusts: in dry phases the water evaporating at the surface leaves its dissolved load as a
+// crust (efflorescence for salts, yellowing for iron, case hardening for the binder); in wet
+// phases deposits (the deposit map: soot, sulphur) turn the binder at the surface into a
+// black crust, and salt may be brought in from the atmosphere.
+#include "texgen/stone/stone_state.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace patina::texgen::stone {
+
+namespace {
+
+    inline bool moist(const StoneState& st, size_t c)
+    {
+        return st.density[c] >= 0.5f && st.moisture[c] >= 0.5f;
+    }
+
+    inline float axis_metric(const std::array<std::vector<float>, 6>& w, int a, size_t c)
+    {
+        return a == 0 ? w[0][c] + w[3][c] + w[5][c]
+             : a == 1 ? w[1][c] + w[3][c] + w[4][c]
+                      : w[2][c] + w[4][c] + w[5][c];
+    }
+
+} // namespace
+
+void transport_step(StoneState& st, bool wet)
+{
+    const SlabLattice& lat = *st.lattice;
+    const SlabGrid& g = lat.grid();
+    const auto& w = lat.weights();
+    const auto& vol = lat.volume();
+    const StoneParameters& prm = st.params;
+    const float dt = float(st.dt);
+    const float alpha = float(prm.pressure_diffusivity);
+    const float inv_eta = float(1.0 / prm.viscosity);
+
+    // Concentrations in the water, C = amount / water volume fraction (phi * density).
+    tbb::parallel_for(size_t(0), g.cell_count(), [&](size_t c) {
+        const float water = st.porosity[c] * st.density[c];
+        for (int m = 0; m < kSpecies; ++m)
+            st.concentration[m][c] = water > 0.0f ? st.dissolved[m][c] / water : 0.0f;
+    });
+    for (int m = 0; m < kSpecies; ++m)
+        lat.fill_halo(st.concentration[m].data());
+
+    tbb::parallel_for(0, g.slab_count * g.n_d, [&](int sk) {
+        const int s = sk / g.n_d, k = sk % g.n_d;
+        const auto& o = lat.offsets(s);
+        for (int j = 0; j < g.n_t; ++j)
+            for (int i = 0; i < g.n_t; ++i) {
+                const size_t c = g.index(s, i, j, k);
+                const uint8_t f = st.flags[c];
+                if (!(f & kStone))
+                    continue;
+                const size_t col = column_index(g, s, i, j);
+                if (wet && (f & kSurface)) {
+                    // Deposits turn binder into black crust; salt from the atmosphere.
+                    const float dep = st.column_deposit[col];
+                    const float turned = std::min(st.solid[kSoluble][c],
+                                                  dt * float(prm.black_crust_rate) * dep);
+                    st.solid[kSoluble][c] -= turned;
+                    st.black[c] += turned;
+                    if (moist(st, c))
+                        st.dissolved[kSalt][c] += dt * float(prm.salt_supply) * dep;
+                }
+                if (!moist(st, c))
+                    continue;
+                const float water_c = st.porosity[c] * st.density[c];
+                const float vw_c = water_c * vol[c];
+                // Is this a front voxel (a dry stone face neighbour)?
+                bool front = false;
+                for (int a = 0; a < 3 && !front; ++a)
+                    for (int sign = -1; sign <= 1 && !front; sign += 2) {
+                        const size_t y = c + sign * lat.axis_offset(a);
+                        front = st.density[y] >= 0.5f && st.moisture[y] < 0.5f;
+                    }
+                float dissolved_now = 0.0f;
+                for (int m = 0; m < kSpecies; ++m) {
+                    const float* C = st.concentration[m].data();
+                    const float cc = C[c];
+                    const float dm = alpha * float(prm.diffusivity[m]);
+                    float flux = 0.0f; // amount x volume per unit time into c
+                    for (int d = 0; d < 6; ++d)
+                        for (int sign = -1; sign <= 1; sign += 2) {
+                            const size_t y = c + sign * o[d];
+                            if (!moist(st, y))
+                                continue;
+                            const float wy = w[d][y] != 0.0f ? w[d][y] : w[d][c];
+                            const float vy = vol[y] != 0.0f ? vol[y] : vol[c];
+                            const float kappa = 0.5f * dm *
+                                                (w[d][c] * vw_c +
+                                                 wy * st.porosity[y] * st.density[y] * vy);
+                            flux += kappa * (C[y] - cc);
+                        }
+                    for (int a = 0; a < 3; ++a)
+                        for (int sign = -1; sign <= 1; sign += 2) {
+                            const size_t y = c + sign * lat.axis_offset(a);
+                            if (!moist(st, y))
+                                continue;
+                            // Darcy flow rate (volume per time) from c into y, symmetric in
+                            // the pair up to its sign; limited so a step moves at most a
+                            // tenth of the smaller voxel's water.
+                            const float kf = 0.5f * (st.permeability[c] + st.permeability[y]);
+                            const float vd = -kf * inv_eta *
+                                             ((st.pressure[y] - st.pressure[c]) +
+                                              (st.head[y] - st.head[c]));
+                            const float vy = vol[y] != 0.0f ? vol[y] : vol[c];
+                            const float hy = axis_metric(w, a, y) != 0.0f ? axis_metric(w, a, y)
+                                                                          : axis_metric(w, a, c);
+                            float q = vd * 0.25f * (vol[c] + vy) * (axis_metric(w, a, c) + hy);
+                            const float cap = 0.1f / dt *
+                                              std::min(vw_c, st.porosity[y] * st.density[y] * vy);
+                            q = std::clamp(q, -cap, cap);
+                            flux += std::max(0.0f, -q) * C[y] - std::max(0.0f, q) * cc;
+                        }
+                    float amount = st.dissolved[m][c] + dt * flux / vol[c];
+                    if (front) {
+                        // Dissolution up to saturation, from the solid mineral.
+                        const float take = std::min(
+                            st.solid[m][c],
+                            dt * float(prm.solubility[m]) *
+                                std::max(0.0f, float(prm.saturation[m]) - cc) * water_c);
+                        st.solid[m][c] -= take;
+                        amount += take;
+                        if (m == kSoluble)
+                            dissolved_now += take;
+                    }
+                    if (!wet && (f & kSurface)) {
+                        // Evaporation at the surface: the load crystallises as crust.
+                        const float cryst = std::min(1.0f, dt * float(prm.crystallisation_rate)) *
+                                            amount;
+                        st.crust[m][c] += cryst;
+                        amount -= cryst;
+                    }
+                    // In place: neighbours read only the concentrations computed above.
+                    st.dissolved[m][c] = amount;
+                }
+                // Decay index (§4.3.4): time moist plus binder dissolved.
+                st.decay[c] += float(prm.decay_water) * dt +
+                               float(prm.decay_dissolution) * dissolved_now;
+            }
+    });
+}
+
+} // namespace patina::texgen::stone

@@ -1,0 +1,285 @@
+#include "texgen/stone/volume_export.h"
+
+#include "core/embree_scene.h"
+#include "core/image_io.h"
+
+#include <OpenImageIO/imageio.h>
+#include <fmt/format.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <system_error>
+
+namespace patina::texgen::stone {
+
+namespace fs = std::filesystem;
+using Imath::V3d;
+
+Imath::V3d WorldVolume::centre(int i, int j, int k) const
+{
+    const V3d size = bounds.max - bounds.min;
+    return bounds.min + V3d((i + 0.5) * size.x / nx, (j + 0.5) * size.y / ny,
+                            (k + 0.5) * size.z / nz);
+}
+
+void output_fractions(const StoneState& st, std::vector<float>& crust, std::vector<float>& iron,
+                      std::vector<float>& salt)
+{
+    const size_t n = st.density.size();
+    crust.assign(n, 0.0f);
+    iron.assign(n, 0.0f);
+    salt.assign(n, 0.0f);
+    const StoneParameters& p = st.params;
+    tbb::parallel_for(size_t(0), n, [&](size_t c) {
+        crust[c] = std::clamp(float(st.black[c] / p.crust_scale), 0.0f, 1.0f);
+        iron[c] = std::clamp(float(st.crust[kIron][c] / p.iron_scale), 0.0f, 1.0f);
+        salt[c] = std::clamp(float(st.crust[kSalt][c] / p.salt_scale), 0.0f, 1.0f);
+    });
+    for (auto* f : {&crust, &iron, &salt})
+        st.lattice->fill_halo(f->data());
+}
+
+WorldVolume resample_to_world(const StoneState& st, const TriangleMesh& mesh, int resolution)
+{
+    if (resolution < 2)
+        throw std::runtime_error(fmt::format("world grid: resolution must be >= 2 (got {})",
+                                             resolution));
+    const SlabLattice& lat = *st.lattice;
+    WorldVolume vol;
+    Imath::Box3d box;
+    for (const auto& p : mesh.positions)
+        box.extendBy(V3d(p.x, p.y, p.z));
+    const V3d size = box.max - box.min;
+    const double longest = std::max({size.x, size.y, size.z});
+    const double h = longest / (resolution - 2);
+    vol.nx = std::max(2, int(std::ceil(size.x / h)) + 2);
+    vol.ny = std::max(2, int(std::ceil(size.y / h)) + 2);
+    vol.nz = std::max(2, int(std::ceil(size.z / h)) + 2);
+    const V3d centre = 0.5 * (box.min + box.max);
+    const V3d half(0.5 * vol.nx * h, 0.5 * vol.ny * h, 0.5 * vol.nz * h);
+    vol.bounds = Imath::Box3d(centre - half, centre + half);
+    const size_t n = size_t(vol.nx) * vol.ny * vol.nz;
+    vol.density.assign(n, 0.0f);
+    vol.crust.assign(n, 0.0f);
+    vol.iron.assign(n, 0.0f);
+    vol.salt.assign(n, 0.0f);
+
+    std::vector<float> density = st.density, crust, iron, salt;
+    lat.fill_halo(density.data());
+    output_fractions(st, crust, iron, salt);
+
+    EmbreeScene scene;
+    scene.add_mesh(mesh);
+    scene.commit();
+    tbb::parallel_for(0, vol.ny * vol.nz, [&](int row) {
+        const int j = row % vol.ny, k = row / vol.ny;
+        // Inside test for the row: crossings of a ray along +x (parity).
+        const V3d start = vol.centre(0, j, k) - V3d(h, 0, 0);
+        const Imath::V3f o(float(start.x), float(start.y), float(start.z));
+        std::vector<float> crossings;
+        float t = 0.0f;
+        for (int guard = 0; guard < 4096; ++guard) {
+            auto hit = scene.intersect(o, Imath::V3f(1, 0, 0), t);
+            if (!hit)
+                break;
+            crossings.push_back(hit->t);
+            t = hit->t + float(1e-6 * longest);
+        }
+        for (int i = 0; i < vol.nx; ++i) {
+            const size_t v = vol.index(i, j, k);
+            const V3d p = vol.centre(i, j, k);
+            if (auto at = lat.locator().locate(p, 1e-6)) {
+                vol.density[v] = std::clamp(lat.sample(density.data(), *at), 0.0f, 1.0f);
+                vol.crust[v] = std::clamp(lat.sample(crust.data(), *at), 0.0f, 1.0f);
+                vol.iron[v] = std::clamp(lat.sample(iron.data(), *at), 0.0f, 1.0f);
+                vol.salt[v] = std::clamp(lat.sample(salt.data(), *at), 0.0f, 1.0f);
+                continue;
+            }
+            const float x = float(p.x - start.x);
+            const size_t before = size_t(std::count_if(crossings.begin(), crossings.end(),
+                                                       [&](float c) { return c < x; }));
+            vol.density[v] = before % 2 == 1 ? 1.0f : 0.0f;
+        }
+    });
+    return vol;
+}
+
+namespace {
+
+    void add_metadata(OIIO::ImageSpec& spec, const Metadata& metadata)
+    {
+        for (const auto& [key, value] : metadata) {
+            if (const int* i = std::get_if<int>(&value))
+                spec.attribute(key, *i);
+            else if (const float* f = std::get_if<float>(&value))
+                spec.attribute(key, *f);
+            else
+                spec.attribute(key, std::get<std::string>(value));
+        }
+    }
+
+    /// Write two float parts to `path` through a temporary name.
+    void write_two_parts(const fs::path& path, OIIO::ImageSpec a, const std::vector<float>& pa,
+                         OIIO::ImageSpec b, const std::vector<float>& pb, const char* what)
+    {
+        const fs::path tmp = temporary_path_for(path);
+        auto fail = [&](const std::string& msg) {
+            std::error_code ec;
+            fs::remove(tmp, ec);
+            throw std::runtime_error(fmt::format("cannot write {} '{}': {}", what, path.string(), msg));
+        };
+        if (!path.parent_path().empty()) {
+            std::error_code ec;
+            fs::create_directories(path.parent_path(), ec);
+        }
+        // Every part shares part 0's display window.
+        b.full_x = a.full_x;
+        b.full_y = a.full_y;
+        b.full_width = a.full_width;
+        b.full_height = a.full_height;
+        auto out = OIIO::ImageOutput::create("openexr");
+        if (!out)
+            fail(OIIO::geterror());
+        if (!out->supports("multiimage"))
+            fail("the EXR writer does not support multi-part files");
+        OIIO::ImageSpec specs[2] = {a, b};
+        if (!out->open(tmp.string(), 2, specs))
+            fail(out->geterror());
+        if (!out->write_image(OIIO::TypeDesc::FLOAT, pa.data()))
+            fail(out->geterror());
+        if (!out->open(tmp.string(), specs[1], OIIO::ImageOutput::AppendSubimage))
+            fail(out->geterror());
+        if (!out->write_image(OIIO::TypeDesc::FLOAT, pb.data()))
+            fail(out->geterror());
+        if (!out->close())
+            fail(out->geterror());
+        std::error_code ec;
+        fs::rename(tmp, path, ec);
+        if (ec)
+            fail(ec.message());
+    }
+
+} // namespace
+
+void write_world_volume(const fs::path& path, const WorldVolume& v, const Metadata& metadata)
+{
+    OIIO::ImageSpec voxels(v.nx, v.ny * v.nz, 4, OIIO::TypeDesc::FLOAT);
+    voxels.channelnames = {"density", "crust", "iron", "salt"};
+    voxels.attribute("name", "voxels");
+    voxels.attribute("compression", "zip");
+    add_metadata(voxels, metadata);
+    std::vector<float> pixels(size_t(v.nx) * v.ny * v.nz * 4);
+    for (size_t i = 0; i < v.density.size(); ++i) {
+        // Row k * ny + j, column i: exactly the index i + nx (j + ny k).
+        pixels[4 * i + 0] = v.density[i];
+        pixels[4 * i + 1] = v.crust[i];
+        pixels[4 * i + 2] = v.iron[i];
+        pixels[4 * i + 3] = v.salt[i];
+    }
+    OIIO::ImageSpec bounds(3, 3, 1, OIIO::TypeDesc::FLOAT);
+    bounds.channelnames = {"value"};
+    bounds.attribute("name", "bounds");
+    const std::vector<float> b = {
+        float(v.bounds.min.x), float(v.bounds.min.y), float(v.bounds.min.z),
+        float(v.bounds.max.x), float(v.bounds.max.y), float(v.bounds.max.z),
+        float(v.nx),           float(v.ny),           float(v.nz)};
+    write_two_parts(path, voxels, pixels, bounds, b, "world volume");
+}
+
+WorldVolume read_world_volume(const fs::path& path)
+{
+    auto fail = [&](const std::string& msg) {
+        return std::runtime_error(fmt::format("world volume '{}': {}", path.string(), msg));
+    };
+    auto in = OIIO::ImageInput::open(path.string());
+    if (!in)
+        throw fail(OIIO::geterror());
+    int voxels_part = -1, bounds_part = -1;
+    for (int sub = 0; in->seek_subimage(sub, 0); ++sub) {
+        const std::string name = in->spec().get_string_attribute("name");
+        if (name == "voxels")
+            voxels_part = sub;
+        else if (name == "bounds")
+            bounds_part = sub;
+    }
+    if (voxels_part < 0 || bounds_part < 0)
+        throw fail("needs the parts 'voxels' and 'bounds'");
+    in->seek_subimage(bounds_part, 0);
+    if (in->spec().width != 3 || in->spec().height != 3 || in->spec().nchannels != 1)
+        throw fail("part 'bounds' must be 3 x 3 with one channel");
+    std::vector<float> b(9);
+    if (!in->read_image(0, 0, 0, 1, OIIO::TypeDesc::FLOAT, b.data()))
+        throw fail(in->geterror());
+    WorldVolume v;
+    v.bounds = Imath::Box3d(V3d(b[0], b[1], b[2]), V3d(b[3], b[4], b[5]));
+    v.nx = int(b[6]);
+    v.ny = int(b[7]);
+    v.nz = int(b[8]);
+    in->seek_subimage(voxels_part, 0);
+    const OIIO::ImageSpec& spec = in->spec();
+    if (spec.width != v.nx || spec.height != v.ny * v.nz || v.nx < 1 || v.ny < 1 || v.nz < 1)
+        throw fail(fmt::format("part 'voxels' is {} x {}, bounds say {} x {} x {}", spec.width,
+                               spec.height, v.nx, v.ny, v.nz));
+    std::vector<float> px(size_t(spec.width) * spec.height * spec.nchannels);
+    if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, px.data()))
+        throw fail(in->geterror());
+    const size_t n = size_t(v.nx) * v.ny * v.nz;
+    std::vector<float>* fields[4] = {&v.density, &v.crust, &v.iron, &v.salt};
+    const char* names[4] = {"density", "crust", "iron", "salt"};
+    for (int f = 0; f < 4; ++f) {
+        const int ch = spec.channelindex(names[f]);
+        if (ch < 0)
+            throw fail(fmt::format("part 'voxels' has no channel '{}'", names[f]));
+        fields[f]->resize(n);
+        for (size_t i = 0; i < n; ++i)
+            (*fields[f])[i] = px[i * spec.nchannels + ch];
+    }
+    return v;
+}
+
+void write_slab_volume(const fs::path& path, const StoneState& st, const Metadata& metadata)
+{
+    const SlabLattice& lat = *st.lattice;
+    const SlabGrid& g = lat.grid();
+    std::vector<float> crust, iron, salt;
+    output_fractions(st, crust, iron, salt);
+    constexpr int kChannels = 7;
+    OIIO::ImageSpec voxels(g.n_t, g.n_t * g.n_d * g.slab_count, kChannels, OIIO::TypeDesc::FLOAT);
+    voxels.channelnames = {"density", "porosity", "moisture", "decay", "crust", "iron", "salt"};
+    voxels.attribute("name", "voxels");
+    voxels.attribute("compression", "zip");
+    voxels.attribute("patina:n_t", g.n_t);
+    voxels.attribute("patina:n_d", g.n_d);
+    voxels.attribute("patina:slabs", g.slab_count);
+    add_metadata(voxels, metadata);
+    std::vector<float> px(size_t(g.n_t) * g.n_t * g.n_d * g.slab_count * kChannels);
+    tbb::parallel_for(0, g.slab_count, [&](int s) {
+        for (int k = 0; k < g.n_d; ++k)
+            for (int j = 0; j < g.n_t; ++j)
+                for (int i = 0; i < g.n_t; ++i) {
+                    const size_t c = g.index(s, i, j, k);
+                    const size_t row = (size_t(s) * g.n_d + k) * g.n_t + j;
+                    float* o = &px[(row * g.n_t + i) * kChannels];
+                    o[0] = st.density[c];
+                    o[1] = st.porosity[c];
+                    o[2] = st.moisture[c];
+                    o[3] = st.decay[c];
+                    o[4] = crust[c];
+                    o[5] = iron[c];
+                    o[6] = salt[c];
+                }
+    });
+    OIIO::ImageSpec corners(8, g.slab_count, 3, OIIO::TypeDesc::FLOAT);
+    corners.channelnames = {"x", "y", "z"};
+    corners.attribute("name", "corners");
+    std::vector<float> cp(size_t(8) * g.slab_count * 3);
+    for (int s = 0; s < g.slab_count; ++s)
+        for (int c = 0; c < 8; ++c)
+            for (int a = 0; a < 3; ++a)
+                cp[(size_t(s) * 8 + c) * 3 + a] = float(lat.slabs()[size_t(s)][c][a]);
+    write_two_parts(path, voxels, px, corners, cp, "slab volume");
+}
+
+} // namespace patina::texgen::stone
