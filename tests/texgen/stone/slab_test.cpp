@@ -1,0 +1,140 @@
+// Slabs (Dorsey et al. 1999 §4.1): the shell of a closed mesh, its world <-> slab mapping and
+// the connections between slabs.
+#include "stone_test_util.h"
+
+#include "core/sampling.h"
+#include "texgen/stone/slab_mapping.h"
+
+#include <gtest/gtest.h>
+
+namespace patina::texgen::stone {
+namespace {
+
+using Imath::V3d;
+
+double slab_size(const SlabCorners& c)
+{
+    double s = 0.0;
+    for (int i = 0; i < 8; ++i)
+        for (int j = i + 1; j < 8; ++j)
+            s = std::max(s, (c[i] - c[j]).length());
+    return s;
+}
+
+TEST(SlabShell, BoxMakesThreeSlabsPerTriangleAllConnected)
+{
+    const TriangleMesh box = make_box(Imath::V3f(0.0f), Imath::V3f(1.0f, 0.6f, 0.8f));
+    ShellOptions o;
+    o.depth = 0.1;
+    const SlabShell shell = build_slab_shell(box, o);
+    EXPECT_EQ(shell.slabs.size(), 3 * box.triangle_count());
+    // A closed mesh: every slab has a neighbour across each of its four sides (the box's
+    // duplicated face vertices are welded).
+    for (const auto& n : shell.neighbours)
+        for (int side = 0; side < 4; ++side)
+            EXPECT_GE(n[side], 0);
+    // The inner face lies `depth` below the flat faces' centres.
+    for (size_t s = 0; s < shell.slabs.size(); ++s) {
+        const V3d outer = slab_to_world(shell.slabs[s], V3d(0.5, 0.5, 0.0));
+        const V3d inner = slab_to_world(shell.slabs[s], V3d(0.5, 0.5, 1.0));
+        EXPECT_LE((outer - inner).length(), 0.1 + 1e-9);
+        EXPECT_GT((outer - inner).length(), 0.02);
+    }
+}
+
+TEST(SlabMapping, WorldToSlabRoundTripsWithinATenMillionthOfTheSlab)
+{
+    const TriangleMesh blob = test::concave_blob();
+    ShellOptions o;
+    o.depth = 0.12;
+    o.outer_margin = 0.01;
+    const SlabShell shell = build_slab_shell(blob, o);
+    const SlabLocator locator(shell.slabs);
+    Pcg32 rng(7);
+    double worst = 0.0;
+    int found_other = 0;
+    for (size_t s = 0; s < shell.slabs.size(); s += 3)
+        for (int n = 0; n < 8; ++n) {
+            const V3d uvw(rng.uniform_double(), rng.uniform_double(), rng.uniform_double());
+            const V3d p = slab_to_world(shell.slabs[s], uvw);
+            const auto at = locator.locate(p);
+            ASSERT_TRUE(at.has_value()) << "slab " << s;
+            if (at->slab != int(s))
+                ++found_other; // on a shared face within the tolerance
+            const V3d back = slab_to_world(shell.slabs[size_t(at->slab)], at->uvw);
+            worst = std::max(worst, (back - p).length() / slab_size(shell.slabs[s]));
+            if (at->slab == int(s))
+                EXPECT_LT((at->uvw - uvw).length(), 1e-6);
+        }
+    // Task: world -> slab -> world within 1e-5 of the slab size.
+    EXPECT_LT(worst, 1e-5);
+    EXPECT_LE(found_other, 2);
+    std::printf("round trip: worst error %.3g of the slab size\n", worst);
+}
+
+TEST(SlabShell, ConcaveMeshShellNeitherFoldsNorOverlaps)
+{
+    const TriangleMesh blob = test::concave_blob();
+    ShellOptions o;
+    o.depth = 0.2; // deep: the depth limits have to act in the dents and at the bumps
+    o.outer_margin = 0.02;
+    const SlabShell shell = build_slab_shell(blob, o);
+    // No fold: the Jacobian keeps its (negative) sign on a 5^3 grid of every slab.
+    for (size_t s = 0; s < shell.slabs.size(); ++s)
+        for (int i = 0; i < 125; ++i) {
+            const V3d uvw(0.25 * (i % 5), 0.25 * ((i / 5) % 5), 0.25 * (i / 25));
+            ASSERT_LT(slab_jacobian_determinant(shell.slabs[s], uvw), 0.0) << "slab " << s;
+        }
+    // No overlap: a point inside one slab lies in no other one.
+    const SlabLocator locator(shell.slabs);
+    Pcg32 rng(11);
+    int overlaps = 0, points = 0;
+    for (size_t s = 0; s < shell.slabs.size(); ++s)
+        for (int n = 0; n < 6; ++n) {
+            const V3d uvw(0.02 + 0.96 * rng.uniform_double(), 0.02 + 0.96 * rng.uniform_double(),
+                          0.02 + 0.96 * rng.uniform_double());
+            const auto all = locator.locate_all(slab_to_world(shell.slabs[s], uvw), 0.0);
+            ++points;
+            if (all.size() != 1)
+                ++overlaps;
+        }
+    EXPECT_EQ(overlaps, 0) << "of " << points << " points";
+    // The limits did act: some point is shallower than asked.
+    EXPECT_LT(*std::min_element(shell.depths.begin(), shell.depths.end()), 0.2);
+}
+
+TEST(SlabLattice, GhostsConnectSlabsSoALinearFieldCrossesSeamsExactly)
+{
+    const TriangleMesh box = make_box(Imath::V3f(0.0f), Imath::V3f(1.0f));
+    const auto t = test::make_lattice(box, 6, 4, 0.2);
+    const SlabLattice& lat = *t.lattice;
+    const SlabGrid& g = lat.grid();
+    // A linear function of position in the voxels; the ghosts interpolate it.
+    std::vector<float> f(g.cell_count(), 0.0f);
+    auto fn = [](const Imath::V3f& p) { return 1.0f + 2.0f * p.x - p.y + 0.5f * p.z; };
+    for (int s = 0; s < g.slab_count; ++s)
+        for (int k = 0; k < g.n_d; ++k)
+            for (int j = 0; j < g.n_t; ++j)
+                for (int i = 0; i < g.n_t; ++i)
+                    f[g.index(s, i, j, k)] = fn(lat.position()[g.index(s, i, j, k)]);
+    lat.fill_halo(f.data());
+    // Side ghosts of flat faces away from the box's edges lie in a coplanar neighbour whose
+    // lattice is the same: the ghost equals the function there.
+    int checked = 0;
+    for (int s = 0; s < g.slab_count; ++s)
+        for (int k = 0; k < g.n_d; ++k)
+            for (int j = 0; j < g.n_t; ++j) {
+                const V3d p = slab_to_world(lat.slabs()[size_t(s)], g.uvw(-1, j, k));
+                const auto at = lat.locator().locate(p, 1e-6);
+                if (!at)
+                    continue;
+                const Imath::V3f pf(float(p.x), float(p.y), float(p.z));
+                EXPECT_NEAR(f[g.index(s, -1, j, k)], fn(pf), 0.2f);
+                ++checked;
+            }
+    EXPECT_GT(checked, g.slab_count * g.n_d);
+    EXPECT_LT(lat.unconnected_ghosts(), size_t(g.slab_count) * 4 * g.n_t * g.n_d / 2);
+}
+
+} // namespace
+} // namespace patina::texgen::stone
