@@ -122,9 +122,19 @@ TEST(SlabVolumeRender, WhiteFurnaceWithAnIndexMatchedBoundary)
 
 TEST(SlabVolumeRender, WhiteFurnaceWithARefractingRoughBoundary)
 {
-    // Refraction scales radiance by 1/η² going in and η² coming out, and F_r^k + (1 − F_r^k)
-    // = 1 at every crossing: still radiance 1
+    // F_r^k + (1 − F_r^k) = 1 at every crossing, refracted or diffusely transmitted:
+    // still radiance 1
     write_lumpy_volume();
     EXPECT_NEAR(render_mean_y("furnace_rough", furnace_scene("eta = 1.5\nroughness_exponent = 3.0")),
+                1.0, 0.015);
+}
+
+TEST(SlabVolumeRender, WhiteFurnaceWithDiffuseTransmission)
+{
+    // Light sampled from the boundary (the diffuse lobe is not a delta) must not change it
+    write_lumpy_volume();
+    EXPECT_NEAR(render_mean_y("furnace_diffuse",
+                              furnace_scene("eta = 1.5\nroughness_exponent = 2.0\n"
+                                            "transmission = \"diffuse\"")),
                 1.0, 0.015);
 }

@@ -15,20 +15,24 @@ namespace {
 
 class Surface {
 public:
-    Surface(float eta, float k)
+    Surface(float eta, float k, const char* transmission = "refract")
         : instance_(make("stone_surface", "eta = " + std::to_string(eta) +
-                                              "\nroughness_exponent = " + std::to_string(k) + "\n")),
+                                              "\nroughness_exponent = " + std::to_string(k) +
+                                              "\ntransmission = \"" + transmission + "\"\n")),
           wl_(wavelengths())
     {
         ctx_.N = {0, 0, 1};
         ctx_.Ng = {0, 0, 1};
         ctx_.mode = PATINA_TRANSPORT_RADIANCE;
     }
-    bool sample(Vec3 wo, float u_lobe, PatinaBsdfSample* s) const
+    bool sample(Vec3 wo, float u_lobe, PatinaBsdfSample* s, Vec2 u = Vec2(0.3f, 0.6f)) const
     {
         *s = PatinaBsdfSample{};
-        return instance_->bsdf()->sample(instance_->get(), &ctx_, wo, u_lobe, {0.3f, 0.6f}, &wl_,
-                                         s) != 0;
+        return instance_->bsdf()->sample(instance_->get(), &ctx_, wo, u_lobe, u, &wl_, s) != 0;
+    }
+    float pdf(Vec3 wo, Vec3 wi) const
+    {
+        return instance_->bsdf()->pdf(instance_->get(), &ctx_, wo, wi, &wl_);
     }
     /// Fraction of u_lobe values that reflect: the reflected fraction R.
     double reflected_fraction(Vec3 wo) const
@@ -95,12 +99,13 @@ TEST(StoneSurface, SampledDirectionsAndWeights)
     EXPECT_NEAR(r.wi.x, -wo.x, 1e-6f);
     EXPECT_NEAR(r.wi.z, wo.z, 1e-6f);
     EXPECT_NEAR(Surface::weight(r), 1.0f, 1e-5f);
-    // Transmission: Snell (sin θt = sin θi / 1.5), radiance weight 1/η² (Veach 1997 §5.2)
+    // Transmission: Snell (sin θt = sin θi / 1.5), weight 1 in both transport modes (the
+    // η'² radiance factors of a closed stone cancel in pairs and are left out)
     EXPECT_TRUE(t.lobe & PATINA_LOBE_TRANSMISSION);
     EXPECT_LT(t.wi.z, 0.0f);
     EXPECT_NEAR(t.wi.x, -0.8f / 1.5f, 1e-5f);
     EXPECT_FLOAT_EQ(t.eta, 1.5f);
-    EXPECT_NEAR(Surface::weight(t), 1.0f / 2.25f, 1e-5f);
+    EXPECT_NEAR(Surface::weight(t), 1.0f, 1e-5f);
     s.set_mode(PATINA_TRANSPORT_IMPORTANCE);
     ASSERT_TRUE(s.sample(wo, 0.999f, &t));
     EXPECT_NEAR(Surface::weight(t), 1.0f, 1e-5f);
@@ -132,4 +137,42 @@ TEST(StoneSurface, InsideTheStoneTotalReflectionAndReciprocity)
     const float sin_t = 0.8f / 1.5f;
     const float cos_t = std::sqrt(1.0f - sin_t * sin_t);
     EXPECT_NEAR(s.reflected_fraction(at_cos(0.6f)), s.reflected_fraction(at_cos(-cos_t)), 2e-5);
+}
+
+TEST(StoneSurface, DiffuseTransmissionIsConsistentAndConservesEnergy)
+{
+    const Surface s(1.5f, 2.0f, "diffuse");
+    for (float c : {0.8f, 0.3f, -0.9f, -0.2f}) {
+        const Vec3 wo = at_cos(c);
+        const double R = std::pow(fresnel_dielectric(c, 1.5f), 2.0f);
+        // Reflection stays the delta lobe F_r^k
+        EXPECT_NEAR(s.reflected_fraction(wo), R >= 1.0 ? 1.0 : R, 2e-5) << "cos " << c;
+        // ∫ f |cos θi| dωi over the other side = 1 − R (midpoint rule in cos θ)
+        const int n = 4000;
+        double integral = 0.0;
+        for (int i = 0; i < n; ++i) {
+            const float ci = (i + 0.5f) / n;
+            const Vec3 wi = at_cos(c > 0.0f ? -ci : ci);
+            integral += s.eval0(wo, wi) * ci * (1.0 / n) * 2.0 * M_PI;
+        }
+        EXPECT_NEAR(R + integral, 1.0, 1e-4) << "cos " << c;
+        // Same-side directions get nothing from eval
+        EXPECT_EQ(s.eval0(wo, at_cos(c > 0.0f ? 0.5f : -0.5f)), 0.0f);
+        // Sampled transmissions: pdf() and eval() at the sampled direction match the sample
+        for (int i = 0; i < 64; ++i) {
+            PatinaBsdfSample t;
+            if (!s.sample(wo, 0.9999f, &t, Vec2((i + 0.5f) / 64.0f, 0.37f)))
+                continue;
+            if (R >= 1.0) {
+                // Total internal reflection: nothing crosses
+                EXPECT_TRUE(t.lobe & PATINA_LOBE_REFLECTION);
+                continue;
+            }
+            ASSERT_TRUE(t.lobe & PATINA_LOBE_TRANSMISSION);
+            EXPECT_LT(t.wi.z * wo.z, 0.0f);
+            EXPECT_NEAR(t.pdf, s.pdf(wo, t.wi), 1e-6f * std::max(1.0f, t.pdf));
+            EXPECT_NEAR(t.f[0], s.eval0(wo, t.wi), 1e-6f);
+            EXPECT_NEAR(Surface::weight(t), 1.0f, 1e-4f);
+        }
+    }
 }
