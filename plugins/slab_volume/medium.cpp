@@ -31,7 +31,8 @@
  * The albedo colours are COLOR parameters in the scene's colour space: the host converts
  * them to the working space and uplifts them to smooth spectra. They are *single-scattering*
  * albedos: after many scattering events the stone looks darker and more saturated than
- * these colours (an albedo of 0.9 inside an optically thick body reflects only about 0.4).
+ * these colours (isotropic scatterers of albedo a reflect (1 − √(1−a)) / (1 + √(1−a)): 0.52
+ * for a = 0.9: the hemispherical reflectance of Hapke 1981, J. Geophys. Res. 86).
  *
  * sample_distance is delta tracking (§5.1 "the probability of a ray interacting with the
  * medium", Eq. 3, sampled without bias instead of by ray marching) against a coarse majorant
