@@ -1,0 +1,100 @@
+#include "texgen/flatten/flat_texel.h"
+
+#include "core/kubelka_munk.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace patina::texgen {
+
+FlatTexel flatten_texel(const PatinaMaterial& base, std::span<const PatinaMaterial* const> layers,
+                        std::span<const float> thickness_um)
+{
+    if (layers.size() != thickness_um.size())
+        throw std::invalid_argument("flatten_texel: one thickness per layer");
+    const size_t n = layers.size();
+    FlatTexel out;
+    out.interfaces.resize(n + 1);
+    for (size_t i = 0; i < n; ++i)
+        out.height_um += thickness_um[i];
+
+    // The layers top to bottom (the order km_composite_stack takes), per channel.
+    std::vector<KmLayer> top_to_bottom(n);
+    for (int c = 0; c < 3; ++c) {
+        // KM R and T of every layer at this thickness (§4.1).
+        for (size_t i = 0; i < n; ++i)
+            top_to_bottom[n - 1 - i] =
+                thickness_um[i] > 0.0f ? km_layer(layers[i]->absorption[c],
+                                                  layers[i]->scattering[c], thickness_um[i])
+                                       : KmLayer{0.0f, 1.0f};
+        const std::span<const KmLayer> stack(top_to_bottom);
+        // Interface k lies under the n - k layers above it: the first n - k of top_to_bottom,
+        // composited into one (§4.2: "sequentially combining two layers into a single layer").
+        for (size_t k = 0; k <= n; ++k) {
+            const float fade =
+                k == 0 ? 1.0f : std::clamp(thickness_um[k - 1] / kInterfaceFadeUm, 0.0f, 1.0f);
+            const PatinaMaterial& below = k == 0 ? base : *layers[k - 1];
+            const KmLayer above = km_composite_stack(stack.first(n - k));
+            // §4.3: the specular colour "multiplied twice by diffuse transmittance of the
+            // intervening layers calculated using the KM equations".
+            out.interfaces[k].specular[c] = fade * below.specular[c] * above.T * above.T;
+            out.interfaces[k].roughness = below.roughness;
+        }
+        // Diffuse: the stack over the opaque base (§4.2, the base a layer with T = 0).
+        float diffuse = km_reflectance_over(stack, base.color[c]);
+        if (base.is_metal) {
+            // The metal's own once-through reflection is the base lobe (interface 0).
+            const KmLayer all = km_composite_stack(stack);
+            diffuse = std::max(0.0f, diffuse - all.T * all.T * base.color[c]);
+        }
+        out.diffuse[c] = diffuse;
+    }
+
+    int top = 0;
+    for (size_t i = n; i > 0; --i)
+        if (thickness_um[i - 1] > 0.0f) {
+            top = static_cast<int>(i);
+            break;
+        }
+    out.two_lobe = reduce_to_two_lobes(base, out.diffuse, out.interfaces, top);
+    return out;
+}
+
+TwoLobe reduce_to_two_lobes(const PatinaMaterial& base, const Imath::V3f& diffuse,
+                            std::span<const InterfaceLobe> interfaces, int top_interface)
+{
+    TwoLobe two;
+    const InterfaceLobe& top = interfaces[static_cast<size_t>(top_interface)];
+    // The coat: the exposed layer's interface, absent over bare base.
+    two.coat_roughness = top.roughness;
+    two.coat_weight =
+        top_interface > 0 ? std::clamp(luminance(top.specular) / kClearcoatF0, 0.0f, 1.0f) : 0.0f;
+
+    // The base's specular lobe: every interface under the coat (the top one itself when
+    // the base is bare), F0 summed, GGX alphas averaged with F0 luminance as weight.
+    const int last = top_interface > 0 ? top_interface - 1 : 0;
+    Imath::V3f f0(0.0f);
+    double weight = 0.0, alpha = 0.0;
+    for (int k = 0; k <= last; ++k) {
+        const InterfaceLobe& lobe = interfaces[static_cast<size_t>(k)];
+        f0 += lobe.specular;
+        const double w = luminance(lobe.specular);
+        weight += w;
+        alpha += w * lobe.roughness * lobe.roughness;
+    }
+    two.roughness = weight > 0.0 ? static_cast<float>(std::sqrt(alpha / weight))
+                                 : interfaces[static_cast<size_t>(last)].roughness;
+
+    // glTF's metallic blend carries the diffuse albedo and the metal's F0 in one colour.
+    // Over a dielectric base the lower lobes are left to glTF's fixed 0.04 F0.
+    const Imath::V3f metal = base.is_metal ? f0 : Imath::V3f(0.0f);
+    const float lum_metal = luminance(metal), lum_diffuse = luminance(diffuse);
+    two.base_color = diffuse + metal;
+    two.metallic = lum_metal + lum_diffuse > 0.0f ? lum_metal / (lum_metal + lum_diffuse) : 0.0f;
+    for (int c = 0; c < 3; ++c)
+        two.base_color[c] = std::clamp(two.base_color[c], 0.0f, 1.0f);
+    return two;
+}
+
+}  // namespace patina::texgen

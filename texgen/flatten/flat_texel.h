@@ -1,0 +1,80 @@
+// One texel of a patina stack flattened into the parameters of an ordinary BRDF: the
+// layered BRDF of Dorsey & Hanrahan 1996 §4 (a Kubelka-Munk diffuse term and one glossy
+// lobe per interface), and its reduction to two lobes in glTF 2.0 conventions
+// (metallic-roughness + KHR_materials_clearcoat) for renderers without layered shading.
+//
+// Colours are linear Rec.709 (the MaterialLibrary's space), per channel; roughness is the
+// library's perceptual roughness r (GGX alpha = r², as glTF and the plugins use it).
+#pragma once
+
+#include "texgen/patina/material_library.h"
+
+#include <Imath/ImathVec.h>
+
+#include <span>
+#include <vector>
+
+namespace patina::texgen {
+
+/// The glossy lobe of one interface (§4.3): "each interface inherits properties from the
+/// material below it". Interface 0 is the top of the base, interface i the top of layer i.
+struct InterfaceLobe {
+    /// The material's specular colour times the squared KM diffuse transmittance of the
+    /// layers above the interface (§4.3: "multiplied twice by diffuse transmittance of the
+    /// intervening layers"), faded in over the first kInterfaceFadeUm of the layer under it
+    /// (0 where that layer is absent).
+    Imath::V3f specular{0.0f};
+    float roughness = 0.5f;  ///< the material's roughness (constant per interface)
+};
+
+/// The two-lobe reduction, glTF 2.0 metallic-roughness + KHR_materials_clearcoat.
+struct TwoLobe {
+    Imath::V3f base_color{0.0f};  ///< glTF baseColor (linear here; encoded on output)
+    float metallic = 0.0f;        ///< glTF metallic
+    float roughness = 0.5f;       ///< glTF roughness (base specular lobe)
+    float coat_weight = 0.0f;     ///< KHR_materials_clearcoat clearcoatFactor
+    float coat_roughness = 0.5f;  ///< KHR_materials_clearcoat clearcoatRoughnessFactor
+};
+
+struct FlatTexel {
+    /// KM diffuse reflectance of the stack over the base (§4.1-4.2). Over a metal base the
+    /// once-through reflection by the metal, T_above² R_base, is the base interface's glossy
+    /// lobe and is not counted again here (a bare metal has no diffuse part).
+    Imath::V3f diffuse{0.0f};
+    std::vector<InterfaceLobe> interfaces;  ///< n + 1: the base's, then each layer's top
+    float height_um = 0.0f;                 ///< total thickness over the base (§4.3, last ¶)
+    TwoLobe two_lobe;
+};
+
+/// A layer thinner than this (µm) fades its interface's lobe in linearly, as the layered_km
+/// plugin does (plugins/layered/layered_model.h): a film far thinner than a wavelength is no
+/// separate reflecting surface, and a filtered coverage edge shows no sudden gloss.
+inline constexpr float kInterfaceFadeUm = 0.05f;
+
+/// Normal-incidence reflectance of glTF's clearcoat (IOR 1.5: ((1.5 - 1) / (1.5 + 1))² =
+/// 0.04, KHR_materials_clearcoat): the coat weight is the exposed layer's specular over it.
+inline constexpr float kClearcoatF0 = 0.04f;
+
+/// Flatten one texel: `layers` bottom to top with their thickness here (µm, >= 0;
+/// thickness_um.size() == layers.size()).
+FlatTexel flatten_texel(const PatinaMaterial& base, std::span<const PatinaMaterial* const> layers,
+                        std::span<const float> thickness_um);
+
+/// Reduce a flattened texel to two lobes (called by flatten_texel; exposed for tests).
+/// The coat is the top interface where a layer is exposed (weight = its specular luminance
+/// over kClearcoatF0, at most 1; 0 where the base is bare); every lower lobe is summed
+/// into the base's specular F0, read as a metal's colour over a metal base, its roughness
+/// the F0-weighted mean of their GGX alphas; glTF's metallic blend
+/// (base = mix(dielectric diffuse, metal F0, metallic)) then carries the diffuse albedo D
+/// and that F0 M as base_color = D + M, metallic = lum(M) / (lum(M) + lum(D)), which keeps
+/// the luminance of both parts exactly and mixes their hues.
+TwoLobe reduce_to_two_lobes(const PatinaMaterial& base, const Imath::V3f& diffuse,
+                            std::span<const InterfaceLobe> interfaces, int top_interface);
+
+/// Rec.709 luminance (the Y row of the Rec.709 → XYZ matrix, ITU-R BT.709-6).
+inline float luminance(const Imath::V3f& c)
+{
+    return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z;
+}
+
+}  // namespace patina::texgen

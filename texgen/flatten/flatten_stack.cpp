@@ -1,0 +1,227 @@
+#include "texgen/flatten/flatten_stack.h"
+
+#include "core/image_io.h"
+#include "texgen/flatten/flat_texel.h"
+#include "texgen/flatten/normal_map.h"
+
+#include <OpenImageIO/imagebufalgo.h>
+#include <fmt/format.h>
+#include <tbb/parallel_for.h>
+
+#include <cctype>
+#include <cmath>
+#include <stdexcept>
+
+namespace patina::texgen {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+    std::string slug(const std::string& name)
+    {
+        std::string s;
+        for (char c : name)
+            s += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
+        return s;
+    }
+
+    /// The "thickness" channel of one tile's map, resampled to width x height if needed.
+    std::vector<float> read_thickness(const fs::path& file, int width, int height)
+    {
+        const ImageData image = read_image(file);
+        const int c = image.channel("thickness");
+        if (c < 0)
+            throw std::runtime_error(fmt::format("thickness map '{}': no channel 'thickness'",
+                                                 file.string()));
+        std::vector<float> t(static_cast<size_t>(image.width) * image.height);
+        size_t bad = 0, first = 0;
+        for (size_t i = 0; i < t.size(); ++i) {
+            t[i] = image.pixels[i * image.channels + c];
+            if (!std::isfinite(t[i]) || t[i] < 0.0f)
+                if (bad++ == 0)
+                    first = i;
+        }
+        if (bad)
+            throw std::runtime_error(fmt::format(
+                "thickness map '{}': texel ({}, {}) is {} ({} bad texels); thicknesses must be "
+                "finite and >= 0", file.string(), first % image.width, first / image.width,
+                t[first], bad));
+        if (image.width == width && image.height == height)
+            return t;
+        // Resample with OIIO (the thickness is the linear quantity; a filtered lookup of it
+        // is what a renderer would see).
+        const OIIO::ImageSpec in_spec(image.width, image.height, 1, OIIO::TypeDesc::FLOAT);
+        OIIO::ImageBuf in(in_spec, t.data());
+        OIIO::ImageBuf out(OIIO::ImageSpec(width, height, 1, OIIO::TypeDesc::FLOAT));
+        if (!OIIO::ImageBufAlgo::resize(out, in))
+            throw std::runtime_error(fmt::format("thickness map '{}': cannot resample: {}",
+                                                 file.string(), out.geterror()));
+        std::vector<float> r(static_cast<size_t>(width) * height);
+        out.get_pixels(OIIO::ROI(0, width, 0, height, 0, 1, 0, 1), OIIO::TypeDesc::FLOAT,
+                       r.data());
+        for (float& v : r)
+            v = std::max(v, 0.0f);  // a sharp filter may ring below 0
+        return r;
+    }
+
+}  // namespace
+
+std::string flatten_colorspace(const std::string& option)
+{
+    if (option == "srgb")
+        return "srgb_texture";
+    if (option == "acescg")
+        return "ACEScg";
+    throw std::runtime_error(fmt::format("--color-space '{}': expected srgb or acescg", option));
+}
+
+std::vector<const PatinaMaterial*> stack_materials(const PatinaStackFiles& stack,
+                                                   const MaterialLibrary& library)
+{
+    std::vector<const PatinaMaterial*> out;
+    auto find = [&](const std::string& name, const std::string& what) {
+        const PatinaMaterial* m = library.find(name);
+        if (!m) {
+            std::string files;
+            for (const PatinaMaterial& known : library.materials())
+                if (files.find(known.file.string()) == std::string::npos)
+                    files += (files.empty() ? "" : ", ") + known.file.string();
+            throw std::runtime_error(fmt::format(
+                "patina stack '{}': {} material '{}' is not in the material library ({}); "
+                "pass the library the stack was made with: --materials FILE",
+                stack.manifest.string(), what, name, files.empty() ? "no files" : files));
+        }
+        return m;
+    };
+    out.push_back(find(stack.base, "base"));
+    for (size_t i = 0; i < stack.layers.size(); ++i)
+        out.push_back(find(stack.layers[i].material, fmt::format("layer {}", i + 1)));
+    return out;
+}
+
+FlattenedStack flatten_stack(const PatinaStackFiles& stack,
+                             const std::vector<const PatinaMaterial*>& materials,
+                             const FlattenOptions& options)
+{
+    if (materials.size() != stack.layers.size() + 1)
+        throw std::invalid_argument("flatten_stack: one material for the base and each layer");
+    const size_t n = stack.layers.size();
+    const PatinaMaterial& base = *materials.front();
+    const std::vector<const PatinaMaterial*> layer_materials(materials.begin() + 1,
+                                                             materials.end());
+
+    FlattenedStack flat;
+    flat.udims = stack.udims;
+    // Tile size: the stack's (its maps' resolution, or the first map's own size).
+    int in_w = stack.width, in_h = stack.height;
+    if (in_w <= 0 || in_h <= 0) {
+        const fs::path& first = n ? stack.layers[0].files[0] : fs::path();
+        if (first.empty())
+            throw std::runtime_error(fmt::format("patina stack '{}': maps have no resolution",
+                                                 stack.manifest.string()));
+        const ImageData image = read_image(first);
+        in_w = image.width;
+        in_h = image.height;
+    }
+    flat.width = options.resolution > 0 ? options.resolution : in_w;
+    flat.height = options.resolution > 0
+                      ? std::max(1, static_cast<int>(std::lround(
+                                        static_cast<double>(options.resolution) * in_h / in_w)))
+                      : in_h;
+    flat.texel_size_m = options.texel_size_m > 0.0 ? options.texel_size_m
+                        : stack.strip_size_m > 0.0 ? stack.strip_size_m / flat.width
+                                                   : 0.0;
+    if (!(flat.texel_size_m > 0.0))
+        throw std::runtime_error(fmt::format(
+            "patina stack '{}' was made on a mesh: pass --texel-size (metres per texel) for "
+            "the normal map's slope", stack.manifest.string()));
+
+    // The maps, in the order they are written.
+    auto add = [&](std::string name, std::vector<std::string> channels, std::string units,
+                   std::string description, bool is_color) {
+        flat.maps.push_back({std::move(name), std::move(channels), std::move(units),
+                             std::move(description), is_color, {}});
+    };
+    add("diffuse_albedo", {"R", "G", "B"}, "1",
+        "Kubelka-Munk diffuse reflectance of the layers over the base (D&H 1996 §4.1-4.2); "
+        "over a metal base without the metal's once-through reflection, which is "
+        "interface 0's glossy lobe",
+        true);
+    for (size_t k = 0; k <= n; ++k) {
+        const PatinaMaterial& below = *materials[k];
+        const std::string stem = fmt::format("interface{:02}_{}", k, slug(below.name));
+        const std::string where =
+            k == 0 ? fmt::format("the top of the base ({})", below.name)
+                   : fmt::format("the top of layer {} ({})", k, below.name);
+        add(stem + "_specular", {"R", "G", "B"}, "1",
+            fmt::format("specular colour of the glossy lobe at {}, attenuated by the square of "
+                        "the KM diffuse transmittance of the layers above it (D&H 1996 §4.3); "
+                        "0 where that layer is absent", where),
+            true);
+        add(stem + "_roughness", {"roughness"}, "1",
+            fmt::format("perceptual GGX roughness (alpha = r^2) of the glossy lobe at {}", where),
+            false);
+    }
+    add("height", {"height"}, "um",
+        "total thickness of the layers over the base in micrometres (D&H 1996 §4.3)", false);
+    add("normal", {"R", "G", "B"}, "1",
+        fmt::format("tangent-space normal of the height map, OpenGL convention (+X = +u, +Y = "
+                    "+v, green up), encoded n * 0.5 + 0.5; texel {} m, heights x {}",
+                    flat.texel_size_m, options.normal_scale),
+        false);
+    add("gltf_base_color", {"R", "G", "B"}, "1",
+        "glTF 2.0 baseColor of the two-lobe reduction: diffuse albedo + the F0 of the "
+        "lobes under the coat over a metal base", true);
+    add("gltf_metallic_roughness", {"R", "G", "B"}, "1",
+        "glTF 2.0 metallicRoughness texture: R occlusion (1), G roughness, B metallic", false);
+    add("gltf_clearcoat", {"R", "G", "B"}, "1",
+        "KHR_materials_clearcoat: R clearcoat (exposed layer's specular / 0.04), G clearcoat "
+        "roughness, B unused (0)", false);
+
+    const size_t texels = static_cast<size_t>(flat.width) * flat.height;
+    for (FlatMap& map : flat.maps)
+        map.tiles.resize(stack.udims.size());
+    for (size_t tile = 0; tile < stack.udims.size(); ++tile) {
+        std::vector<std::vector<float>> thickness(n);
+        for (size_t l = 0; l < n; ++l)
+            thickness[l] = read_thickness(stack.layers[l].files[tile], flat.width, flat.height);
+        for (FlatMap& map : flat.maps)
+            map.tiles[tile].assign(texels * map.channels.size(), 0.0f);
+
+        tbb::parallel_for(tbb::blocked_range<size_t>(0, texels, 1024),
+                          [&](const tbb::blocked_range<size_t>& range) {
+            std::vector<float> d(n);
+            for (size_t t = range.begin(); t != range.end(); ++t) {
+                for (size_t l = 0; l < n; ++l)
+                    d[l] = thickness[l][t];
+                const FlatTexel f = flatten_texel(base, layer_materials, d);
+                size_t m = 0;
+                auto put3 = [&](const Imath::V3f& v) {
+                    float* p = &flat.maps[m++].tiles[tile][t * 3];
+                    p[0] = v.x;
+                    p[1] = v.y;
+                    p[2] = v.z;
+                };
+                auto put1 = [&](float v) { flat.maps[m++].tiles[tile][t] = v; };
+                put3(f.diffuse);
+                for (const InterfaceLobe& lobe : f.interfaces) {
+                    put3(lobe.specular);
+                    put1(lobe.roughness);
+                }
+                put1(f.height_um);
+                ++m;  // normal: from the whole height map below
+                put3(f.two_lobe.base_color);
+                put3({1.0f, f.two_lobe.roughness, f.two_lobe.metallic});
+                put3({f.two_lobe.coat_weight, f.two_lobe.coat_roughness, 0.0f});
+            }
+        });
+        const size_t height_map = 1 + 2 * (n + 1);
+        flat.maps[height_map + 1].tiles[tile] =
+            normal_map_from_height(flat.maps[height_map].tiles[tile], flat.width, flat.height,
+                                   flat.texel_size_m * 1e6, options.normal_scale);
+    }
+    return flat;
+}
+
+}  // namespace patina::texgen

@@ -1,0 +1,71 @@
+// `patina-texgen flatten`: a patina stack (thickness maps + materials) turned into the
+// per-texel parameters of ordinary BRDFs (flat_texel.h), as maps other renderers read.
+#pragma once
+
+#include "core/color_management.h"
+#include "texgen/flatten/patina_stack_files.h"
+#include "texgen/patina/material_library.h"
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace patina::texgen {
+
+struct FlattenOptions {
+    /// Encoding of the colour maps: "srgb" (sRGB-encoded Rec.709, OCIO "srgb_texture") or
+    /// "acescg" (linear ACEScg, OCIO "ACEScg").
+    std::string color_space = "srgb";
+    int resolution = 0;          ///< texels per tile side of the output; 0: the stack's
+    bool half = false;           ///< half-float EXRs
+    double texel_size_m = 0.0;   ///< world size of a texel; 0: from a strip's strip_size_m
+    double normal_scale = 1.0;   ///< height exaggeration of the normal map (1: true relief)
+};
+
+/// One flattened map in memory: what it holds and its values per tile (texel-major,
+/// channels interleaved, row 0 at the top). Colour maps are linear Rec.709 here.
+struct FlatMap {
+    std::string name;
+    std::vector<std::string> channels;
+    std::string units;
+    std::string description;
+    bool is_color = false;
+    std::vector<std::vector<float>> tiles;
+};
+
+struct FlattenedStack {
+    int width = 0, height = 0;
+    std::vector<int> udims;
+    double texel_size_m = 0.0;
+    std::vector<FlatMap> maps;
+};
+
+/// The OCIO colour space of a --color-space value; throws std::runtime_error for others.
+std::string flatten_colorspace(const std::string& option);
+
+/// The materials of `stack`: its base and each layer's, from `library`. Throws
+/// std::runtime_error naming the stack.toml, the layer and the libraries for an unknown
+/// name, and for a base that is not a metal or a layer material.
+std::vector<const PatinaMaterial*> stack_materials(const PatinaStackFiles& stack,
+                                                   const MaterialLibrary& library);
+
+/// Read the thickness maps of `stack` and flatten every texel. `materials` is
+/// stack_materials' answer (base first). Throws std::runtime_error naming the file for an
+/// unreadable map, a map without a "thickness" channel or of another size than the others,
+/// and a NaN, infinite or negative texel (with its position).
+FlattenedStack flatten_stack(const PatinaStackFiles& stack,
+                             const std::vector<const PatinaMaterial*>& materials,
+                             const FlattenOptions& options);
+
+/// Write every map of `flat` into `out_dir` as tiled, mip-mapped EXRs (colour maps
+/// converted through OCIO to options.color_space, data maps raw), and record them in
+/// `<out_dir>/stack.toml` (baker "flatten", with a [flatten] table), replacing an earlier
+/// flatten's entries. Every file is checked before the first is written and each is
+/// written under a temporary name and renamed. Returns the files written.
+std::vector<std::filesystem::path> write_flattened(const std::filesystem::path& out_dir,
+                                                   const FlattenedStack& flat,
+                                                   const PatinaStackFiles& stack,
+                                                   const FlattenOptions& options,
+                                                   const ColorManager& colors);
+
+}  // namespace patina::texgen

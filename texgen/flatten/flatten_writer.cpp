@@ -1,0 +1,171 @@
+// write_flattened (flatten_stack.h): the flattened maps as EXR textures and their manifest.
+#include "texgen/flatten/flatten_stack.h"
+
+#include "core/cancel.h"
+#include "core/image_io.h"
+#include "texgen/stack/manifest.h"
+
+#include <fmt/format.h>
+#include <toml++/toml.h>
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace patina::texgen {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+    constexpr const char* kBaker = "flatten";
+
+    /// Path of `file` relative to `dir` when it can be, with '/' separators.
+    std::string relative_text(const fs::path& file, const fs::path& dir)
+    {
+        std::error_code ec;
+        const fs::path rel = fs::relative(file, dir, ec);
+        return (ec || rel.empty() ? file : rel).generic_string();
+    }
+
+    toml::table read_or_new_manifest(const fs::path& path)
+    {
+        std::error_code ec;
+        if (!fs::exists(path, ec)) {
+            toml::table root;
+            root.insert_or_assign("stack", toml::table{{"format", kStackFormatVersion},
+                                                       {"generator", "patina-texgen flatten"}});
+            return root;
+        }
+        try {
+            return toml::parse_file(path.string());
+        } catch (const toml::parse_error& e) {
+            throw std::runtime_error(fmt::format("cannot update manifest '{}': line {}: {}",
+                                                 path.string(), e.source().begin.line,
+                                                 e.description()));
+        }
+    }
+
+}  // namespace
+
+std::vector<fs::path> write_flattened(const fs::path& out_dir, const FlattenedStack& flat,
+                                      const PatinaStackFiles& stack,
+                                      const FlattenOptions& options, const ColorManager& colors)
+{
+    const std::string colorspace = flatten_colorspace(options.color_space);
+    // Check every value before the first file is written: a NaN never becomes a map.
+    for (const FlatMap& map : flat.maps)
+        for (size_t tile = 0; tile < map.tiles.size(); ++tile)
+            for (size_t i = 0; i < map.tiles[tile].size(); ++i)
+                if (!std::isfinite(map.tiles[tile][i])) {
+                    const size_t texel = i / map.channels.size();
+                    throw std::runtime_error(fmt::format(
+                        "flatten of '{}': map '{}' texel ({}, {}) of tile {} channel '{}' is "
+                        "not finite; nothing was written", stack.manifest.string(), map.name,
+                        texel % flat.width, texel / flat.width, flat.udims[tile],
+                        map.channels[i % map.channels.size()]));
+                }
+
+    std::error_code ec;
+    fs::create_directories(out_dir, ec);
+    if (ec)
+        throw std::runtime_error(fmt::format("flatten: cannot create folder '{}': {}",
+                                             out_dir.string(), ec.message()));
+    // An earlier flatten into this folder: its entries go, and its files where not rewritten.
+    for (const std::string& file : forget_maps_of(out_dir, kBaker, "flatten"))
+        fs::remove(out_dir / file, ec);
+
+    const std::string source = relative_text(stack.manifest, out_dir);
+    const bool lone = flat.udims.size() == 1 && flat.udims[0] == 1001;
+    std::vector<fs::path> written;
+    toml::table root = read_or_new_manifest(manifest_path(out_dir));
+    if (!root["maps"].as_table())
+        root.insert_or_assign("maps", toml::table{});
+    toml::table& maps = *root["maps"].as_table();
+
+    for (const FlatMap& map : flat.maps) {
+        const std::string space = map.is_color ? colorspace : std::string("raw");
+        TextureOptions texture;
+        texture.format = options.half ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT;
+        texture.wrap = "clamp";
+        std::vector<fs::path> files;
+        for (size_t tile = 0; tile < flat.udims.size(); ++tile) {
+            throw_if_cancelled();
+            std::vector<float> pixels = map.tiles[tile];
+            if (map.is_color)
+                colors.convert("lin_rec709", colorspace, pixels.data(), pixels.size() / 3);
+            texture.metadata = {{"patina:map", map.name},
+                                {"patina:baker", std::string(kBaker)},
+                                {"patina:units", map.units},
+                                {"patina:description", map.description},
+                                {"patina:udim", flat.udims[tile]},
+                                {"patina:colorspace", space},
+                                {"oiio:ColorSpace", space},
+                                {"patina:stack", source},
+                                {"patina:time_years", static_cast<float>(stack.time_years)}};
+            const fs::path path = out_dir / map_file_name(map.name, flat.udims[tile], lone);
+            make_texture_atomic(path, pixels.data(), flat.width, flat.height,
+                                static_cast<int>(map.channels.size()), map.channels, texture);
+            files.push_back(path);
+            written.push_back(path);
+        }
+        toml::table entry;
+        if (lone) {
+            entry.insert_or_assign("file", files[0].filename().string());
+        } else {
+            entry.insert_or_assign("pattern", map_file_pattern(map.name));
+            toml::array tiles;
+            for (int udim : flat.udims)
+                tiles.push_back(udim);
+            entry.insert_or_assign("tiles", std::move(tiles));
+        }
+        entry.insert_or_assign("domain", "texel");
+        toml::array channels;
+        for (const std::string& c : map.channels)
+            channels.push_back(c);
+        entry.insert_or_assign("channels", std::move(channels));
+        entry.insert_or_assign("units", map.units);
+        entry.insert_or_assign("colorspace", space);
+        entry.insert_or_assign("baker", kBaker);
+        entry.insert_or_assign("description", map.description);
+        entry.insert_or_assign("resolution", toml::array{flat.width, flat.height});
+        entry.insert_or_assign("parameters",
+                               toml::table{{"stack", source},
+                                           {"time_years", stack.time_years},
+                                           {"color_space", options.color_space}});
+        maps.insert_or_assign(map.name, std::move(entry));
+    }
+
+    // What the maps are, for a person or a pipeline reading the folder.
+    toml::table info;
+    info.insert_or_assign("stack", source);
+    info.insert_or_assign("color_space", colorspace);
+    info.insert_or_assign("diffuse", "diffuse_albedo");
+    info.insert_or_assign("height", "height");
+    info.insert_or_assign("normal", "normal");
+    info.insert_or_assign("normal_convention", "tangent space, OpenGL (+Y = +v, green up), "
+                                               "encoded n * 0.5 + 0.5");
+    info.insert_or_assign("texel_size_m", flat.texel_size_m);
+    info.insert_or_assign("normal_scale", options.normal_scale);
+    info.insert_or_assign("two_lobe", "glTF 2.0 metallic-roughness + KHR_materials_clearcoat");
+    info.insert_or_assign("base_color", "gltf_base_color");
+    info.insert_or_assign("metallic_roughness", "gltf_metallic_roughness");
+    info.insert_or_assign("clearcoat", "gltf_clearcoat");
+    toml::array interfaces;
+    for (const FlatMap& map : flat.maps)
+        if (map.name.rfind("interface", 0) == 0 && map.name.ends_with("_specular")) {
+            const std::string stem = map.name.substr(0, map.name.size() - 9);
+            interfaces.push_back(toml::table{{"specular", map.name},
+                                             {"roughness", stem + "_roughness"}});
+        }
+    info.insert_or_assign("interfaces", std::move(interfaces));
+    root.insert_or_assign("flatten", std::move(info));
+
+    std::ostringstream text;
+    text << root << "\n";
+    write_file_atomic(manifest_path(out_dir), {text.str()}, "manifest");
+    written.push_back(manifest_path(out_dir));
+    return written;
+}
+
+}  // namespace patina::texgen

@@ -1,0 +1,39 @@
+// The patina stack a `patina-texgen patina` run wrote (stack_writer.h): its stack.toml
+// `[patina]` table (base material, layers bottom to top with their thickness maps) and the
+// files of those maps, per UDIM tile, as `[maps.<name>]` lists them.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace patina::texgen {
+
+/// One layer of a stack on disk: its material's name and its thickness map's files (one
+/// per tile, in PatinaStackFiles::udims order).
+struct StackLayerFiles {
+    std::string material;
+    std::string map;
+    std::vector<std::filesystem::path> files;
+};
+
+struct PatinaStackFiles {
+    std::filesystem::path manifest;   ///< the stack.toml read
+    std::string base;                 ///< the base material's name
+    double time_years = 0.0;
+    std::vector<StackLayerFiles> layers;  ///< bottom to top
+    std::vector<int> udims;               ///< the tiles, e.g. {1001}
+    int width = 0, height = 0;            ///< texels per tile (the maps' `resolution`)
+    /// Side of a flat strip in metres (the maps' parameter strip_size_m); 0 for a mesh.
+    double strip_size_m = 0.0;
+};
+
+/// Read the stack at `stack` (a folder holding stack.toml, or the stack.toml itself).
+/// Throws std::runtime_error naming the file for: no such file or folder, a TOML syntax
+/// error (with its line), no `[patina]` table (not a patina stack), a layer without
+/// material or map, a map missing from `[maps]`, layers on different tiles, and a map file
+/// that does not exist. A folder holding series.toml but no stack.toml is a time series:
+/// the message names its step folders.
+PatinaStackFiles read_patina_stack(const std::filesystem::path& stack);
+
+}  // namespace patina::texgen
