@@ -2,7 +2,6 @@
 // reciprocity, sampling against pdf (chi-square) and refused inputs.
 #include "plugins/spectral_km/spectral_km_fixture.h"
 
-#include "plugins/basic/basic_plugin.h"
 #include "plugins/basic/chi2.h"
 #include "texgen/fade/fading_simulation.h"
 
@@ -10,6 +9,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <random>
 
 namespace patina::test {
 namespace {
@@ -164,13 +164,15 @@ TEST(SpectralKm, SamplingMatchesPdf)
         chi2::Options opt;
         opt.test_count = static_cast<int>(std::size(cases));
         opt.sample_count = 200000;
-        Pcg32 rng(99);
+        std::mt19937 rng(99);
+        auto uniform = [&rng] { return static_cast<float>(rng() >> 8) * 0x1p-24f; };
         const chi2::Result r = chi2::run(
             opt,
             [&](Vec3* w) {
                 PatinaBsdfSample s;
-                const float u_lobe = rng.next_float();
-                const Vec2 u = rng.next_vec2();
+                const float u_lobe = uniform();
+                const float u0 = uniform();
+                const Vec2 u(u0, uniform());
                 if (!bsdf.sample(wo, u_lobe, u, &s))
                     return false;
                 *w = s.wi;
