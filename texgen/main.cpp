@@ -27,6 +27,9 @@ int main(int argc, char** argv)
     pt::register_wetness_command(app);
     pt::register_deposit_command(app);
     pt::register_patina_command(app);
+    pt::register_stone_command(app);
+    pt::register_flatten_command(app);
+    pt::register_fade_command(app);
 
     patina::install_cancel_handler();
     try {

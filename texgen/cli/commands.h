@@ -15,5 +15,8 @@ void register_exposure_command(CLI::App& app);
 void register_wetness_command(CLI::App& app);
 void register_deposit_command(CLI::App& app);
 void register_patina_command(CLI::App& app);
+void register_stone_command(CLI::App& app);
+void register_flatten_command(CLI::App& app);
+void register_fade_command(CLI::App& app);
 
 }  // namespace patina::texgen
