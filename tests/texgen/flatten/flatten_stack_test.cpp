@@ -175,10 +175,12 @@ TEST_F(FlattenStack, ResolutionResamples)
     EXPECT_EQ(flat.width, 32);
     EXPECT_EQ(flat.height, 32);
     EXPECT_DOUBLE_EQ(flat.texel_size_m, 0.1 / 32);
-    for (const FlatMap& map : flat.maps)
-        if (map.name == "height")
-            for (float v : map.tiles[0])
-                EXPECT_NEAR(v, 0.3f, 1e-6f);
+    for (const FlatMap& map : flat.maps) {
+        if (map.name != "height")
+            continue;
+        for (float v : map.tiles[0])
+            EXPECT_NEAR(v, 0.3f, 1e-6f);
+    }
 }
 
 TEST_F(FlattenStack, IntoTheStacksOwnFolder)
