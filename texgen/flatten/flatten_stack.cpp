@@ -76,8 +76,8 @@ std::string flatten_colorspace(const std::string& option)
     throw std::runtime_error(fmt::format("--color-space '{}': expected srgb or acescg", option));
 }
 
-std::vector<const PatinaMaterial*> stack_materials(const PatinaStackFiles& stack,
-                                                   const MaterialLibrary& library)
+std::vector<const PatinaMaterial*> resolve_stack_materials(const PatinaStackFiles& stack,
+                                                           const MaterialLibrary& library)
 {
     std::vector<const PatinaMaterial*> out;
     auto find = [&](const std::string& name, const std::string& what) {

@@ -46,12 +46,12 @@ std::string flatten_colorspace(const std::string& option);
 /// The materials of `stack`: its base and each layer's, from `library`. Throws
 /// std::runtime_error naming the stack.toml, the layer and the libraries for an unknown
 /// name, and for a base that is not a metal or a layer material.
-std::vector<const PatinaMaterial*> stack_materials(const PatinaStackFiles& stack,
-                                                   const MaterialLibrary& library);
+std::vector<const PatinaMaterial*> resolve_stack_materials(const PatinaStackFiles& stack,
+                                                           const MaterialLibrary& library);
 
 /// Read the thickness maps of `stack` and flatten every texel. `materials` is
-/// stack_materials' answer (base first). Throws std::runtime_error naming the file for an
-/// unreadable map, a map without a "thickness" channel or of another size than the others,
+/// resolve_stack_materials' answer (base first). Throws std::runtime_error naming the file
+/// for an unreadable map, a map without a "thickness" channel or of another size than the others,
 /// and a NaN, infinite or negative texel (with its position).
 FlattenedStack flatten_stack(const PatinaStackFiles& stack,
                              const std::vector<const PatinaMaterial*>& materials,

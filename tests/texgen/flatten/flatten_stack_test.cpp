@@ -61,13 +61,14 @@ protected:
     FlattenedStack flatten(FlattenOptions options = {})
     {
         const PatinaStackFiles stack = read_patina_stack(dir_ / "stack");
-        return flatten_stack(stack, stack_materials(stack, library_), options);
+        return flatten_stack(stack, resolve_stack_materials(stack, library_), options);
     }
 
     std::vector<fs::path> flatten_to(const fs::path& out, FlattenOptions options = {})
     {
         const PatinaStackFiles stack = read_patina_stack(dir_ / "stack");
-        const FlattenedStack flat = flatten_stack(stack, stack_materials(stack, library_), options);
+        const FlattenedStack flat =
+            flatten_stack(stack, resolve_stack_materials(stack, library_), options);
         return write_flattened(out, flat, stack, options, colors_);
     }
 
@@ -231,7 +232,7 @@ TEST_F(FlattenStack, UnknownMaterial)
 {
     write_stack({{"tarnish", ramp(0.5f)}, {"marine patina 9", ramp(1.0f)}});
     const PatinaStackFiles stack = read_patina_stack(dir_ / "stack");
-    const std::string m = test::message_of([&] { stack_materials(stack, library_); });
+    const std::string m = test::message_of([&] { resolve_stack_materials(stack, library_); });
     EXPECT_NE(m.find("layer 2 material 'marine patina 9' is not in the material library"),
               std::string::npos) << m;
     EXPECT_NE(m.find("stack.toml"), std::string::npos) << m;
@@ -253,7 +254,7 @@ TEST_F(FlattenStack, MeshStackNeedsATexelSize)
     write_stack({{"tarnish", ramp(0.5f)}});
     PatinaStackFiles stack = read_patina_stack(dir_ / "stack");
     stack.strip_size_m = 0.0;  // as a mesh stack has none
-    const auto materials = stack_materials(stack, library_);
+    const auto materials = resolve_stack_materials(stack, library_);
     const std::string m = test::message_of([&] { flatten_stack(stack, materials, {}); });
     EXPECT_NE(m.find("pass --texel-size"), std::string::npos) << m;
     FlattenOptions o;
