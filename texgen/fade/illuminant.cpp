@@ -117,7 +117,7 @@ Illuminant illuminant_by_name(const std::string& name)
             s.nm.push_back(nm);
             s.value.push_back(patina::illuminant_a(static_cast<float>(nm)));
         }
-        return {"A", s, 300.0, 830.0, "CIE 15:2004 (Planck, 2856 K, c2 = 1.435e-2 m K)"};
+        return {"A", s, 300.0, 830.0, "CIE 15:2004 (Planck, 2848 K with c2 = 1.435e-2 m K: 2856 K on today's c2)"};
     }
     throw std::runtime_error(fmt::format(
         "unknown illuminant '{}' (known: D65, A, F2, F11 or fluorescent)", name));

@@ -1,0 +1,182 @@
+// The two-flux system of Kimmel et al. 2013 §4.1: the O(N) block Thomas solve against a
+// dense solve of the same matrix (Eqs. 28-34), Kubelka's sublayer formulas (Eqs. 22, 23)
+// and the folding of sublayers into a layer's R_top, T, R_bottom.
+#include "texgen/fade/layer_optics.h"
+#include "texgen/fade/two_flux.h"
+
+#include "core/kubelka_munk.h"
+#include "core/sampling.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+using namespace patina::texgen::fade;
+
+namespace {
+
+// (I - M) E = E_0 assembled literally from Eqs. (29)-(34) and solved by Gaussian
+// elimination with partial pivoting: the O(N^3) reference.
+void dense_solve(const std::vector<double>& rho, const std::vector<double>& tau,
+                 const TwoFluxBoundary& bc, std::vector<double>& down, std::vector<double>& up)
+{
+    const size_t n = rho.size();
+    const size_t dim = 2 * (n + 1);
+    std::vector<double> A(dim * dim, 0.0), b(dim, 0.0);
+    auto rho_at = [&](long i) {
+        return i < 0 ? 0.0 : (static_cast<size_t>(i) == n ? bc.ground_reflectance : rho[i]);
+    };
+    // M: R_i = [[0, rho_i], [rho_{i-1}, 0]] on the diagonal (Eq. 32), T^u_i = [[tau_i, 0],
+    // [0, 0]] above (Eq. 33), T^d_i = [[0, 0], [0, tau_i]] below (Eq. 34).
+    std::vector<double> M(dim * dim, 0.0);
+    for (size_t i = 0; i <= n; ++i) {
+        const size_t r = 2 * i;
+        M[r * dim + r + 1] = rho_at(static_cast<long>(i));
+        M[(r + 1) * dim + r] = rho_at(static_cast<long>(i) - 1);
+        if (i < n) {
+            M[r * dim + r + 2] = tau[i];                   // T^u_i: E^u_i <- E^u_{i+1}
+            M[(r + 3) * dim + r + 1] = tau[i];             // T^d_i: E^d_{i+1} <- E^d_i
+        }
+    }
+    for (size_t i = 0; i < dim * dim; ++i)
+        A[i] = (i % (dim + 1) == 0 ? 1.0 : 0.0) - M[i];
+    b[1] = bc.top_irradiance;          // Eq. (30)
+    b[2 * n] = bc.bottom_irradiance;   // light entering from below
+    for (size_t c = 0; c < dim; ++c) {
+        size_t p = c;
+        for (size_t r = c + 1; r < dim; ++r)
+            if (std::abs(A[r * dim + c]) > std::abs(A[p * dim + c]))
+                p = r;
+        for (size_t k = 0; k < dim; ++k)
+            std::swap(A[c * dim + k], A[p * dim + k]);
+        std::swap(b[c], b[p]);
+        for (size_t r = c + 1; r < dim; ++r) {
+            const double m = A[r * dim + c] / A[c * dim + c];
+            for (size_t k = c; k < dim; ++k)
+                A[r * dim + k] -= m * A[c * dim + k];
+            b[r] -= m * b[c];
+        }
+    }
+    std::vector<double> x(dim);
+    for (size_t r = dim; r-- > 0;) {
+        double s = b[r];
+        for (size_t k = r + 1; k < dim; ++k)
+            s -= A[r * dim + k] * x[k];
+        x[r] = s / A[r * dim + r];
+    }
+    down.resize(n + 1);
+    up.resize(n + 1);
+    for (size_t i = 0; i <= n; ++i) {
+        up[i] = x[2 * i];
+        down[i] = x[2 * i + 1];
+    }
+}
+
+struct Stack {
+    std::vector<double> rho, tau;
+};
+
+// N sublayers of random absorption and scattering (1/m) over a 100 µm layer.
+Stack random_stack(size_t n, uint64_t seed, double max_mu)
+{
+    patina::Pcg32 rng(seed);
+    Stack s;
+    const double dz = 100e-6 / static_cast<double>(n);
+    for (size_t i = 0; i < n; ++i) {
+        const double mu_a = max_mu * rng.uniform_float();
+        const double mu_s = max_mu * rng.uniform_float();
+        const SublayerOptics o = sublayer_optics(mu_a, mu_s, dz);
+        s.rho.push_back(o.rho);
+        s.tau.push_back(o.tau);
+    }
+    return s;
+}
+
+}  // namespace
+
+TEST(TwoFlux, BlockThomasEqualsDenseSolve)
+{
+    for (size_t n : {1u, 2u, 7u, 60u}) {
+        for (const TwoFluxBoundary bc : {TwoFluxBoundary{1.0, 0.0, 0.8},
+                                         TwoFluxBoundary{2.5, 0.0, 0.0},
+                                         TwoFluxBoundary{1.0, 0.7, 0.0},
+                                         TwoFluxBoundary{0.0, 1.0, 0.3}}) {
+            const Stack s = random_stack(n, 17 + n, 3e5);
+            std::vector<double> down(n + 1), up(n + 1), down_ref, up_ref;
+            solve_two_flux(s.rho, s.tau, bc, down, up);
+            dense_solve(s.rho, s.tau, bc, down_ref, up_ref);
+            for (size_t i = 0; i <= n; ++i) {
+                EXPECT_NEAR(down[i], down_ref[i], 1e-10) << "n " << n << " i " << i;
+                EXPECT_NEAR(up[i], up_ref[i], 1e-10) << "n " << n << " i " << i;
+            }
+        }
+    }
+}
+
+TEST(TwoFlux, SublayerOpticsMatchesKubelkaAndItsLimits)
+{
+    // Eqs. (22), (23) evaluated as printed with a = (S + K)/S, b = sqrt(a^2 - 1).
+    const double K = 2.0e4, S = 3.0e4, dz = 50e-6;
+    const double a = (S + K) / S, b = std::sqrt(a * a - 1.0), x = b * S * dz;
+    const SublayerOptics o = sublayer_optics(K, S, dz);
+    EXPECT_NEAR(o.rho, 1.0 / (a + b / std::tanh(x)), 1e-14);
+    EXPECT_NEAR(o.tau, b / (a * std::sinh(x) + b * std::cosh(x)), 1e-14);
+    // Non-scattering: Beer-Lambert; non-absorbing: rho = S d / (1 + S d) (Kubelka 1948).
+    EXPECT_NEAR(sublayer_optics(K, 0.0, dz).tau, std::exp(-K * dz), 1e-15);
+    EXPECT_EQ(sublayer_optics(K, 0.0, dz).rho, 0.0);
+    EXPECT_NEAR(sublayer_optics(0.0, S, dz).rho, S * dz / (1.0 + S * dz), 1e-15);
+    EXPECT_NEAR(sublayer_optics(0.0, S, dz).tau, 1.0 / (1.0 + S * dz), 1e-15);
+    // No jump where the series branch (x < 1e-2) hands over to the exponential one.
+    const double kb = 1e-2 / dz;  // K with S = 0 puts x exactly at the switch
+    const SublayerOptics lo = sublayer_optics(kb * (1 - 1e-9), 1.0, dz);
+    const SublayerOptics hi = sublayer_optics(kb * (1 + 1e-9), 1.0, dz);
+    EXPECT_NEAR(lo.tau, hi.tau, 1e-10);
+    EXPECT_NEAR(lo.rho, hi.rho, 1e-10);
+    // Very thick: R_inf and no overflow.
+    const SublayerOptics thick = sublayer_optics(K, S, 1.0);
+    EXPECT_NEAR(thick.rho, patina::km_r_infinity(static_cast<float>(K / S)), 1e-6);
+    EXPECT_EQ(thick.tau, 0.0);
+}
+
+TEST(TwoFlux, TopReflectanceEqualsKmCompositingOfTheSublayers)
+{
+    // The system's E^u_0 / E_0 against core kubelka_munk.h composited sublayer by sublayer
+    // (float, hence 1e-6) and against the double fold of layer_optics.h (1e-12).
+    const Stack s = random_stack(40, 5, 2e5);
+    const double ground = 0.6;
+    std::vector<double> down(41), up(41);
+    solve_two_flux(s.rho, s.tau, {1.0, 0.0, ground}, down, up);
+    std::vector<patina::KmLayer> layers;
+    for (size_t i = 0; i < s.rho.size(); ++i)
+        layers.push_back({static_cast<float>(s.rho[i]), static_cast<float>(s.tau[i])});
+    EXPECT_NEAR(up[0], patina::km_reflectance_over(layers, static_cast<float>(ground)), 1e-6);
+    const LayerOpticsValue v = fold_sublayers(s.rho, s.tau);
+    EXPECT_NEAR(up[0], reflectance_over(v, ground), 1e-12);
+}
+
+TEST(TwoFlux, TransmittanceIsReciprocalAndBottomReflectanceMatches)
+{
+    const Stack s = random_stack(30, 9, 3e5);
+    const LayerOpticsValue v = fold_sublayers(s.rho, s.tau);
+    std::vector<double> down(31), up(31);
+    // Lit from the top over a black ground: E^d_N = T.
+    solve_two_flux(s.rho, s.tau, {1.0, 0.0, 0.0}, down, up);
+    EXPECT_NEAR(down[30], v.t, 1e-12);
+    EXPECT_NEAR(up[0], v.r_top, 1e-12);
+    // Lit from below with nothing above: E^u_0 = T (reciprocity), E^d_N = R_bottom.
+    solve_two_flux(s.rho, s.tau, {0.0, 1.0, 0.0}, down, up);
+    EXPECT_NEAR(up[0], v.t, 1e-12);
+    EXPECT_NEAR(down[30], v.r_bottom, 1e-12);
+    // A depth-varying layer reflects differently from its two sides.
+    EXPECT_GT(std::abs(v.r_top - v.r_bottom), 1e-4);
+}
+
+TEST(TwoFlux, FluenceRateAveragesTheBoundaries)
+{
+    const std::vector<double> down{1.0, 0.5, 0.25}, up{0.3, 0.2, 0.1};
+    std::vector<double> f(2);
+    sublayer_fluence_rate(down, up, f);
+    EXPECT_DOUBLE_EQ(f[0], 0.5 * (1.3 + 0.7));
+    EXPECT_DOUBLE_EQ(f[1], 0.5 * (0.7 + 0.35));
+}
