@@ -13,6 +13,9 @@
  *  forward_k        float  0.6                 Schlick k of the forward lobe, [0, 0.99].
  *  backward_k       float  -0.3                Schlick k of the backward lobe, [-0.99, 0].
  *  forward_weight   float  0.8                 Weight of the forward lobe, [0, 1].
+ *  crust_gain       float  1                   Crust fraction that counts as full cover: ×.
+ *  iron_gain        float  1                   The same for iron oxide.
+ *  salt_gain        float  1                   The same for salt.
  *
  * Dorsey et al. 1999 §5 treat stone as a participating medium: light refracted into it is
  * scattered by grains, bubbles and micro-cracks. This medium reads the voxels the stone
@@ -23,8 +26,11 @@
  *
  *   extinction   σt(x) = sigma_t · density(x)                     (grey: every wavelength)
  *   albedo       a(x, λ) = (1 − c − i − s) a_stone + c a_crust + i a_iron + s a_salt,
- *                c, i, s the crust, iron and salt fractions at x (scaled down to sum 1 when
- *                they sum above it); σs = a σt, σa = (1 − a) σt
+ *                c, i, s the crust, iron and salt fractions at x times their gains, each
+ *                clamped to [0, 1] (scaled down to sum 1 when they sum above it);
+ *                σs = a σt, σa = (1 − a) σt. A gain > 1 says how strongly a small
+ *                concentration colours the stone (a simulation's fractions are
+ *                concentrations, not coverage).
  *   phase        p = w p_k1 + (1 − w) p_k2, two Schlick lobes (§5.1; patina/volume/
  *                schlick_phase.h), sampled exactly; its pdf is p
  *
@@ -89,6 +95,13 @@ namespace {
          "Schlick parameter k of the backward-scattering lobe (0 is isotropic)."},
         {"forward_weight", PATINA_PARAM_FLOAT, {0.8f, 0.0f, 0.0f}, nullptr, nullptr, 0.0f, 1.0f, "",
          "Weight of the forward lobe; the backward lobe has 1 - forward_weight."},
+        {"crust_gain", PATINA_PARAM_FLOAT, {1.0f, 0.0f, 0.0f}, nullptr, nullptr, 0.0f, 1e4f, "",
+         "Multiplies the voxels' crust fraction before mixing (clamped to 1): how strongly a "
+         "small concentration darkens the stone."},
+        {"iron_gain", PATINA_PARAM_FLOAT, {1.0f, 0.0f, 0.0f}, nullptr, nullptr, 0.0f, 1e4f, "",
+         "Multiplies the voxels' iron oxide fraction before mixing (clamped to 1)."},
+        {"salt_gain", PATINA_PARAM_FLOAT, {1.0f, 0.0f, 0.0f}, nullptr, nullptr, 0.0f, 1e4f, "",
+         "Multiplies the voxels' salt fraction before mixing (clamped to 1)."},
     };
     // clang-format on
 
@@ -98,6 +111,7 @@ namespace {
         float sigma_t = 0.0f;
         PatinaRgbSpectrum albedo[4] = {}; // stone, crust, iron, salt
         volume::TwoLobeSchlick phase;
+        float gain[volume::kCompositionCount] = {1.0f, 1.0f, 1.0f}; // crust, iron, salt
     };
 
     bool in_range(const PatinaParamValue& v, float lo, float hi)
@@ -135,6 +149,13 @@ namespace {
             return nullptr;
         }
 
+        for (int c = 0; c < volume::kCompositionCount; ++c)
+            if (!in_range(values[9 + c], 0.0f, 1e4f)) {
+                report_error(host, kName, "%s %g must lie in [0, 1e4]", kParams[9 + c].name,
+                             values[9 + c].f);
+                return nullptr;
+            }
+
         auto* m = make_instance<SlabVolume>(host, kName);
         if (!m)
             return nullptr;
@@ -156,6 +177,8 @@ namespace {
         m->phase.k_forward = forward_k.f;
         m->phase.k_backward = backward_k.f;
         m->phase.w_forward = forward_weight.f;
+        for (int c = 0; c < volume::kCompositionCount; ++c)
+            m->gain[c] = values[9 + c].f;
         return m;
     }
 
@@ -170,9 +193,9 @@ namespace {
         float density = 0.0f, q[volume::kCompositionCount] = {};
         m.grid.sample(x, &density, q);
         float sum = 0.0f;
-        for (float& f : q) {
-            f = std::clamp(f, 0.0f, 1.0f);
-            sum += f;
+        for (int c = 0; c < volume::kCompositionCount; ++c) {
+            q[c] = std::clamp(q[c] * m.gain[c], 0.0f, 1.0f);
+            sum += q[c];
         }
         if (sum > 1.0f) {
             for (float& f : q)

@@ -208,6 +208,14 @@ TEST(SlabVolume, AlbedoMixesTheComposition)
     ASSERT_TRUE(t.scattered);
     EXPECT_NEAR(t.weight[0], 0.7f, 1e-5f);
 
+    // Gains turn small concentrations into cover: iron 0.05 × 10 = 0.5 → 0.5·0.8 + 0.5·0.4
+    write_volume("traces", 2, 2, 2, Vec3(0, 0, 0), Vec3(1, 1, 1),
+                 uniform(Voxel{1.0f, 0.0f, 0.05f, 0.0f}));
+    const Medium traces(make("slab_volume", "file = \"traces.exr\"\niron_gain = 10.0\n" + albedos));
+    const auto g = traces.sample_distance(Vec3(0.5f, 0.5f, -1.0f), Vec3(0, 0, 1), 10.0f, 0.3f);
+    ASSERT_TRUE(g.scattered);
+    EXPECT_NEAR(g.weight[0], 0.6f, 1e-5f);
+
     // A coloured albedo differs per wavelength: iron oxide reflects red more than blue
     write_volume("rusty", 2, 2, 2, Vec3(0, 0, 0), Vec3(1, 1, 1),
                  uniform(Voxel{1.0f, 0.0f, 1.0f, 0.0f}));
