@@ -4,12 +4,17 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
 namespace patina::texgen::fade {
 
 namespace {
+
+// Wavelengths are processed in blocks of kBlock: every loop over a block is branch-free and
+// vectorises (sublayer optics, the block Thomas sweeps, the fluence).
+constexpr size_t kBlock = 16;
 
 // (exp(-a T) - exp(-b T)) / (b - a) = exp(-a T) T phi((b - a) T), phi(x) = (1 - e^-x) / x:
 // the product of a first-order chain parent -> product over one step, stable for a = b.
@@ -37,11 +42,13 @@ FadeSimulation::FadeSimulation(const FadeMaterial& material, const WavelengthGri
     dz_ = material.thickness_m / sublayers;
     weights_ = grid.trapezoid_weights();
     const size_t W = grid.size();
+    padded_ = (W + kBlock - 1) / kBlock * kBlock;
+    const size_t Wp = padded_;
     const size_t J = material.colorants.size();
-    absorption_.resize(J * W);
-    scattering_.resize(J * W);
-    fading_.resize(J * W);
-    production_.assign(J * W, 0.0);
+    absorption_.assign(J * Wp, 0.0);
+    scattering_.assign(J * Wp, 0.0);
+    fading_.assign(J * Wp, 0.0);
+    production_.assign(J * Wp, 0.0);
     product_.assign(J, -1);
     for (size_t j = 0; j < J; ++j) {
         const Colorant& c = material.colorants[j];
@@ -51,12 +58,12 @@ FadeSimulation::FadeSimulation(const FadeMaterial& material, const WavelengthGri
         for (size_t w = 0; w < W; ++w) {
             const double nm = grid.nm[w];
             const double a = c.absorption_per_m.at(nm);
-            absorption_[j * W + w] = a;
-            scattering_[j * W + w] = c.scattering_per_m.at(nm);
+            absorption_[j * Wp + w] = a;
+            scattering_[j * Wp + w] = c.scattering_per_m.at(nm);
             // Eq. (14): the energy absorbed by colorant j, weighted by β_j(λ) (§3.1.2).
-            fading_[j * W + w] = weights_[w] * c.fading.at(nm) * a;
+            fading_[j * Wp + w] = weights_[w] * c.fading.at(nm) * a;
             if (c.breakdown)
-                production_[j * W + w] = weights_[w] * c.breakdown->rate.at(nm) * a;
+                production_[j * Wp + w] = weights_[w] * c.breakdown->rate.at(nm) * a;
         }
     }
     substrate_ = grid.sample(material.substrate_reflectance);
@@ -77,7 +84,7 @@ void FadeSimulation::set_fractions(std::vector<double> fractions)
 void FadeSimulation::sublayer_optics_at(size_t w, std::span<double> rho,
                                         std::span<double> tau) const
 {
-    const size_t W = grid_.size();
+    const size_t W = padded_;
     const size_t J = colorants();
     for (int i = 0; i < sublayers_; ++i) {
         // Eqs. (12), (13): the mixture's coefficients are the fraction-weighted sums.
@@ -106,26 +113,114 @@ void FadeSimulation::step(const Illumination& light, double dt_s)
     if (!(dt_s >= 0.0))
         throw std::runtime_error("fade simulation: negative time step");
 
-    std::vector<double> rho(N), tau(N), down(N + 1), up(N + 1), fluence(N);
     // Per sublayer and colorant: loss rate r = ∫ β a F dλ and gain rate ∫ γ a F dλ (1/s).
     std::vector<double> loss(N * J, 0.0), gain(N * J, 0.0);
-    for (size_t w = 0; w < W; ++w) {
-        const double top = light.top[w];
-        const double bottom = light.bottom.empty() ? 0.0 : light.bottom[w];
-        if (top == 0.0 && bottom == 0.0)
+    std::vector<char> fades(J), produces(J);
+    for (size_t j = 0; j < J; ++j) {
+        fades[j] = std::any_of(&fading_[j * padded_], &fading_[(j + 1) * padded_],
+                               [](double v) { return v != 0.0; });
+        produces[j] = std::any_of(&production_[j * padded_], &production_[(j + 1) * padded_],
+                                  [](double v) { return v != 0.0; });
+    }
+    // Per block of wavelengths, [i * kBlock + b]: sublayer optics, then the block Thomas
+    // elimination of two_flux.h (same formulas, one wavelength per lane).
+    thread_local std::vector<double> work;
+    work.assign(8 * (N + 1) * kBlock, 0.0);
+    double* rho = work.data();
+    double* tau = rho + (N + 1) * kBlock;
+    double* c0 = tau + (N + 1) * kBlock;
+    double* c1 = c0 + (N + 1) * kBlock;
+    double* g0 = c1 + (N + 1) * kBlock;
+    double* g1 = g0 + (N + 1) * kBlock;
+    double* up = g1 + (N + 1) * kBlock;
+    double* down = up + (N + 1) * kBlock;
+    for (size_t w0 = 0; w0 < padded_; w0 += kBlock) {
+        double e_top[kBlock], e_bottom[kBlock], ground[kBlock];
+        bool lit = false;
+        for (size_t b = 0; b < kBlock; ++b) {
+            const size_t w = w0 + b;
+            e_top[b] = w < W ? light.top[w] : 0.0;
+            e_bottom[b] = w < W && !light.bottom.empty() ? light.bottom[w] : 0.0;
+            ground[b] = w < W ? substrate_[w] : 0.0;
+            lit |= e_top[b] != 0.0 || e_bottom[b] != 0.0;
+        }
+        if (!lit)
             continue;
-        // §4.1: the fluence rate per sublayer at this wavelength.
-        sublayer_optics_at(w, rho, tau);
-        solve_two_flux(rho, tau, {top, bottom, substrate_[w]}, down, up);
-        sublayer_fluence_rate(down, up, fluence);
-        for (size_t j = 0; j < J; ++j) {
-            const double fade = fading_[j * W + w];
-            const double prod = production_[j * W + w];
-            if (fade == 0.0 && prod == 0.0)
-                continue;
-            for (size_t i = 0; i < N; ++i) {
-                loss[i * J + j] += fade * fluence[i];
-                gain[i * J + j] += prod * fluence[i];
+        // Eqs. (12), (13), (22), (23) per sublayer and wavelength.
+        for (size_t i = 0; i < N; ++i) {
+            double mu_a[kBlock] = {}, mu_s[kBlock] = {};
+            const double* f = &fractions_[i * J];
+            for (size_t j = 0; j < J; ++j) {
+                const double* a = &absorption_[j * padded_ + w0];
+                const double* s = &scattering_[j * padded_ + w0];
+                for (size_t b = 0; b < kBlock; ++b) {
+                    mu_a[b] += f[j] * a[b];
+                    mu_s[b] += f[j] * s[b];
+                }
+            }
+            for (size_t b = 0; b < kBlock; ++b) {
+                const SublayerOptics o = sublayer_optics(mu_a[b], mu_s[b], dz_);
+                rho[i * kBlock + b] = o.rho;
+                tau[i * kBlock + b] = o.tau;
+            }
+        }
+        for (size_t b = 0; b < kBlock; ++b) {
+            rho[N * kBlock + b] = ground[b];
+            tau[N * kBlock + b] = 0.0;
+        }
+        // Forward sweep (see solve_two_flux).
+        for (size_t i = 0; i <= N; ++i) {
+            const double* rho_i = &rho[i * kBlock];
+            const double* tau_i = &tau[i * kBlock];
+            for (size_t b = 0; b < kBlock; ++b) {
+                const double rho_above = i > 0 ? rho[(i - 1) * kBlock + b] : 0.0;
+                const double prev_tau = i > 0 ? tau[(i - 1) * kBlock + b] : 0.0;
+                const double prev_c1 = i > 0 ? c1[(i - 1) * kBlock + b] : 0.0;
+                const double prev_g1 = i > 0 ? g1[(i - 1) * kBlock + b] : 0.0;
+                const double w01 = -rho_i[b];
+                const double w10 = -rho_above + prev_tau * prev_c1;
+                const double inv_det = 1.0 / (1.0 - w01 * w10);
+                const double r0 = i == N ? e_bottom[b] : 0.0;
+                const double r1 = (i == 0 ? e_top[b] : 0.0) + prev_tau * prev_g1;
+                g0[i * kBlock + b] = (r0 - w01 * r1) * inv_det;
+                g1[i * kBlock + b] = (r1 - w10 * r0) * inv_det;
+                c0[i * kBlock + b] = -tau_i[b] * inv_det;
+                c1[i * kBlock + b] = tau_i[b] * w10 * inv_det;
+            }
+        }
+        // Back substitution.
+        for (size_t b = 0; b < kBlock; ++b) {
+            up[N * kBlock + b] = g0[N * kBlock + b];
+            down[N * kBlock + b] = g1[N * kBlock + b];
+        }
+        for (size_t i = N; i-- > 0;) {
+            for (size_t b = 0; b < kBlock; ++b) {
+                const double u_next = up[(i + 1) * kBlock + b];
+                up[i * kBlock + b] = g0[i * kBlock + b] - c0[i * kBlock + b] * u_next;
+                down[i * kBlock + b] = g1[i * kBlock + b] - c1[i * kBlock + b] * u_next;
+            }
+        }
+        // §4.1: the mean fluence rate of each sublayer; accumulate Eq. (14)'s integrals.
+        for (size_t i = 0; i < N; ++i) {
+            double fluence[kBlock];
+            for (size_t b = 0; b < kBlock; ++b)
+                fluence[b] = 0.5 * (down[i * kBlock + b] + up[i * kBlock + b] +
+                                    down[(i + 1) * kBlock + b] + up[(i + 1) * kBlock + b]);
+            for (size_t j = 0; j < J; ++j) {
+                if (fades[j]) {
+                    const double* fa = &fading_[j * padded_ + w0];
+                    double sum = 0.0;
+                    for (size_t b = 0; b < kBlock; ++b)
+                        sum += fa[b] * fluence[b];
+                    loss[i * J + j] += sum;
+                }
+                if (produces[j]) {
+                    const double* pr = &production_[j * padded_ + w0];
+                    double sum = 0.0;
+                    for (size_t b = 0; b < kBlock; ++b)
+                        sum += pr[b] * fluence[b];
+                    gain[i * J + j] += sum;
+                }
             }
         }
     }
@@ -178,7 +273,7 @@ LayerSpectra FadeSimulation::spectra() const
 
 std::vector<double> FadeSimulation::absorption_profile(size_t w) const
 {
-    const size_t W = grid_.size();
+    const size_t W = padded_;
     const size_t J = colorants();
     std::vector<double> out(static_cast<size_t>(sublayers_), 0.0);
     for (size_t i = 0; i < out.size(); ++i)
@@ -189,7 +284,7 @@ std::vector<double> FadeSimulation::absorption_profile(size_t w) const
 
 std::vector<double> FadeSimulation::scattering_profile(size_t w) const
 {
-    const size_t W = grid_.size();
+    const size_t W = padded_;
     const size_t J = colorants();
     std::vector<double> out(static_cast<size_t>(sublayers_), 0.0);
     for (size_t i = 0; i < out.size(); ++i)

@@ -73,14 +73,16 @@ private:
     void sublayer_optics_at(size_t w, std::span<double> rho, std::span<double> tau) const;
 
     WavelengthGrid grid_;
+    size_t padded_ = 0;                 // wavelengths padded to whole blocks (zeros)
     int sublayers_ = 0;
     double dz_ = 0.0;
     std::vector<std::string> colorant_names_;
     std::vector<double> weights_;       // trapezoid weights, nm
-    std::vector<double> absorption_;    // [j * W + w], 1/m per unit fraction
-    std::vector<double> scattering_;    // [j * W + w]
-    std::vector<double> fading_;        // [j * W + w]: w_λ β_j a_j (m^2 J^-1 nm per unit)
-    std::vector<double> production_;    // [j * W + w]: w_λ γ_j a_j
+    // Per colorant j and padded wavelength w, at [j * padded_ + w]:
+    std::vector<double> absorption_;    // a_j = mu_a / f, 1/m
+    std::vector<double> scattering_;    // mu_s / f, 1/m
+    std::vector<double> fading_;        // w_λ β_j a_j (trapezoid weight w_λ in nm)
+    std::vector<double> production_;    // w_λ γ_j a_j
     std::vector<int> product_;          // breakdown product of colorant j, or -1
     std::vector<double> substrate_;     // [w]
     std::vector<double> fractions_;     // [i * J + j]

@@ -6,33 +6,6 @@
 
 namespace patina::texgen::fade {
 
-SublayerOptics sublayer_optics(double mu_a, double mu_s, double dz)
-{
-    const double K = mu_a > 0.0 ? mu_a : 0.0;
-    const double S = mu_s > 0.0 ? mu_s : 0.0;
-    const double d = dz > 0.0 ? dz : 0.0;
-    // Eqs. (22), (23) with a = (K + S)/S, b = sqrt(a^2 - 1): b S = sqrt(K^2 + 2 K S), so
-    // x = b S dz and, multiplying through by S,
-    //   rho = S sinh x / D, tau = b S / D, D = (K + S) sinh x + b S cosh x,
-    // finite for S = 0 and K = 0 alike.
-    const double bS = std::sqrt(K * (K + 2.0 * S));
-    const double x = bS * d;
-    if (x < 1e-2) {
-        // sinh x / x and cosh x by their series (error < x^8 / 9!): no 0/0 as x -> 0.
-        const double x2 = x * x;
-        const double sinhc = 1.0 + x2 * (1.0 / 6.0 + x2 * (1.0 / 120.0 + x2 / 5040.0));
-        const double cosh = 1.0 + x2 * (0.5 + x2 * (1.0 / 24.0 + x2 / 720.0));
-        const double inv = 1.0 / ((K + S) * sinhc * d + cosh);
-        return {S * sinhc * d * inv, inv};
-    }
-    // Divide by cosh x in terms of e = exp(-x): no overflow for thick sublayers.
-    const double e = std::exp(-x);
-    const double e2 = e * e;
-    const double one_minus = -std::expm1(-2.0 * x);
-    const double inv = 1.0 / ((K + S) * one_minus + bS * (1.0 + e2));
-    return {S * one_minus * inv, 2.0 * bS * e * inv};
-}
-
 void solve_two_flux(std::span<const double> rho, std::span<const double> tau,
                     const TwoFluxBoundary& boundary, std::span<double> down,
                     std::span<double> up)

@@ -233,6 +233,30 @@ TEST(FadingSimulation, FirstOrderKineticsAtTheSurfaceOfAThinLayer)
     }
 }
 
+TEST(FadingSimulation, StepEqualsTheScalarSolvePerWavelength)
+{
+    // step() runs the block Thomas sweeps over blocks of wavelengths; one step must equal
+    // Eq. (35) with the fluence of the scalar solve_two_flux at each wavelength.
+    const FadeMaterial m = material_of(
+        {flat_colorant("c", 4e5, 2e4, 3e-9), flat_colorant("w", 0.0, 5e4, 0.0)}, {0.2, 0.5},
+        80e-6, 0.6);
+    const WavelengthGrid g = WavelengthGrid::uniform(400, 700, 7);  // 43: not whole blocks
+    FadeSimulation sim(m, g, 25);
+    Illumination light = top_light(g, 0.0);
+    for (size_t w = 0; w < g.size(); ++w)
+        light.top[w] = 0.5 + 0.01 * static_cast<double>(w);
+    std::vector<double> rate(25, 0.0);
+    const std::vector<double> weights = g.trapezoid_weights();
+    for (size_t w = 0; w < g.size(); ++w) {
+        const std::vector<double> f = sim.fluence_rate(light, w);
+        for (int i = 0; i < 25; ++i)
+            rate[i] += weights[w] * 3e-9 * g.nm[w] / 500.0 * 4e5 * f[i];
+    }
+    sim.step(light, 40.0);
+    for (int i = 0; i < 25; ++i)
+        EXPECT_NEAR(sim.fraction(i, 0), 0.2 * std::exp(-rate[i] * 40.0), 1e-14) << i;
+}
+
 TEST(FadingSimulation, RejectsBadInput)
 {
     const FadeMaterial m = material_of({flat_colorant("c", 1e3, 0.0, 1e-6)}, {0.5}, 1e-6, 0.0);

@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -136,7 +137,17 @@ TEST(TwoFlux, SublayerOpticsMatchesKubelkaAndItsLimits)
     // Very thick: R_inf and no overflow.
     const SublayerOptics thick = sublayer_optics(K, S, 1.0);
     EXPECT_NEAR(thick.rho, patina::km_r_infinity(static_cast<float>(K / S)), 1e-6);
-    EXPECT_EQ(thick.tau, 0.0);
+    EXPECT_LT(thick.tau, 1e-300);
+}
+
+TEST(TwoFlux, BranchFreeExponentialIsAccurate)
+{
+    for (double y = -750.0; y <= 0.0; y += 0.0137) {
+        const double ref = std::exp(std::max(y, -708.0));
+        EXPECT_NEAR(exp_nonpositive(y) / ref, 1.0, 1e-15) << y;
+    }
+    EXPECT_EQ(exp_nonpositive(0.0), 1.0);
+    EXPECT_EQ(exp_nonpositive(1.0), 1.0);  // clamped: only y <= 0 is meant
 }
 
 TEST(TwoFlux, TopReflectanceEqualsKmCompositingOfTheSublayers)
