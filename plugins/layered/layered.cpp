@@ -24,9 +24,11 @@
  *     R = R1 + T1² R2 / (1 - R1 R2), T = T1 T2 / (1 - R1 R2)): the diffuse lobe R / π;
  *   - one GGX lobe per interface, with the roughness and specular colour of the material below
  *     it (each layer's own top surface, then the base's), times T_above², the KM
- *     transmittance of the layers above, squared (§4.3). Dielectric interfaces use Schlick's
- *     Fresnel with F0 = the specular colour; a metal base uses the exact conductor Fresnel of
- *     its n + ik.
+ *     transmittance of the layers above, squared (§4.3). A dielectric interface reflects
+ *     with the exact Fresnel of the index η = (1 + √F0) / (1 - √F0) whose normal reflectance
+ *     is the specular colour F0 (so specular 0 reflects nothing at any angle); a metal base
+ *     uses the exact conductor Fresnel of its n + ik. Two adjacent layers of one material are
+ *     one layer (no interface between them).
  *
  * Choices the paper leaves open (plugins/layered/README.md explains them):
  *   - A metal base under layers: the diffuse compositing sees its hemispherical reflectance
@@ -47,6 +49,8 @@
  */
 #include "layered_model.h"
 
+#include <algorithm>
+#include <atomic>
 #include <cstdio>
 #include <cstring>
 #include <exception>
@@ -75,7 +79,44 @@ namespace {
 
     struct Instance {
         LayeredModel model;
+        uint64_t id;  ///< unique for the process's lifetime (keys the per-thread cache)
     };
+
+    std::atomic<uint64_t> g_next_id{1};
+
+    /// The set-up of the last shading point of this thread. A renderer calls sample, eval
+    /// and pdf at one point with one set of wavelengths: the thickness lookups and the KM
+    /// compositing run once for all three.
+    struct CachedPoint {
+        uint64_t owner = 0;
+        float key[6] = {};
+        PatinaWavelengths wl{};
+        PointState state;
+    };
+
+    const PointState& point(const void* instance, const PatinaShadingContext* ctx,
+                            const PatinaWavelengths& wl)
+    {
+        const Instance& inst = *static_cast<const Instance*>(instance);
+        if (!ctx) {
+            thread_local PointState uncached;
+            inst.model.setup(ctx, wl, &uncached);
+            return uncached;
+        }
+        thread_local CachedPoint cache;
+        const float key[6] = {ctx->uv.x,     ctx->uv.y,     ctx->duvdx[0],
+                              ctx->duvdx[1], ctx->duvdy[0], ctx->duvdy[1]};
+        const int n = std::clamp(wl.count, 0, PATINA_MAX_WAVELENGTHS);
+        if (cache.owner == inst.id && std::memcmp(cache.key, key, sizeof key) == 0 &&
+            cache.wl.count == wl.count &&
+            std::memcmp(cache.wl.lambda_nm, wl.lambda_nm, sizeof(float) * n) == 0)
+            return cache.state;
+        inst.model.setup(ctx, wl, &cache.state);
+        cache.owner = inst.id;
+        std::memcpy(cache.key, key, sizeof key);
+        cache.wl = wl;
+        return cache.state;
+    }
 
     void report(const PatinaHost* host, const std::string& message)
     {
@@ -124,7 +165,8 @@ namespace {
                 }
                 textures.push_back(t);
             }
-            return new Instance{LayeredModel(stack, std::move(textures), host, options)};
+            return new Instance{LayeredModel(stack, std::move(textures), host, options),
+                                g_next_id.fetch_add(1)};
         } catch (const std::exception& e) {
             report(host, e.what());
             return nullptr;
@@ -141,36 +183,31 @@ namespace {
         return static_cast<const Instance*>(instance)->model;
     }
 
+    // Each entry point: the (cached) set-up of the point, then the model.
+
     void eval(const void* instance, const PatinaShadingContext* ctx, PatinaVec3 wo, PatinaVec3 wi,
               const PatinaWavelengths* wl, float* f)
     {
-        PointState s;
-        model_of(instance).setup(ctx, *wl, &s);
-        model_of(instance).eval(s, wo, wi, f);
+        model_of(instance).eval(point(instance, ctx, *wl), wo, wi, f);
     }
 
     float pdf(const void* instance, const PatinaShadingContext* ctx, PatinaVec3 wo, PatinaVec3 wi,
               const PatinaWavelengths* wl)
     {
-        PointState s;
-        model_of(instance).setup(ctx, *wl, &s);
-        return model_of(instance).pdf(s, wo, wi);
+        return model_of(instance).pdf(point(instance, ctx, *wl), wo, wi);
     }
 
     int sample(const void* instance, const PatinaShadingContext* ctx, PatinaVec3 wo, float u_lobe,
                PatinaVec2 u, const PatinaWavelengths* wl, PatinaBsdfSample* out)
     {
-        PointState s;
-        model_of(instance).setup(ctx, *wl, &s);
-        return model_of(instance).sample(s, wo, u_lobe, u, out);
+        return model_of(instance).sample(point(instance, ctx, *wl), wo, u_lobe, u,
+                                         out);
     }
 
     void albedo(const void* instance, const PatinaShadingContext* ctx, PatinaVec3 wo,
                 const PatinaWavelengths* wl, float* a)
     {
-        PointState s;
-        model_of(instance).setup(ctx, *wl, &s);
-        model_of(instance).albedo(s, wo, a);
+        model_of(instance).albedo(point(instance, ctx, *wl), wo, a);
     }
 
     const PatinaBsdfFuncs kFuncs = {eval, pdf, sample, albedo};

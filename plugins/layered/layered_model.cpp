@@ -31,15 +31,22 @@ namespace {
         return g;
     }
 
-    /// Directional albedo tables of a GGX reflection lobe for F = 1 and F = (1 - cos θh)^5,
-    /// by stratified sampling of visible normals (weight G2 / G1, Heitz 2014/2018).
+    /// Directional albedo tables of a GGX reflection lobe, E(F0, μ) and E for F = 1, by
+    /// stratified sampling of visible normals (weight F G2 / G1: Heitz 2014, 2018).
     void tabulate_albedo(CompiledMaterial* m)
     {
-        constexpr int kStrata = 48;
+        constexpr int kStrata = 32;
+        std::array<float, kF0Nodes> f0, eta;
+        for (int q = 0; q < kF0Nodes; ++q) {
+            const float x = kF0MinSqrt + (kF0MaxSqrt - kF0MinSqrt) * q / (kF0Nodes - 1);
+            f0[q] = x * x;
+            eta[q] = eta_of_f0(f0[q]);
+        }
         for (int node = 0; node < kAlbedoNodes; ++node) {
             const float mu = std::max(1e-3f, static_cast<float>(node) / (kAlbedoNodes - 1));
             const Vec3 wo(std::sqrt(std::max(0.0f, 1.0f - mu * mu)), 0.0f, mu);
-            double a = 0.0, b = 0.0;
+            std::array<double, kF0Nodes> e{};
+            double one = 0.0;
             for (int i = 0; i < kStrata; ++i)
                 for (int j = 0; j < kStrata; ++j) {
                     const Vec2 u((i + 0.5f) / kStrata, (j + 0.5f) / kStrata);
@@ -48,12 +55,15 @@ namespace {
                     if (wi.z <= 0.0f)
                         continue;
                     const float w = m->distribution.g(wo, wi) / m->distribution.g1(wo);
-                    const float c = std::clamp(1.0f - dot(wo, wm), 0.0f, 1.0f);
-                    a += w;
-                    b += w * (c * c) * (c * c) * c;
+                    const float c = std::clamp(dot(wo, wm), 0.0f, 1.0f);
+                    one += w;
+                    for (int q = 0; q < kF0Nodes; ++q)
+                        e[q] += w * dielectric_fresnel(c, f0[q], eta[q]);
                 }
-            m->albedo_a[node] = static_cast<float>(a / (kStrata * kStrata));
-            m->albedo_b[node] = static_cast<float>(b / (kStrata * kStrata));
+            constexpr double kInvCount = 1.0 / (kStrata * kStrata);
+            m->albedo_one[node] = static_cast<float>(one * kInvCount);
+            for (int q = 0; q < kF0Nodes; ++q)
+                m->albedo[q * kAlbedoNodes + node] = static_cast<float>(e[q] * kInvCount);
         }
     }
 
@@ -122,22 +132,46 @@ namespace {
             const Interface& lobe = s.lobe[j];
             SpectralArray e;
             if (lobe.material->metal)
-                e = lobe.hemispherical * albedo_table(lobe.material->albedo_a, mu_o);
+                e = lobe.hemispherical * albedo_table(lobe.material->albedo_one, mu_o);
             else
                 e = LayeredModel::interface_albedo(lobe, mu_o, count);
             p[j] = mean(coupling * lobe.attenuation * e, count);
             total += p[j];
             if (lobe.coupled)
                 for (int i = 0; i < count; ++i)
-                    coupling[i] *= 1.0f - lobe.fade * e[i];
+                    coupling[i] *= 1.0f - lobe.attenuation[i] * e[i];
         }
-        p[s.interfaces] = mean(coupling * s.diffuse, count);
+        p[s.interfaces] = mean(coupling * s.diffuse_albedo, count);
         total += p[s.interfaces];
         if (!(total > 0.0f) || !is_finite(total))
             return false;
         for (int j = 0; j <= s.interfaces; ++j)
             p[j] /= total;
         return true;
+    }
+
+    /// Adds a layer of `m`, thickness d, under the composite of the layers above it (its
+    /// reflectance from above and below and its transmittance): KM R, T (§4.1) and
+    /// R = R1 + T1² R2 / (1 - R1 R2), T = T1 T2 / (1 - R1 R2) (§4.2).
+    void km_composite_below(const CompiledMaterial& m, float d,
+                            const std::array<GridPos, PATINA_MAX_WAVELENGTHS>& gp, int count,
+                            SpectralArray* r_top, SpectralArray* r_bottom, SpectralArray* t_above)
+    {
+        for (int i = 0; i < count; ++i) {
+            float R, T;
+            km_layer(grid_eval(m.absorption, gp[i]), grid_eval(m.scattering, gp[i]), d, &R, &T);
+            const float denom = 1.0f - (*r_bottom)[i] * R;
+            if (!(denom > 0.0f)) {
+                (*r_top)[i] = 1.0f;
+                (*r_bottom)[i] = 1.0f;
+                (*t_above)[i] = 0.0f;
+                continue;
+            }
+            const float t = (*t_above)[i];
+            (*r_top)[i] += t * t * R / denom;
+            (*r_bottom)[i] = R + T * T * (*r_bottom)[i] / denom;
+            (*t_above)[i] = t * T / denom;
+        }
     }
 
 }  // namespace
@@ -205,13 +239,44 @@ LayeredModel::LayeredModel(const StackFile& stack, std::vector<const PatinaTextu
     textures_.resize(layers_.size(), nullptr);
 }
 
+float albedo_table(const CompiledMaterial& m, float f0, float mu)
+{
+    const float x = std::clamp(mu, 0.0f, 1.0f) * (kAlbedoNodes - 1);
+    const int i = std::min(static_cast<int>(x), kAlbedoNodes - 2);
+    const float t = x - static_cast<float>(i);
+    if (!(f0 > 0.0f))
+        return 0.0f;
+    const float sqrt_f0 = std::sqrt(std::min(f0, 1.0f));
+    const float y = std::clamp((sqrt_f0 - kF0MinSqrt) / (kF0MaxSqrt - kF0MinSqrt), 0.0f, 1.0f) *
+                    (kF0Nodes - 1);
+    const int q = std::min(static_cast<int>(y), kF0Nodes - 2);
+    const float s = y - static_cast<float>(q);
+    const float* row0 = &m.albedo[q * kAlbedoNodes];
+    const float* row1 = row0 + kAlbedoNodes;
+    const float e0 = row0[i] + t * (row0[i + 1] - row0[i]);
+    const float e1 = row1[i] + t * (row1[i + 1] - row1[i]);
+    const float e = e0 + s * (e1 - e0);
+    return sqrt_f0 < kF0MinSqrt ? e * sqrt_f0 / kF0MinSqrt : e;
+}
+
+float eta_of_f0(float f0)
+{
+    const float s = std::sqrt(std::clamp(f0, 0.0f, 0.99f));
+    return (1.0f + s) / (1.0f - s);
+}
+
+float dielectric_fresnel(float cos_theta, float f0, float eta)
+{
+    if (!(f0 > 0.0f))
+        return 0.0f;  // index-matched: no reflection at any angle
+    return fresnel_dielectric(cos_theta, eta);
+}
+
 SpectralArray LayeredModel::interface_albedo(const Interface& lobe, float mu, int count)
 {
-    const float a = albedo_table(lobe.material->albedo_a, mu);
-    const float b = albedo_table(lobe.material->albedo_b, mu);
     SpectralArray e;
     for (int i = 0; i < count; ++i)
-        e[i] = lobe.f0[i] * a + (1.0f - lobe.f0[i]) * b;
+        e[i] = albedo_table(*lobe.material, lobe.f0[i], mu);
     return e;
 }
 
@@ -244,11 +309,20 @@ void LayeredModel::setup_thickness(const float* thickness_um, const PatinaWavele
     SpectralArray r_top(0.0f), r_bottom(0.0f), t_above(1.0f);
     s->interfaces = 0;
     s->layers = 0;
+    const CompiledMaterial* above = nullptr;
     for (int l = static_cast<int>(layers_.size()) - 1; l >= 0; --l) {
         const float d = thickness_um[l];
         if (!(d > 0.0f) || !is_finite(d))
             continue;
         const CompiledMaterial& m = *layers_[l];
+        // KM R, T of this layer (§4.1) composited under the layers above (§4.2), below.
+        // Two adjacent layers of one material are one layer: no interface between them.
+        if (&m == above) {
+            s->thickness_um[s->layers - 1] += d;
+            km_composite_below(m, d, gp, count, &r_top, &r_bottom, &t_above);
+            continue;
+        }
+        above = &m;
         // The glossy lobe of this layer's top surface, seen through the layers above: its
         // specular colour times T_above² (§4.3).
         Interface& lobe = s->lobe[s->interfaces++];
@@ -258,24 +332,11 @@ void LayeredModel::setup_thickness(const float* thickness_um, const PatinaWavele
         for (int i = 0; i < count; ++i) {
             lobe.attenuation[i] = lobe.fade * t_above[i] * t_above[i];
             lobe.f0[i] = grid_eval(m.specular, gp[i]);
+            lobe.eta[i] = eta_of_f0(lobe.f0[i]);
         }
         s->thickness_um[s->layers] = d;
         s->layer_material[s->layers++] = &m;
-        // KM R, T of this layer (§4.1) composited under the layers above (§4.2).
-        for (int i = 0; i < count; ++i) {
-            float R, T;
-            km_layer(grid_eval(m.absorption, gp[i]), grid_eval(m.scattering, gp[i]), d, &R, &T);
-            const float denom = 1.0f - r_bottom[i] * R;
-            if (!(denom > 0.0f)) {
-                r_top[i] = 1.0f;
-                r_bottom[i] = 1.0f;
-                t_above[i] = 0.0f;
-                continue;
-            }
-            r_top[i] += t_above[i] * t_above[i] * R / denom;
-            r_bottom[i] = R + T * T * r_bottom[i] / denom;
-            t_above[i] = t_above[i] * T / denom;
-        }
+        km_composite_below(m, d, gp, count, &r_top, &r_bottom, &t_above);
     }
     // The base's own surface: a conductor (n, k) or a dielectric lobe (specular).
     const CompiledMaterial& b = *base_;
@@ -293,6 +354,7 @@ void LayeredModel::setup_thickness(const float* thickness_um, const PatinaWavele
             lobe.hemispherical[i] = r_base;
         } else {
             lobe.f0[i] = grid_eval(b.specular, gp[i]);
+            lobe.eta[i] = eta_of_f0(lobe.f0[i]);
         }
         // The stack over the opaque base (§4.2, the base a layer with T = 0).
         const float denom = 1.0f - r_bottom[i] * r_base;
@@ -305,6 +367,36 @@ void LayeredModel::setup_thickness(const float* thickness_um, const PatinaWavele
     }
     for (int i = count; i < PATINA_MAX_WAVELENGTHS; ++i)
         s->diffuse[i] = 0.0f;
+
+    // The diffuse light the surfaces reflect back down is not lost: the stack below sends
+    // R_d of it up again. With g(μ) = 1 - Π_j (1 - g_j(μ)) the surfaces' combined effective
+    // reflectance (g_j = fade T_above² E_j, see eval) and ḡ = 2 ∫ g(μ) μ dμ, the diffuse lobe
+    // is (1 - g(μo)) (1 - g(μi)) R_d / (π (1 - R_d ḡ)): its albedo (1 - g(μo)) R_d (1 - ḡ) /
+    // (1 - R_d ḡ) is 1 - g(μo) for a white stack (R_d = 1) and never more.
+    // ḡ by 8-point Gauss-Legendre quadrature over μ in [0, 1].
+    constexpr float kNodes[8] = {0.0198550718f, 0.1016667613f, 0.2372337950f, 0.4082826788f,
+                                 0.5917173212f, 0.7627662050f, 0.8983332387f, 0.9801449282f};
+    constexpr float kWeights[8] = {0.0506142681f, 0.1111905172f, 0.1568533229f, 0.1813418917f,
+                                   0.1813418917f, 0.1568533229f, 0.1111905172f, 0.0506142681f};
+    SpectralArray pass_mean(0.0f);
+    for (int q = 0; q < 8; ++q) {
+        SpectralArray pass(1.0f);
+        for (int j = 0; j < s->interfaces; ++j) {
+            const Interface& l = s->lobe[j];
+            if (!l.coupled)
+                continue;
+            const SpectralArray e = interface_albedo(l, kNodes[q], count);
+            for (int i = 0; i < count; ++i)
+                pass[i] *= 1.0f - l.attenuation[i] * e[i];
+        }
+        pass_mean += pass * (2.0f * kNodes[q] * kWeights[q]);
+    }
+    for (int i = 0; i < PATINA_MAX_WAVELENGTHS; ++i) {
+        const float g_mean = std::clamp(1.0f - pass_mean[i], 0.0f, 1.0f);
+        const float denom = 1.0f - s->diffuse[i] * g_mean;
+        s->diffuse_lobe[i] = denom > 1e-6f ? s->diffuse[i] / denom : 0.0f;
+        s->diffuse_albedo[i] = s->diffuse_lobe[i] * (1.0f - g_mean);
+    }
 }
 
 void LayeredModel::eval_km(const PointState& s, Vec3 wo, Vec3 wi, SpectralArray* f) const
@@ -319,7 +411,6 @@ void LayeredModel::eval_km(const PointState& s, Vec3 wo, Vec3 wi, SpectralArray*
         return;
     const Vec3 wm = normalize(h);
     const float c = std::clamp(dot(wo, wm), 0.0f, 1.0f);
-    const float c5 = (1.0f - c) * (1.0f - c) * (1.0f - c) * (1.0f - c) * (1.0f - c);
     // Sum of the glossy lobes from the top interface down; `coupling` is the part of the
     // light that passed the interfaces above, (1 - E(μo)) (1 - E(μi)) per interface.
     SpectralArray coupling(1.0f);
@@ -332,7 +423,7 @@ void LayeredModel::eval_km(const PointState& s, Vec3 wo, Vec3 wi, SpectralArray*
             for (int i = 0; i < count; ++i) {
                 const float F = lobe.material->metal
                                     ? fresnel_conductor(c, lobe.f0[i], lobe.kappa[i])
-                                    : lobe.f0[i] + (1.0f - lobe.f0[i]) * c5;
+                                    : dielectric_fresnel(c, lobe.f0[i], lobe.eta[i]);
                 (*f)[i] += coupling[i] * lobe.attenuation[i] * F * dg;
             }
         }
@@ -340,11 +431,12 @@ void LayeredModel::eval_km(const PointState& s, Vec3 wo, Vec3 wi, SpectralArray*
             const SpectralArray eo = interface_albedo(lobe, mu_o, count);
             const SpectralArray ei = interface_albedo(lobe, mu_i, count);
             for (int i = 0; i < count; ++i)
-                coupling[i] *= (1.0f - lobe.fade * eo[i]) * (1.0f - lobe.fade * ei[i]);
+                coupling[i] *= (1.0f - lobe.attenuation[i] * eo[i]) *
+                               (1.0f - lobe.attenuation[i] * ei[i]);
         }
     }
     for (int i = 0; i < count; ++i)
-        (*f)[i] += coupling[i] * s.diffuse[i] * kInvPi;
+        (*f)[i] += coupling[i] * s.diffuse_lobe[i] * kInvPi;
 }
 
 void LayeredModel::eval(const PointState& s, Vec3 wo, Vec3 wi, float* f) const
@@ -436,15 +528,15 @@ void LayeredModel::albedo(const PointState& s, Vec3 wo, float* a) const
             const Interface& lobe = s.lobe[j];
             SpectralArray e;
             if (lobe.material->metal)
-                e = lobe.hemispherical * albedo_table(lobe.material->albedo_a, mu);
+                e = lobe.hemispherical * albedo_table(lobe.material->albedo_one, mu);
             else
                 e = interface_albedo(lobe, mu, count);
             value += coupling * lobe.attenuation * e;
             if (lobe.coupled)
                 for (int i = 0; i < count; ++i)
-                    coupling[i] *= 1.0f - lobe.fade * e[i];
+                    coupling[i] *= 1.0f - lobe.attenuation[i] * e[i];
         }
-        value += coupling * s.diffuse;
+        value += coupling * s.diffuse_albedo;
     }
     store(value, s.wl, a);
 }

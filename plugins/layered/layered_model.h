@@ -32,8 +32,14 @@ inline constexpr int kMaxLayers = 16;
 inline constexpr int kGridSize = 95;
 inline constexpr float kGridStartNm = 360.0f;
 inline constexpr float kGridStepNm = 5.0f;
-/// Nodes of the directional albedo tables over cos θ in [0, 1].
+/// Nodes of the directional albedo tables over cos θ in [0, 1] and over F0 in [0, 1].
 inline constexpr int kAlbedoNodes = 32;
+inline constexpr int kF0Nodes = 24;
+/// The F0 rows are uniform in x = √F0 over [kF0MinSqrt, kF0MaxSqrt]: E(F0, μ) is smooth in
+/// x there, but jumps near F0 = 0 at grazing angles (any index > 1 reflects grazing light);
+/// below kF0MinSqrt E is scaled down linearly in x to 0 at F0 = 0.
+inline constexpr float kF0MinSqrt = 0.05f;
+inline constexpr float kF0MaxSqrt = 0.99f;
 /// A layer thinner than this (µm) fades its interface in linearly: a film much thinner than a
 /// wavelength does not act as a separate reflecting surface, and a filtered coverage edge
 /// of a thickness map shows no sudden gloss.
@@ -48,16 +54,18 @@ struct CompiledMaterial {
     bool metal = false;
     Grid absorption{};  ///< K per µm
     Grid scattering{};  ///< S per µm
-    Grid specular{};    ///< Schlick F0 of its top surface (dielectric interfaces)
+    Grid specular{};    ///< F0 of its top surface (dielectric interfaces)
     Grid eta{}, kappa{}; ///< metal: n, k
     /// What the diffuse compositing sees below the layers: R_inf of a thick dielectric base,
     /// or the hemispherical reflectance 2 ∫ F(μ) μ dμ of a smooth metal (see README).
     Grid base_reflectance{};
     shading::TrowbridgeReitz distribution{1.0f, 1.0f};
     float roughness = 0.5f;
-    /// Directional albedo of the GGX lobe with Schlick Fresnel: E(μ) = F0 a(μ) + (1-F0) b(μ)
-    /// (a: F = 1, b: F = (1 - cos θh)^5), over μ = i / (kAlbedoNodes - 1).
-    std::array<float, kAlbedoNodes> albedo_a{}, albedo_b{};
+    /// Directional albedo E(F0, μ) of its GGX lobe with the exact dielectric Fresnel of the
+    /// index η that has normal reflectance F0, over √F0 = kF0MinSqrt ... kF0MaxSqrt and
+    /// μ = i / (kAlbedoNodes - 1) (row q); albedo_one is the row F = 1 (metal estimate).
+    std::array<float, kF0Nodes * kAlbedoNodes> albedo{};
+    std::array<float, kAlbedoNodes> albedo_one{};
 };
 
 /// Grid position of a wavelength: index and weight for linear interpolation.
@@ -72,7 +80,8 @@ struct Interface {
     float fade = 1.0f;          ///< kInterfaceFadeUm fade-in of a thin layer
     bool coupled = true;        ///< its reflection is taken out of what passes below it
     SpectralArray attenuation;  ///< fade · T_above², T_above the KM transmittance above (§4.3)
-    SpectralArray f0;           ///< Schlick F0 (dielectric) or n (metal)
+    SpectralArray f0;           ///< normal reflectance F0 (dielectric) or n (metal)
+    SpectralArray eta;          ///< dielectric: the index with reflectance F0
     SpectralArray kappa;        ///< metal k
     SpectralArray hemispherical; ///< metal: hemispherical reflectance (lobe selection)
 };
@@ -82,7 +91,9 @@ struct PointState {
     PatinaWavelengths wl{};
     int interfaces = 0;
     std::array<Interface, kMaxLayers + 1> lobe{};
-    SpectralArray diffuse;  ///< R of the stack over the base, seen by the diffuse lobe
+    SpectralArray diffuse;  ///< KM R_d of the stack over the base (the diffuse part)
+    SpectralArray diffuse_lobe;   ///< R_d / (1 - R_d ḡ): the diffuse lobe is this / π, coupled
+    SpectralArray diffuse_albedo; ///< the diffuse lobe's albedo over (1 - g(μo))
     /// For the random walk: layer thicknesses (µm) and materials, top to bottom.
     int layers = 0;
     std::array<float, kMaxLayers> thickness_um{};
@@ -147,6 +158,13 @@ inline float grid_eval(const Grid& g, GridPos p)
 }
 /// Linear interpolation in a kAlbedoNodes table over μ in [0, 1].
 float albedo_table(const std::array<float, kAlbedoNodes>& table, float mu);
+/// Bilinear interpolation of CompiledMaterial::albedo at (F0, μ).
+float albedo_table(const CompiledMaterial& m, float f0, float mu);
+/// The relative index whose normal-incidence Fresnel reflectance is F0 (Born & Wolf §1.5.2
+/// inverted: η = (1 + √F0) / (1 - √F0)); 1 for F0 = 0, capped for F0 -> 1.
+float eta_of_f0(float f0);
+/// Dielectric Fresnel reflectance for the index of eta_of_f0 (exactly 0 when F0 = 0).
+float dielectric_fresnel(float cos_theta, float f0, float eta);
 
 /// KM reflectance and transmittance of a layer (§4.1), exact and finite at K = 0, S = 0,
 /// d = 0 and for any thickness.

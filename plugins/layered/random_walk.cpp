@@ -12,8 +12,9 @@
 //     scattering half goes backwards (so S = 2 · σs/2). A dielectric base is a slab of
 //     infinite thickness.
 //   - An interface is index-matched (no refraction, as in the KM model): from either side
-//     it reflects with the GGX lobe of the material below it (Schlick F0 = its specular
-//     colour, fade-in of thin layers included), with the lobe's directional albedo E(μ),
+//     it reflects with the GGX lobe of the material below it (the dielectric Fresnel of
+//     the index whose normal reflectance is its specular colour, fade-in of thin layers
+//     included), with the lobe's directional albedo E(μ),
 //     and passes the rest straight through. A metal base reflects with its GGX conductor
 //     lobe and transmits nothing.
 // eval estimates f(wo, wi) with next-event estimation: at every interface the walk meets from
@@ -95,17 +96,14 @@ namespace {
         float reflect_probability(int j, float mu) const
         {
             const Interface& l = s->lobe[j];
-            const float a = albedo_table(l.material->albedo_a, mu);
-            const float b = albedo_table(l.material->albedo_b, mu);
-            return l.fade * (l.f0[i] * a + (1.0f - l.f0[i]) * b);
+            return l.fade * albedo_table(*l.material, l.f0[i], mu);
         }
         float fresnel(int j, float c) const
         {
             const Interface& l = s->lobe[j];
             if (l.material->metal)
                 return fresnel_conductor(c, l.f0[i], l.kappa[i]);
-            const float m = 1.0f - c;
-            return l.f0[i] + (1.0f - l.f0[i]) * m * m * m * m * m;
+            return dielectric_fresnel(c, l.f0[i], l.eta[i]);
         }
         /// The glossy BRDF of interface j (fade included) for directions above it.
         float lobe_f(int j, Vec3 wo, Vec3 wi) const

@@ -1,6 +1,7 @@
 #include "texgen/patina/material_library.h"
 
 #include "core/kubelka_munk.h"
+#include "texgen/patina/stack_materials.h"
 
 #include <fmt/format.h>
 #include <toml++/toml.h>
@@ -50,7 +51,28 @@ namespace {
     // The keys a material table may hold; anything else is a typo.
     const std::set<std::string> kMaterialKeys = {"kind", "names", "color", "color_space",
                                                  "scattering", "mixture", "roughness",
-                                                 "specular", "description"};
+                                                 "specular", "description",
+                                                 "wavelengths_nm", "n", "k", "r_inf"};
+
+    /// A table of numbers of `size` entries (any size when 0), each finite and >= 0.
+    std::vector<float> table_of(const fs::path& file, const toml::node& node,
+                                const std::string& key, size_t size)
+    {
+        const toml::array* a = node.as_array();
+        if (!a || a->empty())
+            fail(file, node, fmt::format("'{}' must be an array of numbers", key));
+        if (size && a->size() != size)
+            fail(file, node, fmt::format("'{}' has {} values for {} wavelengths (wavelengths_nm)",
+                                         key, a->size(), size));
+        std::vector<float> out;
+        for (const toml::node& v : *a) {
+            const double x = number_of(file, v, key);
+            if (!std::isfinite(x) || x < 0.0)
+                fail(file, v, fmt::format("'{}' must hold finite numbers >= 0", key));
+            out.push_back(static_cast<float>(x));
+        }
+        return out;
+    }
 
 }  // namespace
 
@@ -93,7 +115,8 @@ void MaterialLibrary::load(const fs::path& file, const ColorManager& colors)
             if (!kMaterialKeys.count(std::string(k.str())))
                 fail(file, v, fmt::format("material '{}': unknown key '{}' (known: kind, "
                                           "names, color, color_space, scattering, mixture, "
-                                          "roughness, specular, description)",
+                                          "roughness, specular, description, wavelengths_nm, "
+                                          "n, k, r_inf)",
                                           name, k.str()));
         PatinaMaterial mat;
         mat.name = name;
@@ -126,6 +149,35 @@ void MaterialLibrary::load(const fs::path& file, const ColorManager& colors)
         if (const toml::node* s = m.get("specular"))
             mat.specular = triple_of(file, *s, "specular");
 
+        // Optional spectral tables: a metal's n and k, a layer's R_inf.
+        std::vector<float> table_nm, n_table, k_table, r_table;
+        if (const toml::node* w = m.get("wavelengths_nm")) {
+            table_nm = table_of(file, *w, "wavelengths_nm", 0);
+            for (size_t i = 1; i < table_nm.size(); ++i)
+                if (!(table_nm[i] > table_nm[i - 1]))
+                    fail(file, *w, "'wavelengths_nm' must increase strictly");
+        }
+        for (const char* key : {"n", "k", "r_inf"})
+            if (const toml::node* t = m.get(key)) {
+                if (table_nm.empty())
+                    fail(file, *t, fmt::format("material '{}': '{}' needs 'wavelengths_nm'",
+                                               name, key));
+                if ((std::string(key) == "r_inf") == mat.is_metal || mixture)
+                    fail(file, *t, fmt::format("material '{}': '{}' is for {}", name, key,
+                                               std::string(key) == "r_inf"
+                                                   ? "a layer that is not a mixture"
+                                                   : "a metal"));
+                std::vector<float> v = table_of(file, *t, key, table_nm.size());
+                (std::string(key) == "n" ? n_table
+                 : std::string(key) == "k" ? k_table : r_table) = std::move(v);
+            }
+        if (n_table.empty() != k_table.empty())
+            fail(file, m, fmt::format("material '{}': give both 'n' and 'k' or neither", name));
+        for (float r : r_table)
+            if (!(r > 0.0f && r <= 1.0f))
+                fail(file, *m.get("r_inf"), fmt::format("material '{}': r_inf must lie in "
+                                                        "(0, 1]", name));
+
         if (mixture) {
             // Duncan's rule: K and S of a mixture are the volume-weighted sums.
             const toml::node* mix_node = m.get("mixture");
@@ -137,6 +189,9 @@ void MaterialLibrary::load(const fs::path& file, const ColorManager& colors)
                                                   "and scattering from its components", name));
             double sum = 0.0;
             Imath::V3f K(0.0f), S(0.0f);
+            mat.spectral.lambda_nm = spectral_grid();
+            mat.spectral.absorption.assign(kSpectralSamples, 0.0f);
+            mat.spectral.scattering.assign(kSpectralSamples, 0.0f);
             for (const auto& [component, fraction_node] : *mix) {
                 const PatinaMaterial* c = find(std::string(component.str()));
                 if (!c)
@@ -153,7 +208,14 @@ void MaterialLibrary::load(const fs::path& file, const ColorManager& colors)
                 sum += f;
                 K += c->absorption * static_cast<float>(f);
                 S += c->scattering * static_cast<float>(f);
+                for (int i = 0; i < kSpectralSamples; ++i) {
+                    mat.spectral.absorption[i] += c->spectral.absorption[i] * static_cast<float>(f);
+                    mat.spectral.scattering[i] += c->spectral.scattering[i] * static_cast<float>(f);
+                }
             }
+            for (int i = 0; i < kSpectralSamples; ++i)
+                mat.spectral.r_infinity.push_back(km_r_infinity(
+                    mat.spectral.absorption[i] / mat.spectral.scattering[i]));
             if (std::abs(sum - 1.0) > 1e-3)
                 fail(file, *mix_node, fmt::format("material '{}': mixture fractions sum to {} "
                                                   "(must be 1)", name, sum));
@@ -197,7 +259,27 @@ void MaterialLibrary::load(const fs::path& file, const ColorManager& colors)
                 for (int i = 0; i < 3; ++i)
                     mat.absorption[i] = km_k_over_s(c[i]) * S;
             }
+            // The spectral optics: the tables when given, else uplifted from the colour.
+            if (!n_table.empty()) {
+                mat.spectral.lambda_nm = spectral_grid();
+                mat.spectral.n = resample_to_grid(table_nm, n_table);
+                mat.spectral.k = resample_to_grid(table_nm, k_table);
+                mat.spectral.absorption.assign(kSpectralSamples, 0.0f);
+                mat.spectral.scattering.assign(kSpectralSamples, 0.0f);
+            } else if (!r_table.empty()) {
+                mat.spectral.lambda_nm = spectral_grid();
+                mat.spectral.r_infinity = resample_to_grid(table_nm, r_table);
+                for (float& r : mat.spectral.r_infinity) {
+                    r = std::clamp(r, 1e-4f, 0.9999f);
+                    mat.spectral.scattering.push_back(mat.scattering[0]);
+                    mat.spectral.absorption.push_back(km_k_over_s(r) * mat.scattering[0]);
+                }
+            } else {
+                mat.spectral = resolve_spectral(mat, colors);
+            }
         }
+        if (mat.spectral.specular.empty())
+            mat.spectral.specular = uplift_reflectance(mat.specular, colors);
         const size_t index = materials_.size();
         add_name(name, index, m);
         for (const std::string& alias : mat.aliases)

@@ -4,6 +4,11 @@
 // an assumed backscattering S, and K from K/S = (1 - R_inf)^2 / (2 R_inf); a mixture mixes
 // K and S of its components by volume fraction. The file format is described at the top of
 // shaders/patina/copper.toml and in the README.
+//
+// Every material is also resolved spectrally (what a renderer needs, written into stack.toml
+// by stack_writer): K, S and the specular colour on a 360-830 nm grid, R_inf uplifted from its
+// colour (core/rgb_spectrum.h, in the OCIO working space) unless the file gives an `r_inf`
+// table, and a metal's complex index n + ik from its `n` and `k` tables.
 #pragma once
 
 #include "core/color_management.h"
@@ -18,6 +23,21 @@
 
 namespace patina::texgen {
 
+/// The wavelength grid of the spectral description: 360-830 nm every 10 nm.
+inline constexpr int kSpectralSamples = 48;
+inline constexpr float kSpectralStartNm = 360.0f;
+inline constexpr float kSpectralStepNm = 10.0f;
+
+/// A material's optics per wavelength of the grid (kSpectralSamples values each).
+struct SpectralOptics {
+    std::vector<float> lambda_nm;
+    std::vector<float> r_infinity;  ///< R_inf of a thick layer (layers only)
+    std::vector<float> absorption;  ///< K per µm (0 for metals)
+    std::vector<float> scattering;  ///< S per µm (0 for metals)
+    std::vector<float> specular;    ///< normal-incidence reflectance of its top surface
+    std::vector<float> n, k;        ///< complex index n + ik (metals only)
+};
+
 struct PatinaMaterial {
     std::string name;                 ///< canonical name (the TOML key)
     std::vector<std::string> aliases; ///< other names scripts may use ("tarnish 1")
@@ -31,6 +51,7 @@ struct PatinaMaterial {
     Imath::V3f specular{0.04f};       ///< linear normal-incidence specular colour
     std::string description;
     std::filesystem::path file;       ///< where it was defined
+    SpectralOptics spectral;          ///< the same optics per wavelength
 };
 
 class MaterialLibrary {
@@ -42,7 +63,9 @@ public:
     /// std::runtime_error naming the file and the key for: a TOML syntax error (with its
     /// line), an unknown key, a colour outside (0, 1], a negative or missing scattering, a
     /// mixture naming an unknown material or fractions not summing to 1 (within 1e-3), a
-    /// name already defined (in this or an earlier file).
+    /// name already defined (in this or an earlier file), a metal without `n` and `k`
+    /// tables, a table whose length differs from `wavelengths_nm` or whose wavelengths do not
+    /// increase.
     void load(const std::filesystem::path& file, const ColorManager& colors);
 
     /// The material a name or alias denotes, or nullptr.

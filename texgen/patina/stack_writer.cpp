@@ -1,6 +1,7 @@
 #include "texgen/patina/stack_writer.h"
 
 #include "core/image_io.h"
+#include "texgen/patina/stack_materials.h"
 #include "texgen/patina/stack_preview.h"
 #include "texgen/stack/manifest.h"
 
@@ -63,7 +64,8 @@ namespace {
     /// The stack's own table in stack.toml, after its maps were recorded.
     void record_patina_table(const fs::path& out_dir, const PatinaStep& step,
                              const PatinaDomain& domain, const PatinaOutputOptions& options,
-                             const std::vector<std::string>& layer_maps)
+                             const std::vector<std::string>& layer_maps,
+                             const ColorManager& colors)
     {
         const fs::path path = manifest_path(out_dir);
         toml::table root = toml::parse_file(path.string());
@@ -89,10 +91,24 @@ namespace {
             layers.push_back(std::move(entry));
         }
         patina.insert_or_assign("layers", std::move(layers));
+        // The optics of every material the stack uses, per wavelength, so that a renderer
+        // needs nothing but this file (plugins/layered reads it).
+        toml::table materials;
+        auto add_material = [&](const PatinaMaterial& m) {
+            if (!materials.contains(m.name))
+                materials.insert_or_assign(m.name, material_table(m, colors));
+        };
+        add_material(*step.base);
+        for (const ResultLayer& layer : step.layers)
+            add_material(*layer.material);
+        patina.insert_or_assign("materials", std::move(materials));
         root.insert_or_assign("patina", std::move(patina));
         std::ostringstream text;
         text << "# Written by patina-texgen. [patina] lists the layers bottom to top (the base,\n"
                 "# infinitely thick, first); thicknesses are in micrometres.\n"
+                "# [patina.materials] gives the optics of every material the stack uses per\n"
+                "# wavelength (nm): KM absorption K and scattering S per micrometre, the\n"
+                "# specular colour and roughness of its top surface, a metal's n and k.\n"
              << root << "\n";
         write_file_atomic(path, {text.str()}, "manifest");
     }
@@ -143,7 +159,7 @@ std::vector<fs::path> write_patina_step(const fs::path& out_dir, const PatinaSte
               "total thickness of the layers over the base in micrometres (for displacement or "
               "bump, D&H 1996 §4.3)",
               step.total_um);
-    record_patina_table(out_dir, step, domain, options, layer_maps);
+    record_patina_table(out_dir, step, domain, options, layer_maps, colors);
     written.push_back(manifest_path(out_dir));
 
     if (options.preview) {

@@ -1,0 +1,195 @@
+// Shading cost of the layered_km shader (plugins/layered) per sample — eval + sample + pdf at
+// a random uv and random directions, 4 hero wavelengths — for a 5-layer patina stack over
+// copper (256² mip-mapped thickness maps), against:
+//   1. the basic plugin's lambert with a reflectance_scale_map (one texture lookup per call)
+//      and without one (no lookup): target layered <= 3x lambert;
+//   2. the same layered code compiled into this program and called directly (no dlopen, no
+//      function pointers, inlining allowed): target ABI overhead <= 5%.
+// A plain main: prints ns per sample and both ratios (bench/README.md).
+#include "core/host.h"
+#include "core/image_io.h"
+#include "core/plugin_registry.h"
+#include "core/shader_instance.h"
+#include "core/spectrum.h"
+
+// The plugin's sources, compiled in for the direct path: the very functions the plugin's
+// table points to (layered.cpp's eval, sample, pdf), called directly.
+#include "../plugins/layered/layered.cpp"
+#include "../plugins/layered/layered_model.cpp"
+#include "../plugins/layered/random_walk.cpp"
+#include "../plugins/layered/stack_file.cpp"
+
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <random>
+
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+constexpr int kSamples = 400000;
+constexpr int kSize = 256;
+
+/// A 5-layer stack like the urban §5.1 strip: tarnish, cuprite, two patina stages, dirt.
+fs::path write_bench_stack(const fs::path& dir)
+{
+    fs::create_directories(dir);
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> uniform(0.0f, 1.0f);
+    const char* names[5] = {"tarnish", "cuprite", "patina3", "patina4", "dirt"};
+    const float max_um[5] = {0.4f, 0.8f, 4.0f, 3.0f, 1.4f};
+    const float K[5] = {1.2f, 1.6f, 0.25f, 0.3f, 0.3f}, S[5] = {1.5f, 1.2f, 0.35f, 0.35f, 0.35f};
+    std::ostringstream t;
+    for (int l = 0; l < 5; ++l) {
+        std::vector<float> texels(kSize * kSize);
+        for (float& x : texels)
+            x = uniform(rng) < 0.2f ? 0.0f : max_um[l] * uniform(rng);
+        patina::TextureOptions options;
+        options.format = OIIO::TypeDesc::HALF;
+        patina::make_texture_atomic(dir / (std::string(names[l]) + ".exr"), texels.data(), kSize,
+                                    kSize, 1, {"thickness"}, options);
+        t << "[maps." << names[l] << "]\nfile = '" << names[l] << ".exr'\n";
+    }
+    t << "[patina]\nbase = 'copper'\n";
+    for (int l = 0; l < 5; ++l)
+        t << "[[patina.layers]]\nmaterial = '" << names[l] << "'\nmap = '" << names[l] << "'\n";
+    t << "[patina.materials.copper]\nmetal = true\nroughness = 0.15\n"
+         "wavelengths_nm = [360, 550, 600, 830]\nn = [1.36, 1.02, 0.3, 0.26]\n"
+         "k = [1.97, 2.58, 3.2, 5.2]\n";
+    for (int l = 0; l < 5; ++l)
+        t << "[patina.materials." << names[l] << "]\nroughness = 0.4\n"
+          << "wavelengths_nm = [360, 500, 830]\nspecular = [0.04, 0.04, 0.05]\n"
+          << "absorption_per_um = [" << K[l] << ", " << 0.5f * K[l] << ", " << K[l] << "]\n"
+          << "scattering_per_um = [" << S[l] << ", " << S[l] << ", " << S[l] << "]\n";
+    std::ofstream(dir / "stack.toml") << t.str();
+    return dir / "stack.toml";
+}
+
+struct Input {
+    PatinaShadingContext ctx{};
+    PatinaVec3 wo, wi;
+    float u_lobe;
+    PatinaVec2 u;
+};
+
+std::vector<Input> make_inputs()
+{
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<float> uniform(0.0f, 1.0f);
+    std::vector<Input> in(4096);
+    for (Input& x : in) {
+        x.ctx.N = {0, 0, 1};
+        x.ctx.uv = {uniform(rng), uniform(rng)};
+        auto dir = [&] {
+            const patina::shading::Vec3 d = patina::shading::sample_cosine_hemisphere(
+                {uniform(rng), uniform(rng)});
+            return PatinaVec3{d.x, d.y, d.z};
+        };
+        x.wo = dir();
+        x.wi = dir();
+        x.u_lobe = uniform(rng);
+        x.u = {uniform(rng), uniform(rng)};
+    }
+    return in;
+}
+
+/// Best of 3 runs, ns per sample.
+template <typename F> double time_per_sample(F&& shade)
+{
+    double best = 1e30;
+    for (int run = 0; run < 3; ++run) {
+        const auto t0 = Clock::now();
+        for (int i = 0; i < kSamples; ++i)
+            shade(i);
+        const double ns = std::chrono::duration<double, std::nano>(Clock::now() - t0).count();
+        best = std::min(best, ns / kSamples);
+    }
+    return best;
+}
+
+volatile float g_sink = 0.0f;
+
+}  // namespace
+
+int main()
+{
+    const fs::path dir = fs::temp_directory_path() / "patina_bench_layered";
+    const fs::path stack = write_bench_stack(dir);
+    std::vector<float> scale(kSize * kSize, 0.8f);
+    patina::make_texture_atomic(dir / "scale.exr", scale.data(), kSize, kSize, 1, {"Y"});
+
+    patina::Host& host = patina::default_host();
+    patina::PluginRegistry registry(host.c_host());
+    registry.load_directory(PATINA_TEST_PLUGIN_DIR);
+    const auto layered = patina::create_shader_instance(
+        registry, "layered_km", toml::table{{"stack", stack.string()}}, "bench");
+    const auto lambert_map = patina::create_shader_instance(
+        registry, "lambert",
+        toml::table{{"reflectance", toml::array{0.5, 0.4, 0.3}},
+                    {"reflectance_scale_map", (dir / "scale.exr").string()}},
+        "bench");
+    const auto lambert = patina::create_shader_instance(
+        registry, "lambert", toml::table{{"reflectance", toml::array{0.5, 0.4, 0.3}}}, "bench");
+
+    // The same shader compiled in, created with the same parameters.
+    const std::string stack_path = stack.string();
+    PatinaParamValue values[4] = {};
+    values[0].type = PATINA_PARAM_FILE;
+    values[0].s = stack_path.c_str();
+    values[1].type = PATINA_PARAM_FLOAT;
+    values[1].f = 1.0f;
+    values[2].type = PATINA_PARAM_STRING;
+    values[2].s = "km";
+    values[3].type = PATINA_PARAM_INT;
+    values[3].i = 64;
+    void* direct = patina::layered::create(host.c_host(), values);
+    if (!direct) {
+        std::fprintf(stderr, "layered_km create failed\n");
+        return 1;
+    }
+
+    const std::vector<Input> inputs = make_inputs();
+    const PatinaWavelengths wl = patina::sample_wavelengths_visible(0.37f, 4);
+
+    auto through_abi = [&](const patina::ShaderInstance& s) {
+        const PatinaBsdfFuncs* bsdf = s.bsdf();
+        const void* inst = s.get();
+        return [&, bsdf, inst](int i) {
+            const Input& x = inputs[i & 4095];
+            float f[PATINA_MAX_WAVELENGTHS];
+            PatinaBsdfSample smp;
+            bsdf->eval(inst, &x.ctx, x.wo, x.wi, &wl, f);
+            bsdf->sample(inst, &x.ctx, x.wo, x.u_lobe, x.u, &wl, &smp);
+            g_sink = g_sink + f[0] + smp.pdf + bsdf->pdf(inst, &x.ctx, x.wo, x.wi, &wl);
+        };
+    };
+    auto linked_in = [&](int i) {
+        const Input& x = inputs[i & 4095];
+        float f[PATINA_MAX_WAVELENGTHS];
+        PatinaBsdfSample smp;
+        patina::layered::eval(direct, &x.ctx, x.wo, x.wi, &wl, f);
+        patina::layered::sample(direct, &x.ctx, x.wo, x.u_lobe, x.u, &wl, &smp);
+        g_sink = g_sink + f[0] + smp.pdf + patina::layered::pdf(direct, &x.ctx, x.wo, x.wi, &wl);
+    };
+
+    const double t_layered = time_per_sample(through_abi(*layered));
+    const double t_direct = time_per_sample(linked_in);
+    const double t_lambert_map = time_per_sample(through_abi(*lambert_map));
+    const double t_lambert = time_per_sample(through_abi(*lambert));
+
+    std::printf("layered_km, 5 layers over copper, eval + sample + pdf, 4 wavelengths, "
+                "%d samples, best of 3:\n", kSamples);
+    std::printf("  layered_km through the ABI      %8.1f ns/sample\n", t_layered);
+    std::printf("  layered model linked in         %8.1f ns/sample\n", t_direct);
+    std::printf("  lambert + scale map (ABI)       %8.1f ns/sample\n", t_lambert_map);
+    std::printf("  lambert (ABI)                   %8.1f ns/sample\n", t_lambert);
+    std::printf("ratio layered / lambert with map  %6.2f  (target <= 3)\n",
+                t_layered / t_lambert_map);
+    std::printf("ratio layered / lambert plain     %6.2f\n", t_layered / t_lambert);
+    std::printf("ratio ABI / linked in             %6.3f  (target <= 1.05)\n",
+                t_layered / t_direct);
+    patina::layered::destroy(direct);
+    return 0;
+}
