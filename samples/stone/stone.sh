@@ -1,0 +1,128 @@
+#!/usr/bin/env bash
+# samples/stone: weathered stone of Dorsey et al. 1999, rendered with the slab_volume medium
+# and its stone_surface boundary (§5), each as a time series laid out in a contact strip.
+#   samples/stone/stone.sh [BUILD_DIR]     (default: build)
+#
+#  - a sandstone column (samples/stone/column.awk) whose bedding planes erode more on its
+#    wet side, rain coming from the front (figure 9): out/stone/column_strip.png, the wet
+#    front above the dry back, fresh stone on the left;
+#  - the project's statue in marble, lit from behind its head so that light shines through
+#    the thin parts, yellowing as it weathers (figures 10-11): out/stone/marble_strip.png.
+#
+# patina-texgen stone writes one folder per step (volume.exr for the medium, eroded.obj for
+# the boundary); each is rendered with patina-render into out/stone/<subject>/<step>.png.
+set -euo pipefail
+here="$(cd "$(dirname "$0")" && pwd)"
+root="$(cd "$here/../.." && pwd)"
+build="$(cd "${1:-$root/build}" && pwd)"
+out="$root/out/stone"
+texgen="$build/bin/patina-texgen"
+render="$build/bin/patina-render"
+cycles=60
+steps=3
+mkdir -p "$out"
+
+# Skies (lat-long, +y up, the centre column looking along -z; oiiotool draws them): a soft
+# key light high on the right-front for the column, a small bright light low behind the
+# statue's head for the marble.
+oiiotool --pattern fill:top=0.55,0.65,0.85:bottom=0.3,0.27,0.24 512x256 3 \
+    --box:color=5,4.6,4:fill=1 380,40,500,110 --blur 61x61 -d half -o "$out/sky_column.exr"
+oiiotool --pattern fill:top=0.35,0.38,0.45:bottom=0.12,0.11,0.1 512x256 3 \
+    --box:color=400,380,340:fill=1 248,112,264,128 --blur 15x15 -d half -o "$out/sky_marble.exr"
+
+# scene SUBJECT STEP_DIR SKY CAMERA_FROM CAMERA_TO FOV WIDTH HEIGHT MEDIUM_PARAMS SURFACE_PARAMS
+scene() {
+    cat <<EOF
+[film]
+width = $7
+height = $8
+spp = 32
+max_depth = 256
+seed = 1
+[camera]
+from = $4
+to = $5
+fov_deg = $6
+[environment]
+file = "$3"
+colorspace = "lin_rec709"
+[output]
+file = "$2/render.exr"
+[[shader]]
+name = "stone"
+type = "slab_volume"
+file = "$2/volume.exr"
+$9
+[[shader]]
+name = "boundary"
+type = "stone_surface"
+transmission = "diffuse"
+${10}
+[[object]]
+mesh = "$2/eroded.obj"
+bsdf = "boundary"
+interior = "stone"
+EOF
+}
+
+# render_series SUBJECT VIEW_NAME FROM TO FOV WIDTH HEIGHT SKY MEDIUM SURFACE: one PNG per step
+render_series() {
+    local subject="$1" view="$2"
+    for dir in "$out/$subject"/cycle_*; do
+        scene "$subject" "$dir" "$8" "$3" "$4" "$5" "$6" "$7" "$9" "${10}" > "$dir/$view.toml"
+        "$render" "$dir/$view.toml" --output "$dir/$view.exr" --quiet
+    done
+}
+
+# --- Sandstone column: rain from the front (+z) and above wets the front; deposits make
+# black crusts where it stays dry. Slabs on a coarse copy of the column.
+awk -f "$here/column.awk" > "$out/column.obj"
+awk -f "$here/column.awk" -v segments=16 -v step=0.2 -v flutes=0 -v solid=1 > "$out/column_slabs.obj"
+"$texgen" stone --mesh "$out/column.obj" --slab-mesh "$out/column_slabs.obj" --out "$out/column" \
+    --stone sandstone --feature-size 0.08 --rain-dir 0 -0.5 -1 --deposit-value 0.3 \
+    --cycles "$cycles" --steps "$steps" --tangential-res 6 --depth-res 6 --depth 0.03 \
+    --grid 96 --map-resolution 0 --seed 1 --quiet
+sandstone='sigma_t = 150.0
+stone_albedo = [0.99, 0.96, 0.90]
+iron_albedo = [0.90, 0.62, 0.35]
+crust_albedo = [0.05, 0.045, 0.04]
+forward_k = 0.2
+backward_k = -0.2
+forward_weight = 0.6
+crust_gain = 500.0
+iron_gain = 2000.0'
+render_series column front "[0.0, 1.05, 5.6]" "[0.0, 1.0, 0.0]" 22 96 224 "$out/sky_column.exr" \
+    "$sandstone" "eta = 1.55
+roughness_exponent = 3.0"
+render_series column back "[0.0, 1.05, -5.6]" "[0.0, 1.0, 0.0]" 22 96 224 "$out/sky_column.exr" \
+    "$sandstone" "eta = 1.55
+roughness_exponent = 3.0"
+
+# --- Marble statue: slabs on a coarse copy of the statue; rain from above.
+"$texgen" mesh statue -o "$out/statue.obj"
+"$texgen" mesh statue --resolution 24 -o "$out/statue_slabs.obj"
+"$texgen" stone --mesh "$out/statue.obj" --slab-mesh "$out/statue_slabs.obj" --out "$out/marble" \
+    --stone marble --rain-dir 0.3 -1 -0.2 --deposit-value 0.1 \
+    --cycles "$cycles" --steps "$steps" --tangential-res 6 --depth-res 6 --depth 0.04 \
+    --grid 96 --map-resolution 0 --seed 1 --quiet
+render_series marble backlit "[0.0, 1.55, 3.4]" "[0.0, 1.45, 0.0]" 21 120 150 \
+    "$out/sky_marble.exr" 'sigma_t = 12.0
+stone_albedo = [0.995, 0.993, 0.99]
+iron_albedo = [0.95, 0.80, 0.50]
+crust_albedo = [0.3, 0.28, 0.25]
+forward_k = 0.5
+backward_k = -0.2
+forward_weight = 0.8
+crust_gain = 200.0
+iron_gain = 2000.0' "eta = 1.5
+roughness_exponent = 2.0"
+
+# --- Contact strips: time runs left to right
+front=() back=() marble=()
+for dir in "$out/column"/cycle_*; do front+=("$dir/front.png"); back+=("$dir/back.png"); done
+for dir in "$out/marble"/cycle_*; do marble+=("$dir/backlit.png"); done
+n=${#front[@]}
+oiiotool "${front[@]}" "${back[@]}" --mosaic:pad=4 "${n}x2" -o "$out/column_strip.png"
+oiiotool "${marble[@]}" --mosaic:pad=4 "${#marble[@]}x1" -o "$out/marble_strip.png"
+echo "wrote $out/column_strip.png (wet front above dry back, 0-$cycles cycles) and" \
+    "$out/marble_strip.png (backlit marble, 0-$cycles cycles)"
