@@ -1,3 +1,8 @@
+// Comparisons here raise no floating-point exception anyone looks at: with that known, the
+// selects of the sublayer optics (two_flux.h) become branch-free and the
+// per-wavelength loops have no library call or branch and vectorise.
+#pragma GCC optimize("no-trapping-math")
+
 #include "texgen/fade/fading_simulation.h"
 
 #include "texgen/fade/two_flux.h"
@@ -134,6 +139,7 @@ void FadeSimulation::step(const Illumination& light, double dt_s)
     double* g1 = g0 + (N + 1) * kBlock;
     double* up = g1 + (N + 1) * kBlock;
     double* down = up + (N + 1) * kBlock;
+    const double dz = dz_;
     for (size_t w0 = 0; w0 < padded_; w0 += kBlock) {
         double e_top[kBlock], e_bottom[kBlock], ground[kBlock];
         bool lit = false;
@@ -158,34 +164,37 @@ void FadeSimulation::step(const Illumination& light, double dt_s)
                     mu_s[b] += f[j] * s[b];
                 }
             }
-            for (size_t b = 0; b < kBlock; ++b) {
-                const SublayerOptics o = sublayer_optics(mu_a[b], mu_s[b], dz_);
-                rho[i * kBlock + b] = o.rho;
-                tau[i * kBlock + b] = o.tau;
-            }
+            sublayer_optics(mu_a, mu_s, dz, &rho[i * kBlock], &tau[i * kBlock], kBlock);
         }
         for (size_t b = 0; b < kBlock; ++b) {
             rho[N * kBlock + b] = ground[b];
             tau[N * kBlock + b] = 0.0;
         }
-        // Forward sweep (see solve_two_flux).
+        // Forward sweep (see solve_two_flux); rows outside the layer read zeros.
+        const double zeros[kBlock] = {};
         for (size_t i = 0; i <= N; ++i) {
             const double* rho_i = &rho[i * kBlock];
             const double* tau_i = &tau[i * kBlock];
+            const double* rho_above = i > 0 ? &rho[(i - 1) * kBlock] : zeros;
+            const double* prev_tau = i > 0 ? &tau[(i - 1) * kBlock] : zeros;
+            const double* prev_c1 = i > 0 ? &c1[(i - 1) * kBlock] : zeros;
+            const double* prev_g1 = i > 0 ? &g1[(i - 1) * kBlock] : zeros;
+            const double* from_below = i == N ? e_bottom : zeros;
+            const double* from_top = i == 0 ? e_top : zeros;
+            double* c0_i = &c0[i * kBlock];
+            double* c1_i = &c1[i * kBlock];
+            double* g0_i = &g0[i * kBlock];
+            double* g1_i = &g1[i * kBlock];
             for (size_t b = 0; b < kBlock; ++b) {
-                const double rho_above = i > 0 ? rho[(i - 1) * kBlock + b] : 0.0;
-                const double prev_tau = i > 0 ? tau[(i - 1) * kBlock + b] : 0.0;
-                const double prev_c1 = i > 0 ? c1[(i - 1) * kBlock + b] : 0.0;
-                const double prev_g1 = i > 0 ? g1[(i - 1) * kBlock + b] : 0.0;
                 const double w01 = -rho_i[b];
-                const double w10 = -rho_above + prev_tau * prev_c1;
+                const double w10 = -rho_above[b] + prev_tau[b] * prev_c1[b];
                 const double inv_det = 1.0 / (1.0 - w01 * w10);
-                const double r0 = i == N ? e_bottom[b] : 0.0;
-                const double r1 = (i == 0 ? e_top[b] : 0.0) + prev_tau * prev_g1;
-                g0[i * kBlock + b] = (r0 - w01 * r1) * inv_det;
-                g1[i * kBlock + b] = (r1 - w10 * r0) * inv_det;
-                c0[i * kBlock + b] = -tau_i[b] * inv_det;
-                c1[i * kBlock + b] = tau_i[b] * w10 * inv_det;
+                const double r0 = from_below[b];
+                const double r1 = from_top[b] + prev_tau[b] * prev_g1[b];
+                g0_i[b] = (r0 - w01 * r1) * inv_det;
+                g1_i[b] = (r1 - w10 * r0) * inv_det;
+                c0_i[b] = -tau_i[b] * inv_det;
+                c1_i[b] = tau_i[b] * w10 * inv_det;
             }
         }
         // Back substitution.
@@ -194,10 +203,16 @@ void FadeSimulation::step(const Illumination& light, double dt_s)
             down[N * kBlock + b] = g1[N * kBlock + b];
         }
         for (size_t i = N; i-- > 0;) {
+            const double* u_next = &up[(i + 1) * kBlock];
+            const double* c0_i = &c0[i * kBlock];
+            const double* c1_i = &c1[i * kBlock];
+            const double* g0_i = &g0[i * kBlock];
+            const double* g1_i = &g1[i * kBlock];
+            double* up_i = &up[i * kBlock];
+            double* down_i = &down[i * kBlock];
             for (size_t b = 0; b < kBlock; ++b) {
-                const double u_next = up[(i + 1) * kBlock + b];
-                up[i * kBlock + b] = g0[i * kBlock + b] - c0[i * kBlock + b] * u_next;
-                down[i * kBlock + b] = g1[i * kBlock + b] - c1[i * kBlock + b] * u_next;
+                up_i[b] = g0_i[b] - c0_i[b] * u_next[b];
+                down_i[b] = g1_i[b] - c1_i[b] * u_next[b];
             }
         }
         // §4.1: the mean fluence rate of each sublayer; accumulate Eq. (14)'s integrals.

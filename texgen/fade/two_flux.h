@@ -5,8 +5,7 @@
 // (Isaacson & Keller 1994).
 #pragma once
 
-#include <bit>
-#include <cmath>
+#include <cstddef>
 #include <span>
 
 namespace patina::texgen::fade {
@@ -21,9 +20,12 @@ struct SublayerOptics {
 /// branches or library calls, so that loops over wavelengths vectorise: y = n ln2 + r,
 /// |r| <= ln2/2, e^r by its Taylor polynomial to degree 12 (remainder < 2e-16), 2^n from
 /// the exponent bits.
-inline double exp_nonpositive(double y)
+[[gnu::always_inline]] inline double exp_nonpositive(double y)
 {
-    y = y < -708.0 ? -708.0 : (y > 0.0 ? 0.0 : y);
+    // Plain selects and builtins, not std:: wrappers: they inline into callers compiled with
+    // other floating-point options (fading_simulation.cpp) and keep the loops vectorisable.
+    y = y < -708.0 ? -708.0 : y;
+    y = y > 0.0 ? 0.0 : y;
     constexpr double kShift = 6755399441055744.0;  // 1.5 * 2^52: rounds to an integer
     const double t = y * 1.4426950408889634 + kShift;
     const double n = t - kShift;
@@ -43,9 +45,26 @@ inline double exp_nonpositive(double y)
     p = p * r + 1.0;
     p = p * r + 1.0;
     // The low bits of t hold n; 2^n = (n + 1023) << 52.
-    const long long bits_t = std::bit_cast<long long>(t);
-    const long long n_int = bits_t - std::bit_cast<long long>(kShift);
-    return p * std::bit_cast<double>((n_int + 1023) << 52);
+    const long long bits_t = __builtin_bit_cast(long long, t);
+    const long long n_int = bits_t - __builtin_bit_cast(long long, kShift);
+    return p * __builtin_bit_cast(double, (n_int + 1023) << 52);
+}
+
+/// sqrt(v) for v >= 0 (relative error < 1e-15), without the errno branch of std::sqrt:
+/// 1/sqrt from the exponent bits (error < 4%), four Newton steps (quadratic: < 1e-20),
+/// times v.
+[[gnu::always_inline]] inline double sqrt_nonnegative(double v)
+{
+    v = v > 0.0 ? v : 0.0;
+    const double safe = v > 1e-300 ? v : 1e-300;
+    double y = __builtin_bit_cast(double, 0x5fe6eb50c7b537a9LL -
+                                              (__builtin_bit_cast(long long, safe) >> 1));
+    const double half = 0.5 * safe;
+    y = y * (1.5 - half * y * y);
+    y = y * (1.5 - half * y * y);
+    y = y * (1.5 - half * y * y);
+    y = y * (1.5 - half * y * y);
+    return v * y;
 }
 
 /// Eqs. (22), (23) for absorption mu_a and scattering mu_s (1/m) and thickness dz (m).
@@ -55,22 +74,28 @@ inline double exp_nonpositive(double y)
 /// Kubelka's formulas multiplied through by 2 e / x: finite for S = 0 (rho = 0,
 /// tau = exp(-K dz)) and K = 0 (rho = S dz / (1 + S dz)), no overflow for any thickness,
 /// and branch-free so that loops over wavelengths vectorise.
-inline SublayerOptics sublayer_optics(double mu_a, double mu_s, double dz)
+[[gnu::always_inline]] inline SublayerOptics sublayer_optics(double mu_a, double mu_s, double dz)
 {
     const double K = mu_a > 0.0 ? mu_a : 0.0;
     const double S = mu_s > 0.0 ? mu_s : 0.0;
     const double d = dz > 0.0 ? dz : 0.0;
-    const double x = std::sqrt(K * (K + 2.0 * S)) * d;
+    const double x = sqrt_nonnegative(K * (K + 2.0 * S)) * d;
     const double e = exp_nonpositive(-x);
     const double e2 = e * e;
     // 2 e sinh(x) / x: (1 - e^2)/x, or 2 e (1 + x^2/6 + x^4/120 + x^6/5040) near 0.
     const double x2 = x * x;
     const double series = 2.0 * e * (1.0 + x2 * (1.0 / 6.0 + x2 * (1.0 / 120.0 + x2 / 5040.0)));
-    const double safe_x = x < 1e-2 ? 1.0 : x;
-    const double q = x < 1e-2 ? series : (1.0 - e2) / safe_x;
+    // Both computed, then selected: no branch (and no division by x = 0 that counts).
+    const double big = (1.0 - e2) / (x < 1e-2 ? 1e-2 : x);
+    const double q = x < 1e-2 ? series : big;
     const double inv = 1.0 / ((K + S) * q * d + 1.0 + e2);
     return {S * q * d * inv, 2.0 * e * inv};
 }
+
+/// sublayer_optics for n values at once (a loop that vectorises; the per-wavelength
+/// blocks of the fading simulation).
+void sublayer_optics(const double* mu_a, const double* mu_s, double dz, double* rho,
+                     double* tau, size_t n);
 
 /// The boundary conditions: irradiance E_0 entering at the top (Eq. 24), an optional
 /// irradiance entering from below through the ground (illumination from both sides; 0 for

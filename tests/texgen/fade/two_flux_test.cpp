@@ -147,6 +147,9 @@ TEST(TwoFlux, BranchFreeExponentialIsAccurate)
         EXPECT_NEAR(exp_nonpositive(y) / ref, 1.0, 1e-15) << y;
     }
     EXPECT_EQ(exp_nonpositive(0.0), 1.0);
+    for (double v = 1e-300; v < 1e300; v *= 1.7)
+        EXPECT_NEAR(sqrt_nonnegative(v) / std::sqrt(v), 1.0, 1e-15) << v;
+    EXPECT_EQ(sqrt_nonnegative(0.0), 0.0);
     EXPECT_EQ(exp_nonpositive(1.0), 1.0);  // clamped: only y <= 0 is meant
 }
 
