@@ -33,25 +33,46 @@ bool world_to_slab(const SlabCorners& c, const V3d& p, V3d& uvw)
     for (int i = 1; i < 8; ++i)
         size = std::max(size, (c[i] - c[0]).length());
     const double tol = 1e-9 * size;
-    uvw = V3d(0.5);
-    for (int it = 0; it < 40; ++it) {
-        const V3d r = slab_to_world(c, uvw) - p;
-        if (r.length() <= tol)
+    // Damped Newton: halve a step that does not reduce the residual (the trilinear map of a
+    // skewed slab is far from linear), from the centre and, failing that, from the corners.
+    auto solve = [&](const V3d& start) {
+        uvw = start;
+        V3d r = slab_to_world(c, uvw) - p;
+        for (int it = 0; it < 30; ++it) {
+            const double norm = r.length();
+            if (norm <= tol)
+                return true;
+            V3d du, dv, dw;
+            slab_derivatives(c, uvw, du, dv, dw);
+            const double det = du.cross(dv).dot(dw);
+            if (!(std::abs(det) > 1e-300))
+                return false;
+            const V3d delta(r.cross(dv).dot(dw) / det, du.cross(r).dot(dw) / det,
+                            du.cross(dv).dot(r) / det);
+            double step = 1.0;
+            for (int half = 0; half < 8; ++half, step *= 0.5) {
+                V3d next = uvw - step * delta;
+                for (int k = 0; k < 3; ++k)
+                    next[k] = std::clamp(next[k], -2.0, 3.0);
+                const V3d rn = slab_to_world(c, next) - p;
+                if (rn.length() < norm || half == 7) {
+                    uvw = next;
+                    r = rn;
+                    break;
+                }
+            }
+        }
+        return r.length() <= tol * 1e3;
+    };
+    if (solve(V3d(0.5)))
+        return true;
+    // Clearly outside (the usual case for a candidate slab that does not hold p): no retries.
+    if (outside_distance(uvw) > 0.25)
+        return false;
+    for (int corner = 0; corner < 8; ++corner)
+        if (solve(V3d(corner & 1 ? 0.9 : 0.1, corner & 2 ? 0.9 : 0.1, corner & 4 ? 0.9 : 0.1)))
             return true;
-        V3d du, dv, dw;
-        slab_derivatives(c, uvw, du, dv, dw);
-        // Solve [du dv dw] delta = r by Cramer's rule.
-        const double det = du.cross(dv).dot(dw);
-        if (!(std::abs(det) > 1e-300))
-            return false;
-        const V3d delta(r.cross(dv).dot(dw) / det, du.cross(r).dot(dw) / det,
-                        du.cross(dv).dot(r) / det);
-        uvw -= delta;
-        // Far outside the slab the trilinear map may fold: keep the iterate near it.
-        for (int k = 0; k < 3; ++k)
-            uvw[k] = std::clamp(uvw[k], -2.0, 3.0);
-    }
-    return (slab_to_world(c, uvw) - p).length() <= tol * 1e3;
+    return false;
 }
 
 double outside_distance(const V3d& t)

@@ -207,15 +207,19 @@ SlabShell build_slab_shell(const TriangleMesh& base, const ShellOptions& options
         }
     };
     auto folds = [&](size_t s) {
-        double lo = 1e300, hi = -1e300;
+        // Valid slabs have det J < 0 everywhere (u x v outwards, w inwards). The det is
+        // normalised by |du| |dv| |dw| (the sine-like measure of how far w leans over the
+        // face), so corners of different depths and skinny quads compare alike; a fold is a
+        // point where w (nearly) lies in the face.
         for (int i = 0; i < 27; ++i) {
             const V3d uvw(0.5 * (i % 3), 0.5 * ((i / 3) % 3), 0.5 * (i / 9));
-            const double det = slab_jacobian_determinant(shell.slabs[s], uvw);
-            lo = std::min(lo, det);
-            hi = std::max(hi, det);
+            V3d du, dv, dw;
+            slab_derivatives(shell.slabs[s], uvw, du, dv, dw);
+            const double scale = du.length() * dv.length() * dw.length();
+            if (!(du.cross(dv).dot(dw) < -1e-3 * scale))
+                return true;
         }
-        // Valid slabs have det < 0 everywhere (u x v outwards, w inwards), and not nearly 0.
-        return !(hi < 0.0 && hi < 0.05 * lo);
+        return false;
     };
     for (size_t s = 0; s < n_slabs; ++s)
         build(s);
@@ -242,6 +246,33 @@ SlabShell build_slab_shell(const TriangleMesh& base, const ShellOptions& options
             throw std::runtime_error(fmt::format(
                 "slab shell: slab {} still folds after pulling its corners in (mesh '{}' may "
                 "not be closed or consistently wound)", s, base.name));
+    // Overlaps between slabs that are not neighbours (the inner faces of opposite sides of a
+    // ridge or a narrow part): sample each slab's lower half; where a sample lies in another
+    // slab, pull both slabs' inner corners up, until no sample does.
+    for (int pass = 0; pass < 30; ++pass) {
+        const SlabLocator locator(shell.slabs);
+        std::vector<char> overlapping(n_slabs, 0);
+        tbb::parallel_for(size_t(0), n_slabs, [&](size_t s) {
+            for (int i = 0; i < 18; ++i) {
+                const V3d uvw(0.1 + 0.4 * (i % 3), 0.1 + 0.4 * ((i / 3) % 3), i < 9 ? 0.6 : 0.95);
+                for (const SlabPoint& at : locator.locate_all(slab_to_world(shell.slabs[s], uvw), 0.0))
+                    if (at.slab != int(s)) {
+                        overlapping[s] = 1;
+                        return;
+                    }
+            }
+        });
+        if (std::count(overlapping.begin(), overlapping.end(), 1) == 0)
+            break;
+        for (size_t s = 0; s < n_slabs; ++s)
+            if (overlapping[s]) {
+                fixed[s] = 1;
+                for (int p : shell.quads[s])
+                    shell.depths[p] *= 0.8;
+            }
+        for (size_t s = 0; s < n_slabs; ++s)
+            build(s);
+    }
     shell.folded_fixes = static_cast<int>(std::count(fixed.begin(), fixed.end(), 1));
 
     // Neighbours across each edge (two slabs share an edge when they share its two points).

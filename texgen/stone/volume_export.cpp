@@ -210,7 +210,7 @@ WorldVolume read_world_volume(const fs::path& path)
     if (in->spec().width != 3 || in->spec().height != 3 || in->spec().nchannels != 1)
         throw fail("part 'bounds' must be 3 x 3 with one channel");
     std::vector<float> b(9);
-    if (!in->read_image(0, 0, 0, 1, OIIO::TypeDesc::FLOAT, b.data()))
+    if (!in->read_image(bounds_part, 0, 0, 1, OIIO::TypeDesc::FLOAT, b.data()))
         throw fail(in->geterror());
     WorldVolume v;
     v.bounds = Imath::Box3d(V3d(b[0], b[1], b[2]), V3d(b[3], b[4], b[5]));
@@ -218,12 +218,12 @@ WorldVolume read_world_volume(const fs::path& path)
     v.ny = int(b[7]);
     v.nz = int(b[8]);
     in->seek_subimage(voxels_part, 0);
-    const OIIO::ImageSpec& spec = in->spec();
+    const OIIO::ImageSpec spec = in->spec();
     if (spec.width != v.nx || spec.height != v.ny * v.nz || v.nx < 1 || v.ny < 1 || v.nz < 1)
         throw fail(fmt::format("part 'voxels' is {} x {}, bounds say {} x {} x {}", spec.width,
                                spec.height, v.nx, v.ny, v.nz));
     std::vector<float> px(size_t(spec.width) * spec.height * spec.nchannels);
-    if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, px.data()))
+    if (!in->read_image(voxels_part, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, px.data()))
         throw fail(in->geterror());
     const size_t n = size_t(v.nx) * v.ny * v.nz;
     std::vector<float>* fields[4] = {&v.density, &v.crust, &v.iron, &v.salt};

@@ -32,13 +32,16 @@ void voxelize(const SlabLattice& lattice, const TriangleMesh& mesh, std::vector<
                 const V3d a = slab_to_world(c, V3d((i + 0.5) / g.n_t, (j + 0.5) / g.n_t, 0.0));
                 const V3d b = slab_to_world(c, V3d((i + 0.5) / g.n_t, (j + 0.5) / g.n_t, 1.0));
                 const V3d dir = b - a;
-                const Imath::V3f o(float(a.x), float(a.y), float(a.z));
+                // Start a little outside the column's outer end (Embree needs tnear >= 0).
+                constexpr double kLead = 1e-4;
+                const V3d start = a - kLead * dir;
+                const Imath::V3f o(float(start.x), float(start.y), float(start.z));
                 const Imath::V3f d(float(dir.x), float(dir.y), float(dir.z));
                 crossings.clear();
                 ColumnSurface& col = columns[column_index(g, s, i, j)];
-                float t = -1e-4f;
+                float t = 0.0f;
                 for (int guard = 0; guard < 64; ++guard) {
-                    auto hit = scene.intersect(o, d, t, 1.0001f);
+                    auto hit = scene.intersect(o, d, t, float(1.0 + 2.0 * kLead));
                     if (!hit)
                         break;
                     if (crossings.empty()) {
@@ -50,11 +53,11 @@ void voxelize(const SlabLattice& lattice, const TriangleMesh& mesh, std::vector<
                         col.uv = sp.uv;
                         col.hit = true;
                     }
-                    crossings.push_back(hit->t);
+                    crossings.push_back(hit->t - kLead); // as w along the column
                     t = hit->t + 1e-6f;
                 }
                 if (!col.hit) {
-                    col.P = o;
+                    col.P = Imath::V3f(float(a.x), float(a.y), float(a.z));
                     const Imath::V3f out = -d;
                     col.N = out.length() > 0 ? out.normalized() : Imath::V3f(0, 1, 0);
                 }

@@ -89,12 +89,12 @@ TEST(StoneSimulation, HorizontalSurfaceUnderRainErodesMoreThanAVerticalOne)
 {
     StoneParameters p;
     p.seed = 3;
-    // Rain falling straight down: wetness = max(0, N . up) per column (the wetness baker's
-    // inclination term); vertical faces get none, the top all of it.
+    // Rain falling straight down, as the wetness baker's inclination term makes it: the top
+    // gets all of it, vertical faces the splash and run-off of 0.3.
     auto probe = sandstone_box(no_erosion());
     std::vector<float> wetness(probe->st.columns.size());
     for (size_t c = 0; c < wetness.size(); ++c)
-        wetness[c] = std::max(0.0f, probe->st.columns[c].N.y);
+        wetness[c] = 0.3f + 0.7f * std::max(0.0f, probe->st.columns[c].N.y);
     auto s = sandstone_box(p, wetness);
     StoneState& st = s->st;
     const std::vector<float> initial = st.density;
@@ -118,8 +118,8 @@ TEST(StoneSimulation, HorizontalSurfaceUnderRainErodesMoreThanAVerticalOne)
             }
     const double top = loss[0] / area[0], side = loss[1] / area[1];
     std::printf("density lost per column: top %.4g, sides %.4g\n", top, side);
-    EXPECT_GT(top, 2.0 * side);
-    EXPECT_GT(top, 0.0);
+    EXPECT_GT(side, 0.0); // the sides weather too, only less
+    EXPECT_GT(top, 1.5 * side);
 }
 
 TEST(StoneSimulation, SameBitsForAnyThreadCount)

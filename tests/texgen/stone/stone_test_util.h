@@ -5,6 +5,7 @@
 #include "texgen/stone/slab_lattice.h"
 #include "texgen/stone/stone_state.h"
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 
@@ -25,6 +26,28 @@ inline TriangleMesh concave_blob(float radius = 0.5f, float amplitude = 0.25f, i
         p *= 1.0f + amplitude * std::sin(3.0f * theta) * std::cos(3.0f * phi);
     }
     m.normals.clear();
+    return m;
+}
+
+/// A torus around the y axis (ring radius R, tube radius r): closed, outward-wound, concave
+/// on the inner side of the ring (negative Gaussian curvature) and convex outside.
+inline TriangleMesh torus(float R = 0.5f, float r = 0.2f, int ring = 32, int tube = 16)
+{
+    TriangleMesh m;
+    m.name = "torus";
+    for (int i = 0; i < ring; ++i)
+        for (int j = 0; j < tube; ++j) {
+            const float a = 2.0f * float(M_PI) * i / ring, b = 2.0f * float(M_PI) * j / tube;
+            const float rho = R + r * std::cos(b);
+            m.positions.emplace_back(rho * std::cos(a), r * std::sin(b), rho * std::sin(a));
+        }
+    auto id = [&](int i, int j) { return uint32_t(((i + ring) % ring) * tube + (j + tube) % tube); };
+    for (int i = 0; i < ring; ++i)
+        for (int j = 0; j < tube; ++j) {
+            // Outward: (d/db) x (d/da) points away from the tube's centre line.
+            for (uint32_t v : {id(i, j), id(i, j + 1), id(i + 1, j + 1), id(i, j), id(i + 1, j + 1), id(i + 1, j)})
+                m.indices.push_back(v);
+        }
     return m;
 }
 
