@@ -28,7 +28,7 @@ inline texgen::fade::FadeMaterial fading_test_material(double substrate = 0.7)
     pigment.name = "test_magenta";
     pigment.absorption_per_m = band;
     pigment.scattering_per_m = TabulatedSpectrum::constant(1e4);
-    pigment.fading = {2e-12, 500.0, 700.0};
+    pigment.fading = {2e-10, 500.0, 700.0};
     Colorant binder;
     binder.name = "test_binder";
     binder.absorption_per_m = TabulatedSpectrum::constant(0.0);
