@@ -27,12 +27,14 @@ namespace {
     {
         const std::vector<TestMaterial> m = {kCopper, kGreen, kBrown, kDirt, kMilk};
         return {
+            // Tolerances: the measured largest difference over θo in {0, 45, 75}° and the 8
+            // wavelengths (docs/layered_accuracy.md), plus 0.02 for the walks' noise.
             {"bare copper", {"copper", {}, m}, 0.01f},
-            {"0.3 um brown on copper", {"copper", {{"brown", 0.3f}}, m}, 0.08f},
-            {"2 um green on copper", {"copper", {{"green", 2.0f}}, m}, 0.08f},
+            {"0.3 um brown on copper", {"copper", {{"brown", 0.3f}}, m}, 0.115f},
+            {"2 um green on copper", {"copper", {{"green", 2.0f}}, m}, 0.06f},
             {"brown 0.4 + green 1 + dirt 0.3 on copper",
-             {"copper", {{"brown", 0.4f}, {"green", 1.0f}, {"dirt", 0.3f}}, m}, 0.08f},
-            {"1 um milk on dirt", {"dirt", {{"milk", 1.0f}}, m}, 0.08f},
+             {"copper", {{"brown", 0.4f}, {"green", 1.0f}, {"dirt", 0.3f}}, m}, 0.04f},
+            {"1 um milk on dirt", {"dirt", {{"milk", 1.0f}}, m}, 0.15f},
         };
     }
 
@@ -53,11 +55,11 @@ TEST(LayeredReference, KmAlbedoAgainstRandomWalk)
     for (const Case& c : cases()) {
         const fs::path path = write_stack("reference_" + std::to_string(&c - &cases()[0]), c.stack);
         const Layered km(path);
-        const Layered rw(path, "random_walk", 40000);
+        const Layered rw(path, "random_walk", 10000);
         ASSERT_TRUE(km && rw) << km.errors() << rw.errors();
         for (float theta : {0.0f, 45.0f, 75.0f}) {
             const Vec3 wo = direction_deg(theta, 0.0f);
-            const Spectrum a_km = km.albedo_by_quadrature(wo, 96);
+            const Spectrum a_km = km.albedo_by_sampling(wo, 128);
             const Spectrum a_rw = rw.albedo(wo);
             float worst = 0.0f;
             for (int i = 0; i < 8; ++i) {
@@ -76,8 +78,8 @@ TEST(LayeredReference, RandomWalkEvalIntegratesToItsAlbedo)
     // integrated by sampling the KM mixture) equals the analog walks' escaping energy.
     const Case c = cases()[3];
     const fs::path path = write_stack("reference_nee", c.stack);
-    const Layered rw(path, "random_walk", 64);
-    const Layered analog(path, "random_walk", 40000);
+    const Layered rw(path, "random_walk", 24);
+    const Layered analog(path, "random_walk", 10000);
     const Vec3 wo = direction_deg(35.0f, 0.0f);
     uint64_t state = 3;
     auto next = [&] {
@@ -87,7 +89,7 @@ TEST(LayeredReference, RandomWalkEvalIntegratesToItsAlbedo)
         return static_cast<float>((z ^ (z >> 31)) >> 40) * 0x1p-24f;
     };
     std::array<double, 8> sum{};
-    constexpr int kSamples = 3000;
+    constexpr int kSamples = 1200;
     for (int k = 0; k < kSamples; ++k) {
         PatinaBsdfSample s;
         if (!rw.sample(wo, next(), Vec2(next(), next()), &s))
@@ -97,7 +99,7 @@ TEST(LayeredReference, RandomWalkEvalIntegratesToItsAlbedo)
     }
     const Spectrum a = analog.albedo(wo);
     for (int i = 0; i < 8; ++i)
-        EXPECT_NEAR(sum[i] / kSamples, a[i], 0.02) << i;
+        EXPECT_NEAR(sum[i] / kSamples, a[i], 0.03) << i;
 }
 
 }  // namespace patina::test
