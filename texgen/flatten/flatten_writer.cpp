@@ -20,12 +20,16 @@ namespace {
 
     constexpr const char* kBaker = "flatten";
 
-    /// Path of `file` relative to `dir` when it can be, with '/' separators.
+    /// Path of `file` relative to `dir` when it lies inside it ("stack.toml" when flattening
+    /// into the stack's folder), else absolute.
     std::string relative_text(const fs::path& file, const fs::path& dir)
     {
         std::error_code ec;
         const fs::path rel = fs::relative(file, dir, ec);
-        return (ec || rel.empty() ? file : rel).generic_string();
+        if (!ec && !rel.empty() && *rel.begin() != "..")
+            return rel.generic_string();
+        const fs::path abs = fs::absolute(file, ec);
+        return (ec ? file : abs.lexically_normal()).generic_string();
     }
 
     toml::table read_or_new_manifest(const fs::path& path)
