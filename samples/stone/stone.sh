@@ -23,20 +23,22 @@ steps=3
 mkdir -p "$out"
 
 # Skies (lat-long, +y up, the centre column looking along -z; oiiotool draws them): a soft
-# key light high on the right-front for the column, a small bright light low behind the
-# statue's head for the marble.
+# key light high on the right-front for the column; for the marble a dark sky, two dim side
+# lights and a small bright light straight behind the statue's head, hidden by it.
 oiiotool --pattern fill:top=0.55,0.65,0.85:bottom=0.3,0.27,0.24 512x256 3 \
     --box:color=5,4.6,4:fill=1 380,40,500,110 --blur 61x61 -d half -o "$out/sky_column.exr"
-oiiotool --pattern fill:top=0.35,0.38,0.45:bottom=0.12,0.11,0.1 512x256 3 \
-    --box:color=400,380,340:fill=1 248,112,264,128 --blur 15x15 -d half -o "$out/sky_marble.exr"
+oiiotool --pattern fill:top=0.05,0.055,0.07:bottom=0.02,0.02,0.02 512x256 3 \
+    --box:color=9000,8550,7650:fill=1 253,125,259,131 \
+    --box:color=0.5,0.5,0.5:fill=1 0,70,40,140 --box:color=0.5,0.5,0.5:fill=1 472,70,512,140 \
+    -d half -o "$out/sky_marble.exr"
 
-# scene SUBJECT STEP_DIR SKY CAMERA_FROM CAMERA_TO FOV WIDTH HEIGHT MEDIUM_PARAMS SURFACE_PARAMS
+# scene SUBJECT STEP_DIR SKY CAMERA_FROM CAMERA_TO FOV WIDTH HEIGHT MEDIUM SURFACE SPP
 scene() {
     cat <<EOF
 [film]
 width = $7
 height = $8
-spp = 32
+spp = ${11}
 max_depth = 256
 seed = 1
 [camera]
@@ -65,11 +67,11 @@ interior = "stone"
 EOF
 }
 
-# render_series SUBJECT VIEW_NAME FROM TO FOV WIDTH HEIGHT SKY MEDIUM SURFACE: one PNG per step
+# render_series SUBJECT VIEW FROM TO FOV WIDTH HEIGHT SKY MEDIUM SURFACE SPP: a PNG per step
 render_series() {
     local subject="$1" view="$2"
     for dir in "$out/$subject"/cycle_*; do
-        scene "$subject" "$dir" "$8" "$3" "$4" "$5" "$6" "$7" "$9" "${10}" > "$dir/$view.toml"
+        scene "$subject" "$dir" "$8" "$3" "$4" "$5" "$6" "$7" "$9" "${10}" "${11}" > "$dir/$view.toml"
         "$render" "$dir/$view.toml" --output "$dir/$view.exr" --quiet
     done
 }
@@ -93,10 +95,10 @@ crust_gain = 500.0
 iron_gain = 2000.0'
 render_series column front "[0.0, 1.05, 5.6]" "[0.0, 1.0, 0.0]" 22 96 224 "$out/sky_column.exr" \
     "$sandstone" "eta = 1.55
-roughness_exponent = 3.0"
+roughness_exponent = 3.0" 32
 render_series column back "[0.0, 1.05, -5.6]" "[0.0, 1.0, 0.0]" 22 96 224 "$out/sky_column.exr" \
     "$sandstone" "eta = 1.55
-roughness_exponent = 3.0"
+roughness_exponent = 3.0" 32
 
 # --- Marble statue: slabs on a coarse copy of the statue; rain from above.
 "$texgen" mesh statue -o "$out/statue.obj"
@@ -105,8 +107,8 @@ roughness_exponent = 3.0"
     --stone marble --rain-dir 0.3 -1 -0.2 --deposit-value 0.1 \
     --cycles "$cycles" --steps "$steps" --tangential-res 6 --depth-res 6 --depth 0.04 \
     --grid 96 --map-resolution 0 --seed 1 --quiet
-render_series marble backlit "[0.0, 1.55, 3.4]" "[0.0, 1.45, 0.0]" 21 120 150 \
-    "$out/sky_marble.exr" 'sigma_t = 12.0
+render_series marble backlit "[0.0, 1.75, 3.4]" "[0.0, 1.6, 0.0]" 21 100 125 \
+    "$out/sky_marble.exr" 'sigma_t = 15.0
 stone_albedo = [0.995, 0.993, 0.99]
 iron_albedo = [0.95, 0.80, 0.50]
 crust_albedo = [0.3, 0.28, 0.25]
@@ -115,7 +117,7 @@ backward_k = -0.2
 forward_weight = 0.8
 crust_gain = 200.0
 iron_gain = 2000.0' "eta = 1.5
-roughness_exponent = 2.0"
+roughness_exponent = 2.0" 64
 
 # --- Contact strips: time runs left to right
 front=() back=() marble=()
