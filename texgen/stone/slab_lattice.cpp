@@ -109,6 +109,29 @@ SlabLattice::SlabLattice(const SlabShell& shell, int n_t, int n_d)
         ghost_sources_[g] = trilinear_sources(grid_, *at, true);
     });
     unconnected_ = size_t(std::count(connected.begin(), connected.end(), 0));
+
+    // Flux partners, and the feeds of every voxel (which connected ghosts it is a source of).
+    flux_partner_.assign(cells, 0);
+    for (int s = 0; s < grid_.slab_count; ++s)
+        for (int k = 0; k < n_d; ++k)
+            for (int j = 0; j < n_t; ++j)
+                for (int i = 0; i < n_t; ++i)
+                    flux_partner_[grid_.index(s, i, j, k)] = 1;
+    feed_begin_.assign(cells + 1, 0);
+    for (size_t g = 0; g < ghost_cell_.size(); ++g)
+        if (connected[g]) {
+            flux_partner_[ghost_cell_[g]] = 1;
+            for (const GhostSource& src : ghost_sources_[g])
+                ++feed_begin_[src.cell + 1];
+        }
+    for (size_t c = 0; c < cells; ++c)
+        feed_begin_[c + 1] += feed_begin_[c];
+    feeds_.resize(feed_begin_[cells]);
+    std::vector<uint32_t> fill(feed_begin_.begin(), feed_begin_.end() - 1);
+    for (size_t g = 0; g < ghost_cell_.size(); ++g)
+        if (connected[g])
+            for (const GhostSource& src : ghost_sources_[g])
+                feeds_[fill[src.cell]++] = Feed{ghost_cell_[g], src.weight};
 }
 
 void SlabLattice::fill_halo(float* field) const

@@ -77,6 +77,18 @@ public:
     /// Ghost cells whose position lies in no other slab (copied from their own slab).
     size_t unconnected_ghosts() const { return unconnected_; }
 
+    /// Whether a cell may exchange fluxes: interior voxels and ghosts located in another
+    /// slab; not the halo above and below the shell nor unconnected ghosts (no-flux).
+    bool flux_partner(size_t cell) const { return flux_partner_[cell] != 0; }
+    /// The ghosts a voxel feeds (CSR by cell): what a flux into a ghost delivers to its
+    /// sources, so fluxes across slab seams conserve mass (transport.cpp).
+    struct Feed {
+        uint32_t ghost;
+        float weight;
+    };
+    const std::vector<uint32_t>& feed_begin() const { return feed_begin_; }
+    const std::vector<Feed>& feeds() const { return feeds_; }
+
     /// Trilinear sample of a field at slab point `p` (halo filled), between voxel centres.
     float sample(const float* field, const SlabPoint& p) const;
 
@@ -92,6 +104,9 @@ private:
     std::vector<uint32_t> ghost_cell_;
     std::vector<std::array<GhostSource, 8>> ghost_sources_;
     size_t unconnected_ = 0;
+    std::vector<uint8_t> flux_partner_;
+    std::vector<uint32_t> feed_begin_;
+    std::vector<Feed> feeds_;
 };
 
 /// Trilinear interpolation weights of the voxel centres of a slab around (u, v, w), clamped

@@ -60,6 +60,7 @@ struct StoneState {
     std::vector<float> density, porosity, permeability, head, moisture, pressure;
     std::vector<float> scratch;  ///< double buffer
     std::array<std::vector<float>, kSpecies> solid, dissolved, crust, concentration;
+    std::array<std::vector<float>, kSpecies> ghost_flux;  ///< seam fluxes (transport.cpp)
     std::vector<float> black, decay, wet_time;
     std::vector<uint8_t> flags;
     std::vector<Imath::V3f> colour;        ///< fresh stone albedo

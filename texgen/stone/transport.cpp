@@ -9,9 +9,11 @@
 // Transport: d(phi C)/dt + v . grad(phi C) = div(phi D grad C) in conservative form between
 // pairs of moist voxels: the 13-point stencil's weight for a direction is the coupling of
 // the pair (made symmetric by averaging both ends' weight x water volume), and advection by
-// Darcy's velocity is upwinded across each face; a flux leaving one voxel enters the other,
-// so the total is conserved exactly inside a slab (across slab seams the ghosts interpolate,
-// which conserves only up to the interpolation error).
+// Darcy's velocity is upwinded across each face; a flux leaving one voxel enters the other.
+// Across a slab seam the partner is a ghost (an interpolation of the neighbour slab's
+// voxels) and both slabs see the exchange: each takes half of its own flux, and the ghost
+// hands the opposite half to its source voxels with the interpolation weights. So the total
+// is conserved exactly everywhere; the halo above and below the shell is no-flux.
 //
 // Crusts: in dry phases the water evaporating at the surface leaves its dissolved load as a
 // crust (efflorescence for salts, yellowing for iron, case hardening for the binder); in wet
@@ -62,9 +64,16 @@ void transport_step(StoneState& st, bool wet)
     for (int m = 0; m < kSpecies; ++m)
         lat.fill_halo(st.concentration[m].data());
 
-    tbb::parallel_for(0, g.slab_count * g.n_d, [&](int sk) {
-        const int s = sk / g.n_d, k = sk % g.n_d;
+    // Fluxes handed to ghosts (per species; one slab's halo is written by its own task only).
+    for (int m = 0; m < kSpecies; ++m)
+        st.ghost_flux[m].assign(g.cell_count(), 0.0f);
+    tbb::parallel_for(0, g.slab_count, [&](int s) {
+      for (int k = 0; k < g.n_d; ++k) {
         const auto& o = lat.offsets(s);
+        // Depth step of each direction: the halo above and below the shell is a no-flux
+        // boundary (a copy of the first and last layer), never a partner of a flux.
+        const StencilSigns& sg = lat.signs(s);
+        const int dk[6] = {0, 0, 1, 0, sg.s[1], sg.s[2]};
         for (int j = 0; j < g.n_t; ++j)
             for (int i = 0; i < g.n_t; ++i) {
                 const size_t c = g.index(s, i, j, k);
@@ -96,25 +105,40 @@ void transport_step(StoneState& st, bool wet)
                 float dissolved_now = 0.0f;
                 for (int m = 0; m < kSpecies; ++m) {
                     const float* C = st.concentration[m].data();
+                    float* ledger = st.ghost_flux[m].data();
                     const float cc = C[c];
                     const float dm = alpha * float(prm.diffusivity[m]);
                     float flux = 0.0f; // amount x volume per unit time into c
+                    // A flux F from y into c: whole inside the slab; half across a seam, the
+                    // other half taken from the ghost's sources (see the top of the file).
+                    auto exchange = [&](size_t y, float F) {
+                        if (vol[y] != 0.0f) {
+                            flux += F;
+                        } else {
+                            flux += 0.5f * F;
+                            ledger[y] += 0.5f * F;
+                        }
+                    };
                     for (int d = 0; d < 6; ++d)
                         for (int sign = -1; sign <= 1; sign += 2) {
-                            const size_t y = c + sign * o[d];
-                            if (!moist(st, y))
+                            const int ky = k + sign * dk[d];
+                            if (ky < 0 || ky >= g.n_d)
                                 continue;
-                            const float wy = w[d][y] != 0.0f ? w[d][y] : w[d][c];
+                            const size_t y = c + sign * o[d];
+                            if (!lat.flux_partner(y) || !moist(st, y))
+                                continue;
+                            // Ghosts carry no weights or volume: use c's for both ends.
+                            const float wy = vol[y] != 0.0f ? w[d][y] : w[d][c];
                             const float vy = vol[y] != 0.0f ? vol[y] : vol[c];
                             const float kappa = 0.5f * dm *
                                                 (w[d][c] * vw_c +
                                                  wy * st.porosity[y] * st.density[y] * vy);
-                            flux += kappa * (C[y] - cc);
+                            exchange(y, kappa * (C[y] - cc));
                         }
                     for (int a = 0; a < 3; ++a)
                         for (int sign = -1; sign <= 1; sign += 2) {
                             const size_t y = c + sign * lat.axis_offset(a);
-                            if (!moist(st, y))
+                            if (!lat.flux_partner(y) || !moist(st, y))
                                 continue;
                             // Darcy flow rate (volume per time) from c into y, symmetric in
                             // the pair up to its sign; limited so a step moves at most a
@@ -124,13 +148,13 @@ void transport_step(StoneState& st, bool wet)
                                              ((st.pressure[y] - st.pressure[c]) +
                                               (st.head[y] - st.head[c]));
                             const float vy = vol[y] != 0.0f ? vol[y] : vol[c];
-                            const float hy = axis_metric(w, a, y) != 0.0f ? axis_metric(w, a, y)
-                                                                          : axis_metric(w, a, c);
-                            float q = vd * 0.25f * (vol[c] + vy) * (axis_metric(w, a, c) + hy);
+                            const float hc = axis_metric(w, a, c);
+                            const float hy = vol[y] != 0.0f ? axis_metric(w, a, y) : hc;
+                            float q = vd * 0.25f * (vol[c] + vy) * (hc + hy);
                             const float cap = 0.1f / dt *
                                               std::min(vw_c, st.porosity[y] * st.density[y] * vy);
                             q = std::clamp(q, -cap, cap);
-                            flux += std::max(0.0f, -q) * C[y] - std::max(0.0f, q) * cc;
+                            exchange(y, std::max(0.0f, -q) * C[y] - std::max(0.0f, q) * cc);
                         }
                     float amount = st.dissolved[m][c] + dt * flux / vol[c];
                     if (front) {
@@ -158,6 +182,21 @@ void transport_step(StoneState& st, bool wet)
                 st.decay[c] += float(prm.decay_water) * dt +
                                float(prm.decay_dissolution) * dissolved_now;
             }
+      }
+    });
+
+    // Seams: each voxel gives up what the ghosts it feeds received, by its weight in them.
+    const auto& begin = lat.feed_begin();
+    const auto& feeds = lat.feeds();
+    tbb::parallel_for(size_t(0), g.cell_count(), [&](size_t c) {
+        if (begin[c] == begin[c + 1])
+            return;
+        for (int m = 0; m < kSpecies; ++m) {
+            float out = 0.0f;
+            for (uint32_t e = begin[c]; e < begin[c + 1]; ++e)
+                out += feeds[e].weight * st.ghost_flux[m][feeds[e].ghost];
+            st.dissolved[m][c] -= dt * out / vol[c];
+        }
     });
 }
 

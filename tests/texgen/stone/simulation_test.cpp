@@ -63,8 +63,9 @@ TEST(StoneSimulation, DissolvedMineralsPlusCrustConserveMass)
         std::printf("species %d: mass %.6g -> %.6g (relative change %.2e), dissolved %.3g, "
                     "crust %.3g\n", m, before[m], after, (after - before[m]) / before[m],
                     dissolved, crust);
-        // Conservative fluxes inside slabs; across slab seams the ghosts interpolate.
-        EXPECT_NEAR(after, before[m], 1e-3 * before[m]) << "species " << m;
+        // Conservative fluxes, seams included (transport.cpp); what is left is the rounding
+        // of float amounts (~1e-7 relative per update).
+        EXPECT_NEAR(after, before[m], 1e-5 * before[m]) << "species " << m; // float rounding
     }
     EXPECT_GT(moved, 0.0) << "nothing dissolved: the test would be vacuous";
 }
