@@ -57,7 +57,7 @@ week=6.048e7
 for m in "09:newsprint" "10:congo_red" "11:toluidine_blue_o" "13:cork"; do
     fig=${m%%:*}; material=${m#*:}
     "$texgen" fade --dose $week --duration 7d --illuminant F11 --material "$material" \
-        --out "$out/lamp/$material" --plot "$out/fig${fig}_${material}.png" --quiet \
+        --entries 128 --out "$out/lamp/$material" --plot "$out/fig${fig}_${material}.png" --quiet \
         --plot-title "$material under F11, 100 W/m^2 (figure $fig)"
 done
 
@@ -84,7 +84,7 @@ sun=(--latitude 43.47 --longitude -80.54 --timezone -5 --start 2026-06-21 --end 
 "$texgen" fade --dose 0 --material newsprint --out "$np/before" --quiet
 
 # ---- Figure 18: a cork board with papers moved between exposures -------------------------
-# A 0.8 m cork board lying in the open for three periods of 30 days; in each, a different
+# A 0.8 m cork board lying in the open for three periods of 12 overcast hours; in each, a different
 # set of sheets (A4-ish boxes 2 mm above the cork) shades it.
 bd="$out/board"
 mkdir -p "$bd"
@@ -99,21 +99,21 @@ for k in 1 2 3; do
         "${sun_b[@]}"
 done
 "$texgen" fade --exposure "$bd/period_1/exposure.exr" --exposure "$bd/period_2/exposure.exr" \
-    --exposure "$bd/period_3/exposure.exr" --duration 10d --scale 0.58 --material cork \
+    --exposure "$bd/period_3/exposure.exr" --duration 12h --scale 0.58 --material cork \
     --out "$bd/after" --plot "$out/board_curves.png" --plot-title "cork board (figure 18)" --quiet
 "$texgen" fade --dose 0 --material cork --out "$bd/before" --quiet
 
 # ---- Figure 15: C, M, Y mixtures faded with Table V's four rate sets ----------------------
 # Table V's rates with these absorptions fade a surface in ~10-100 J/m^2 of D65 (see
-# shaders/fade/pigments.toml), so the figure's 4.365e7 J/m^2 is scaled by 2e-6: the same
-# as dividing every rate by 5e5, which keeps the rows' ratios.
+# shaders/fade/pigments.toml), so the figure's 4.365e7 J/m^2 is scaled by 2e-7: the same
+# as dividing every rate by 5e6, which keeps the rows' ratios.
 cmy="$out/cmy"
 mkdir -p "$cmy"
 mixtures=(cyan magenta yellow cyan_magenta cyan_yellow magenta_yellow cyan_magenta_yellow)
 for m in "${mixtures[@]}"; do
     "$texgen" fade --dose 0 --material "$m" --out "$cmy/row0_$m" --entries 4 --quiet
     for r in 1 2 3 4; do
-        "$texgen" fade --dose 4.365e7 --scale 2e-6 --illuminant D65 --material "$m" \
+        "$texgen" fade --dose 4.365e7 --scale 2e-7 --illuminant D65 --material "$m" \
             --rates "table_v_row$r" --out "$cmy/row${r}_$m" --entries 16 --quiet
     done
 done

@@ -185,8 +185,18 @@ void run_fade(const FadeOptions& o)
                                  "<exe>/../share/patina/shaders/fade; pass --materials FILE");
     const fade::FadeLibrary library = fade::FadeLibrary::load_files(files);
     fade::FadeMaterial material = library.material(o.material);
-    if (!o.rates.empty())
-        material = fade::with_rates(material, library.rate_set(o.rates));
+    if (!o.rates.empty()) {
+        // The rates of the colorants this material holds (a set names all of a family)
+        fade::RateSet rates;
+        for (const auto& [colorant, beta] : library.rate_set(o.rates))
+            for (const fade::Colorant& c : material.colorants)
+                if (c.name == colorant)
+                    rates[colorant] = beta;
+        if (rates.empty())
+            throw std::runtime_error("--rates " + o.rates + ": the set names none of " +
+                                     material.name + "'s colorants");
+        material = fade::with_rates(material, rates);
+    }
     const fade::WavelengthGrid grid = parse_grid(o.wavelengths);
     const double duration_s = parse_duration(o.duration);
     const Doses doses = gather_doses(o, duration_s);
@@ -197,7 +207,9 @@ void run_fade(const FadeOptions& o)
     // The dose table, up to the map's largest dose (or --max-dose)
     fade::DoseTableOptions t;
     t.max_dose_j_m2 = o.max_dose > 0.0 ? o.max_dose : std::max(range.max, 1.0);
-    t.knee_dose_j_m2 = o.knee_dose > 0.0 ? o.knee_dose : t.max_dose_j_m2 * 1e-3;
+    // Six decades of logarithmic spacing: fast colorants (a newsprint tint fades within
+    // ~1e4 J/m^2) and slow ones (lignin, ~5e7) both get rows where they change
+    t.knee_dose_j_m2 = o.knee_dose > 0.0 ? o.knee_dose : t.max_dose_j_m2 * 1e-6;
     t.entries = o.entries;
     t.sublayers = o.sublayers;
     t.substeps = o.substeps;
@@ -217,6 +229,12 @@ void run_fade(const FadeOptions& o)
     const fade::DoseTable fine = fade::DoseTable::build(material, illuminant, grid, fine_options);
     const double table_error = fade::interpolation_error(table, fine);
     throw_if_cancelled();
+    // (A uniform dose sits on the table's first or last row: nothing is interpolated)
+    if (table_error > 0.01 && range.max > range.min)
+        std::fprintf(stderr,
+                     "fade: warning: the table's interpolation error is %.2g in reflectance; "
+                     "more --entries or another --knee-dose would lower it\n",
+                     table_error);
 
     // Per texel: dose and table row, in parallel
     Progress progress(static_cast<size_t>(map.height), o.quiet, "fade");
@@ -252,7 +270,9 @@ void run_fade(const FadeOptions& o)
     fade::write_fade_stack(o.out_dir, table, info, pixels);
 
     if (!o.plot.empty()) {
-        const double shown = duration_s > 0.0 ? duration_s : map.period_s;
+        // Each exposure map is a period of its own: the plot's last curve is their sum
+        const double shown = (duration_s > 0.0 ? duration_s : map.period_s) *
+                             static_cast<double>(std::max<size_t>(o.exposures.size(), 1));
         const std::string title =
             o.plot_title.empty()
                 ? fmt::format("{} under {}, up to {:.3g} J/m2", material.name, illuminant.name,
@@ -311,7 +331,7 @@ void register_fade_command(CLI::App& app)
     cmd->add_option("--max-dose", o->max_dose,
                     "largest dose of the table, J/m^2 (default: the map's largest)");
     cmd->add_option("--knee-dose", o->knee_dose,
-                    "dose where the table's spacing turns logarithmic (default: max / 1000)");
+                    "dose where the table's spacing turns logarithmic (default: max / 1e6)");
     cmd->add_option("--sublayers", o->sublayers, "sublayers of the two-flux solver (§4.1)")
         ->capture_default_str()->check(CLI::Range(1, 100000));
     cmd->add_option("--substeps", o->substeps, "time steps per table interval (§4.2)")
