@@ -29,7 +29,7 @@ namespace {
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
-constexpr int kSamples = 400000;
+int g_samples = 400000;  // argv[1] overrides (e.g. a short run under callgrind)
 constexpr int kSize = 256;
 
 /// A 5-layer stack like the urban §5.1 strip: tarnish, cuprite, two patina stages, dirt.
@@ -101,10 +101,10 @@ template <typename F> double time_per_sample(F&& shade)
     double best = 1e30;
     for (int run = 0; run < 3; ++run) {
         const auto t0 = Clock::now();
-        for (int i = 0; i < kSamples; ++i)
+        for (int i = 0; i < g_samples; ++i)
             shade(i);
         const double ns = std::chrono::duration<double, std::nano>(Clock::now() - t0).count();
-        best = std::min(best, ns / kSamples);
+        best = std::min(best, ns / g_samples);
     }
     return best;
 }
@@ -113,8 +113,10 @@ volatile float g_sink = 0.0f;
 
 }  // namespace
 
-int main()
+int main(int argc, char** argv)
 {
+    if (argc > 1)
+        g_samples = std::max(1, std::atoi(argv[1]));
     const fs::path dir = fs::temp_directory_path() / "patina_bench_layered";
     const fs::path stack = write_bench_stack(dir);
     std::vector<float> scale(kSize * kSize, 0.8f);
@@ -174,17 +176,37 @@ int main()
         g_sink = g_sink + f[0] + smp.pdf + patina::layered::pdf(direct, &x.ctx, x.wo, x.wi, &wl);
     };
 
+    // The reference mode, for scale: eval only, 64 walks per wavelength.
+    values[2].s = "random_walk";
+    void* reference = patina::layered::create(host.c_host(), values);
+    double t_reference = 0.0;
+    if (reference) {
+        const auto t0 = Clock::now();
+        constexpr int kReferenceSamples = 2000;
+        for (int i = 0; i < kReferenceSamples; ++i) {
+            const Input& x = inputs[i & 4095];
+            float f[PATINA_MAX_WAVELENGTHS];
+            patina::layered::eval(reference, &x.ctx, x.wo, x.wi, &wl, f);
+            g_sink = g_sink + f[0];
+        }
+        t_reference =
+            std::chrono::duration<double, std::nano>(Clock::now() - t0).count() / kReferenceSamples;
+        patina::layered::destroy(reference);
+    }
+
     const double t_layered = time_per_sample(through_abi(*layered));
     const double t_direct = time_per_sample(linked_in);
     const double t_lambert_map = time_per_sample(through_abi(*lambert_map));
     const double t_lambert = time_per_sample(through_abi(*lambert));
 
     std::printf("layered_km, 5 layers over copper, eval + sample + pdf, 4 wavelengths, "
-                "%d samples, best of 3:\n", kSamples);
+                "%d samples, best of 3:\n", g_samples);
     std::printf("  layered_km through the ABI      %8.1f ns/sample\n", t_layered);
     std::printf("  layered model linked in         %8.1f ns/sample\n", t_direct);
     std::printf("  lambert + scale map (ABI)       %8.1f ns/sample\n", t_lambert_map);
     std::printf("  lambert (ABI)                   %8.1f ns/sample\n", t_lambert);
+    std::printf("  random_walk reference, eval only %8.0f ns/sample (64 walks per wavelength)\n",
+                t_reference);
     std::printf("ratio layered / lambert with map  %6.2f  (target <= 3)\n",
                 t_layered / t_lambert_map);
     std::printf("ratio layered / lambert plain     %6.2f\n", t_layered / t_lambert);

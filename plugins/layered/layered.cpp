@@ -34,10 +34,13 @@
  *   - A metal base under layers: the diffuse compositing sees its hemispherical reflectance
  *     2 ∫ F(μ) μ dμ; the light it reflects directly (T_above² R_base) is its glossy lobe and
  *     is taken out of the diffuse part, so a bare or zero-thickness stack is the conductor.
- *   - Energy: what an interface reflects does not reach below it. Each lobe and the diffuse
- *     part are multiplied by (1 - E_j(μo)) (1 - E_j(μi)) for every dielectric interface j
- *     above them (E_j the directional albedo of j's lobe, tabulated): reciprocal, and the
- *     directional albedo stays <= 1 whenever the diffuse R <= 1.
+ *   - Energy: what a surface reflects does not reach below it. With g_j(μ) = fade_j T_above_j²
+ *     E_j(μ) (E_j the directional albedo of surface j's lobe, tabulated at create), each lobe
+ *     and the diffuse part are multiplied by (1 - g_j(μo)) (1 - g_j(μi)) for every dielectric
+ *     surface j above them, and the diffuse light the surfaces send back down is returned by
+ *     the stack: the diffuse lobe is R_d / (π (1 - R_d ḡ)), ḡ the hemispherical mean of the
+ *     surfaces' combined g. Reciprocal; the directional albedo stays <= 1 (and is 1 - g(μo)
+ *     + g(μo) for a white stack without absorption, when T_above = 1).
  *   - A layer thinner than 0.05 µm fades its interface in linearly (no gloss from a film
  *     far thinner than a wavelength, no sudden gloss at a filtered coverage edge).
  *   - Roughness below 0.03 is treated as 0.03 (no delta lobes).
