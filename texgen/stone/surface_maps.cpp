@@ -109,7 +109,12 @@ std::vector<std::filesystem::path> write_surface_maps(const std::filesystem::pat
     cmap.description = "linear albedo of the weathered stone surface (fresh stone tinted by "
                        "iron oxide, whitened by salt, darkened by black crust)";
     cmap.baker = "stone";
-    cmap.parameters = parameters;
+    // The map writer prefixes parameters itself and records the baker: plain keys here.
+    for (const auto& [key, value] : parameters) {
+        const std::string plain = key.rfind("patina:", 0) == 0 ? key.substr(7) : key;
+        if (plain != "baker")
+            cmap.parameters.emplace_back(plain, value);
+    }
     auto f1 = write_texel_map(out_dir, cmap, tiles, colour, out);
     record_in_manifest(out_dir, cmap, f1, tiles);
     MapDescription smap = cmap;
