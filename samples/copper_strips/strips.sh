@@ -41,7 +41,7 @@ for env in "${envs[@]}"; do
   for t in "${times[@]}"; do
     frame=$((frame + 1))
     f=$(printf %04d "$frame")
-    sed -e "s|@STACK@|$out/$env/t$t/stack.toml|" -e "s|@SKY@|$root/samples/basic/sky.exr|" \
+    sed -e "s|@STACK@|$out/$env/t$t/stack.toml|" \
         -e "s|@OUTPUT@|cell.$f.exr|" -e "s|@SIZE@|$size|g" -e "s|@SPP@|$spp|" \
         "$here/strip_scene.toml.in" > "$out/render/cell.$f.toml"
   done
@@ -59,8 +59,9 @@ for env in "${envs[@]}"; do
     f=$(printf %04d "$frame")
     cell="$out/render/cell.$f.png"
     if [[ -f "$font" ]]; then
-      oiiotool "$cell" --text:x=6:y=18:size=14:color=1,1,1:font="$font" "$env, $((10#$t)) y" \
-          -o "$out/render/label.$f.png"
+      label="$env, $((10#$t)) y"
+      oiiotool "$cell" --text:x=7:y=19:size=14:color=0,0,0:font="$font" "$label" \
+          --text:x=6:y=18:size=14:color=1,1,1:font="$font" "$label" -o "$out/render/label.$f.png"
       cell="$out/render/label.$f.png"
     fi
     cells+=("$cell")
