@@ -48,8 +48,6 @@ fov_deg = $6
 [environment]
 file = "$3"
 colorspace = "lin_rec709"
-[output]
-file = "$2/render.exr"
 [[shader]]
 name = "stone"
 type = "slab_volume"
