@@ -274,11 +274,41 @@ float dielectric_fresnel(float cos_theta, float f0, float eta)
 
 SpectralArray LayeredModel::interface_albedo(const Interface& lobe, float mu, int count)
 {
+    // albedo_table(material, f0, mu) with the F0 row found in setup.
+    const float x = std::clamp(mu, 0.0f, 1.0f) * (kAlbedoNodes - 1);
+    const int n = std::min(static_cast<int>(x), kAlbedoNodes - 2);
+    const float t = x - static_cast<float>(n);
+    const float* table = lobe.material->albedo.data();
     SpectralArray e;
-    for (int i = 0; i < count; ++i)
-        e[i] = albedo_table(*lobe.material, lobe.f0[i], mu);
+    for (int i = 0; i < count; ++i) {
+        const float* row0 = table + lobe.albedo_row[i] * kAlbedoNodes + n;
+        const float* row1 = row0 + kAlbedoNodes;
+        const float e0 = row0[0] + t * (row0[1] - row0[0]);
+        const float e1 = row1[0] + t * (row1[1] - row1[0]);
+        e[i] = (e0 + lobe.albedo_row_t[i] * (e1 - e0)) * lobe.albedo_scale[i];
+    }
     return e;
 }
+
+namespace {
+
+    /// The row of the albedo table F0 falls in (see albedo_table).
+    void locate_albedo_row(Interface* lobe, int count)
+    {
+        for (int i = 0; i < count; ++i) {
+            const float f0 = lobe->f0[i];
+            const float sqrt_f0 = f0 > 0.0f ? std::sqrt(std::min(f0, 1.0f)) : 0.0f;
+            const float y =
+                std::clamp((sqrt_f0 - kF0MinSqrt) / (kF0MaxSqrt - kF0MinSqrt), 0.0f, 1.0f) *
+                (kF0Nodes - 1);
+            const int q = std::min(static_cast<int>(y), kF0Nodes - 2);
+            lobe->albedo_row[i] = q;
+            lobe->albedo_row_t[i] = y - static_cast<float>(q);
+            lobe->albedo_scale[i] = sqrt_f0 < kF0MinSqrt ? sqrt_f0 / kF0MinSqrt : 1.0f;
+        }
+    }
+
+}  // namespace
 
 void LayeredModel::setup(const PatinaShadingContext* ctx, const PatinaWavelengths& wl,
                          PointState* state) const
@@ -334,6 +364,7 @@ void LayeredModel::setup_thickness(const float* thickness_um, const PatinaWavele
             lobe.f0[i] = grid_eval(m.specular, gp[i]);
             lobe.eta[i] = eta_of_f0(lobe.f0[i]);
         }
+        locate_albedo_row(&lobe, count);
         s->thickness_um[s->layers] = d;
         s->layer_material[s->layers++] = &m;
         km_composite_below(m, d, gp, count, &r_top, &r_bottom, &t_above);
@@ -367,6 +398,8 @@ void LayeredModel::setup_thickness(const float* thickness_um, const PatinaWavele
     }
     for (int i = count; i < PATINA_MAX_WAVELENGTHS; ++i)
         s->diffuse[i] = 0.0f;
+    if (!b.metal)
+        locate_albedo_row(&lobe, count);
 
     // The diffuse light the surfaces reflect back down is not lost: the stack below sends
     // R_d of it up again. With g(μ) = 1 - Π_j (1 - g_j(μ)) the surfaces' combined effective
@@ -456,6 +489,11 @@ float LayeredModel::pdf(const PointState& s, Vec3 wo, Vec3 wi) const
     float p[kMaxLayers + 2];
     if (!lobe_probabilities(s, wo.z, p))
         return 0.0f;
+    return mixture_pdf(s, p, wo, wi);
+}
+
+float LayeredModel::mixture_pdf(const PointState& s, const float* p, Vec3 wo, Vec3 wi)
+{
     float pdf = p[s.interfaces] * cosine_hemisphere_pdf(wi.z);
     const Vec3 h = wo + wi;
     if (length_squared(h) > 0.0f) {
@@ -501,10 +539,10 @@ int LayeredModel::sample(const PointState& s, Vec3 wo, float u_lobe, Vec2 u,
     }
     if (!(wi.z > 0.0f))
         return 0;
+    // f and pdf exactly as eval and pdf compute them (the same mixture probabilities p).
+    const float pdf_value = mixture_pdf(s, p, w, wi);
     if (below)
         wi.z = -wi.z;
-    // f and pdf exactly as eval and pdf compute them.
-    const float pdf_value = pdf(s, wo, wi);
     if (!(pdf_value > 0.0f))
         return 0;
     eval(s, wo, wi, out->f);

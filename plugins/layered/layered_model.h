@@ -84,6 +84,9 @@ struct Interface {
     SpectralArray eta;          ///< dielectric: the index with reflectance F0
     SpectralArray kappa;        ///< metal k
     SpectralArray hemispherical; ///< metal: hemispherical reflectance (lobe selection)
+    /// Where F0 falls in the material's albedo table, per wavelength (found once in setup).
+    std::array<int, PATINA_MAX_WAVELENGTHS> albedo_row{};
+    SpectralArray albedo_row_t, albedo_scale;
 };
 
 /// Everything a shading point needs, computed once by setup (uv, wavelengths).
@@ -142,6 +145,9 @@ public:
     static SpectralArray interface_albedo(const Interface& i, float mu, int count);
 
 private:
+    /// The mixture density for lobe probabilities p (both directions in the upper hemisphere).
+    static float mixture_pdf(const PointState& s, const float* p, Vec3 wo, Vec3 wi);
+
     std::vector<CompiledMaterial> materials_;
     const CompiledMaterial* base_ = nullptr;
     std::vector<const CompiledMaterial*> layers_;  ///< bottom to top
