@@ -64,6 +64,8 @@ namespace {
         const float* phi = st.porosity.data();
         tbb::parallel_for(0, g.slab_count * g.n_d, [&](int sk) {
             const int s = sk / g.n_d, k = sk % g.n_d;
+            if (k >= st.active_depth[size_t(s)])
+                return; // dry below the front: p stays 0
             const auto& o = lat.offsets(s);
             const long ax0 = o[0], ax1 = o[1], ax2 = o[2];
             for (int j = 0; j < g.n_t; ++j) {
@@ -122,6 +124,14 @@ namespace {
         const float evap = float(st.params.evaporation_speed);
         tbb::parallel_for(0, g.slab_count * g.n_d, [&](int sk) {
             const int s = sk / g.n_d, k = sk % g.n_d;
+            if (k >= st.active_depth[size_t(s)]) {
+                // Dry and unreachable this step: carry the moisture over.
+                for (int j = 0; j < g.n_t; ++j) {
+                    const size_t row = g.index(s, 0, j, k);
+                    std::copy(theta + row, theta + row + g.n_t, out + row);
+                }
+                return;
+            }
             for (int j = 0; j < g.n_t; ++j)
                 for (int i = 0; i < g.n_t; ++i) {
                     const size_t c = g.index(s, i, j, k);
@@ -172,6 +182,7 @@ namespace {
         });
         std::swap(st.moisture, st.scratch);
         lat.fill_halo(st.moisture.data());
+        update_active_depth(st);
     }
 
 } // namespace

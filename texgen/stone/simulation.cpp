@@ -131,6 +131,7 @@ void update_flags(StoneState& st)
     const SlabLattice& lat = *st.lattice;
     const SlabGrid& g = lat.grid();
     lat.fill_halo(st.density.data());
+    st.surface_depth.assign(size_t(g.slab_count), 0);
     tbb::parallel_for(0, g.slab_count, [&](int s) {
         for (int k = 0; k < g.n_d; ++k)
             for (int j = 0; j < g.n_t; ++j)
@@ -146,11 +147,34 @@ void update_flags(StoneState& st)
                             const long o = lat.axis_offset(a);
                             air = st.density[c + o] < 0.5f || st.density[c - o] < 0.5f;
                         }
-                        if (air)
+                        if (air) {
                             f |= kSurface;
+                            st.surface_depth[size_t(s)] = std::max(st.surface_depth[size_t(s)], k + 1);
+                        }
                     }
                     st.flags[c] = f;
                 }
+    });
+    update_active_depth(st);
+}
+
+void update_active_depth(StoneState& st)
+{
+    const SlabGrid& g = st.lattice->grid();
+    st.active_depth.resize(size_t(g.slab_count));
+    tbb::parallel_for(0, g.slab_count, [&](int s) {
+        int deepest = st.surface_depth.empty() ? g.n_d : st.surface_depth[size_t(s)];
+        for (int k = g.n_d - 1; k >= deepest; --k) {
+            bool moist = false;
+            for (int j = 0; j < g.n_t && !moist; ++j)
+                for (int i = 0; i < g.n_t && !moist; ++i)
+                    moist = st.moisture[g.index(s, i, j, k)] >= 0.5f;
+            if (moist) {
+                deepest = k + 1;
+                break;
+            }
+        }
+        st.active_depth[size_t(s)] = std::min(g.n_d, deepest + 2);
     });
 }
 

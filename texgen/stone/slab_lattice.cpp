@@ -132,6 +132,9 @@ SlabLattice::SlabLattice(const SlabShell& shell, int n_t, int n_d)
         if (connected[g])
             for (const GhostSource& src : ghost_sources_[g])
                 feeds_[fill[src.cell]++] = Feed{ghost_cell_[g], src.weight};
+    for (size_t c = 0; c < cells; ++c)
+        if (feed_begin_[c + 1] > feed_begin_[c])
+            feeding_.push_back(uint32_t(c));
 }
 
 void SlabLattice::fill_halo(float* field) const

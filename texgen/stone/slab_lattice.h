@@ -88,6 +88,8 @@ public:
     };
     const std::vector<uint32_t>& feed_begin() const { return feed_begin_; }
     const std::vector<Feed>& feeds() const { return feeds_; }
+    /// The voxels that feed at least one ghost, ascending.
+    const std::vector<uint32_t>& feeding_cells() const { return feeding_; }
 
     /// Trilinear sample of a field at slab point `p` (halo filled), between voxel centres.
     float sample(const float* field, const SlabPoint& p) const;
@@ -107,6 +109,7 @@ private:
     std::vector<uint8_t> flux_partner_;
     std::vector<uint32_t> feed_begin_;
     std::vector<Feed> feeds_;
+    std::vector<uint32_t> feeding_;
 };
 
 /// Trilinear interpolation weights of the voxel centres of a slab around (u, v, w), clamped

@@ -63,6 +63,11 @@ struct StoneState {
     std::array<std::vector<float>, kSpecies> ghost_flux;  ///< seam fluxes (transport.cpp)
     std::vector<float> black, decay, wet_time;
     std::vector<uint8_t> flags;
+    /// Per slab: layers k < active_depth can change in a step (the deepest surface or moist
+    /// voxel + 2: the front advances at most one layer per step); deeper ones are dry and
+    /// skipped, which is most of the shell while the front is shallow.
+    std::vector<int> active_depth;
+    std::vector<int> surface_depth;  ///< per slab: deepest surface voxel layer + 1
     std::vector<Imath::V3f> colour;        ///< fresh stone albedo
     std::vector<ColumnSurface> columns;
     std::vector<float> column_wetness;     ///< per column, [0, 1]
@@ -76,8 +81,10 @@ void initialise_state(StoneState& st, const SlabLattice& lattice, const Triangle
                       const Quarry& quarry, const StoneParameters& params,
                       std::vector<float> wetness = {}, std::vector<float> deposit = {});
 
-/// Stone and surface flags from the density (refills the density halo).
+/// Stone and surface flags from the density (refills the density halo), surface depths.
 void update_flags(StoneState& st);
+/// active_depth from the moisture and the surface depths.
+void update_active_depth(StoneState& st);
 
 /// Total of species i (solid + dissolved + crust, and black crust for the binder), volume
 /// weighted over the interior voxels.

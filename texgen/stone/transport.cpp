@@ -66,9 +66,15 @@ void transport_step(StoneState& st, bool wet)
 
     // Fluxes handed to ghosts (per species; one slab's halo is written by its own task only).
     for (int m = 0; m < kSpecies; ++m)
-        st.ghost_flux[m].assign(g.cell_count(), 0.0f);
+        if (st.ghost_flux[m].size() != g.cell_count())
+            st.ghost_flux[m].assign(g.cell_count(), 0.0f);
     tbb::parallel_for(0, g.slab_count, [&](int s) {
-      for (int k = 0; k < g.n_d; ++k) {
+      for (int k = 0; k < g.n_d; ++k)
+          for (int j = -1; j <= g.n_t; ++j)
+              for (int i = -1; i <= g.n_t; i += (j < 0 || j == g.n_t) ? 1 : g.n_t + 1)
+                  for (int m = 0; m < kSpecies; ++m)
+                      st.ghost_flux[m][g.index(s, i, j, k)] = 0.0f;
+      for (int k = 0; k < st.active_depth[size_t(s)]; ++k) {
         const auto& o = lat.offsets(s);
         // Depth step of each direction: the halo above and below the shell is a no-flux
         // boundary (a copy of the first and last layer), never a partner of a flux.
@@ -188,9 +194,9 @@ void transport_step(StoneState& st, bool wet)
     // Seams: each voxel gives up what the ghosts it feeds received, by its weight in them.
     const auto& begin = lat.feed_begin();
     const auto& feeds = lat.feeds();
-    tbb::parallel_for(size_t(0), g.cell_count(), [&](size_t c) {
-        if (begin[c] == begin[c + 1])
-            return;
+    const auto& feeding = lat.feeding_cells();
+    tbb::parallel_for(size_t(0), feeding.size(), [&](size_t e0) {
+        const size_t c = feeding[e0];
         for (int m = 0; m < kSpecies; ++m) {
             float out = 0.0f;
             for (uint32_t e = begin[c]; e < begin[c + 1]; ++e)
