@@ -84,19 +84,24 @@ sun=(--latitude 43.47 --longitude -80.54 --timezone -5 --start 2026-06-21 --end 
 "$texgen" fade --dose 0 --material newsprint --out "$np/before" --quiet
 
 # ---- Figure 18: a cork board with papers moved between exposures -------------------------
-# A 0.8 m cork board lying in the open for three periods of 12 overcast hours; in each, a different
-# set of sheets (A4-ish boxes 2 mm above the cork) shades it.
+# A 0.8 m cork board lying in the open for three periods of 12 overcast hours, with sheets
+# (boxes 2 mm above the cork) pinned and taken down between them, as in figure 18: sheet A
+# stays all along, B is taken down after two periods, C goes up for the last one and D is
+# there for the first only.
 bd="$out/board"
 mkdir -p "$bd"
 "$texgen" mesh plane --size 0.8 -o "$bd/board.obj"
-box "$bd/papers_1.obj" -0.30 -0.09 0.002 0.004 -0.30 0.0
-box "$bd/papers_2.obj" 0.05 0.35 0.002 0.004 -0.35 -0.14
-box "$bd/papers_3.obj" -0.20 0.10 0.002 0.004 0.10 0.31
+box "$bd/sheet_a.obj" -0.30 -0.09 0.002 0.004 -0.30 0.0
+box "$bd/sheet_b.obj" 0.05 0.35 0.002 0.004 -0.35 -0.14
+box "$bd/sheet_c.obj" -0.20 0.10 0.002 0.004 0.10 0.31
+box "$bd/sheet_d.obj" 0.17 0.33 0.002 0.004 0.02 0.28
 sun_b=(--latitude 43.47 --longitude -80.54 --timezone -5 --start 2026-05-01 --end 2026-05-02
        --sky overcast --sun-bins-deg 2 --sky-samples 64 --resolution 256 --seed 1 --quiet)
+sheets=("a b d" "a b" "a c")
 for k in 1 2 3; do
-    "$texgen" exposure --mesh "$bd/board.obj" --occluder "$bd/papers_$k.obj" -o "$bd/period_$k" \
-        "${sun_b[@]}"
+    occluders=()
+    for s in ${sheets[$((k - 1))]}; do occluders+=(--occluder "$bd/sheet_$s.obj"); done
+    "$texgen" exposure --mesh "$bd/board.obj" "${occluders[@]}" -o "$bd/period_$k" "${sun_b[@]}"
 done
 "$texgen" fade --exposure "$bd/period_1/exposure.exr" --exposure "$bd/period_2/exposure.exr" \
     --exposure "$bd/period_3/exposure.exr" --duration 12h --scale 0.58 --material cork \
