@@ -127,27 +127,30 @@ void FadeSimulation::step(const Illumination& light, double dt_s)
         produces[j] = std::any_of(&production_[j * padded_], &production_[(j + 1) * padded_],
                                   [](double v) { return v != 0.0; });
     }
-    // Per block of wavelengths, [i * kBlock + b]: sublayer optics, then the block Thomas
-    // elimination of two_flux.h (same formulas, one wavelength per lane).
+    // Per block of wavelengths, [row * kBlock + b] with boundary (or sublayer) i in row
+    // i + 1 and row 0 all zeros, so every row has a row above it and the loops over a
+    // block are branch-free and vectorise: sublayer optics, then the block Thomas
+    // elimination of two_flux.h (the same formulas, one wavelength per lane).
+    const size_t rows = N + 2;
     thread_local std::vector<double> work;
-    work.assign(8 * (N + 1) * kBlock, 0.0);
-    double* rho = work.data();
-    double* tau = rho + (N + 1) * kBlock;
-    double* c0 = tau + (N + 1) * kBlock;
-    double* c1 = c0 + (N + 1) * kBlock;
-    double* g0 = c1 + (N + 1) * kBlock;
-    double* g1 = g0 + (N + 1) * kBlock;
-    double* up = g1 + (N + 1) * kBlock;
-    double* down = up + (N + 1) * kBlock;
+    work.assign(8 * rows * kBlock, 0.0);
+    double* rho = work.data();         // rows 1..N: sublayers, row N + 1: the ground
+    double* tau = rho + rows * kBlock;
+    double* c0 = tau + rows * kBlock;
+    double* c1 = c0 + rows * kBlock;
+    double* g0 = c1 + rows * kBlock;
+    double* g1 = g0 + rows * kBlock;
+    double* up = g1 + rows * kBlock;
+    double* down = up + rows * kBlock;
     const double dz = dz_;
     for (size_t w0 = 0; w0 < padded_; w0 += kBlock) {
-        double e_top[kBlock], e_bottom[kBlock], ground[kBlock];
+        double e_top[kBlock], e_bottom[kBlock];
         bool lit = false;
         for (size_t b = 0; b < kBlock; ++b) {
             const size_t w = w0 + b;
             e_top[b] = w < W ? light.top[w] : 0.0;
             e_bottom[b] = w < W && !light.bottom.empty() ? light.bottom[w] : 0.0;
-            ground[b] = w < W ? substrate_[w] : 0.0;
+            rho[(N + 1) * kBlock + b] = w < W ? substrate_[w] : 0.0;
             lit |= e_top[b] != 0.0 || e_bottom[b] != 0.0;
         }
         if (!lit)
@@ -164,63 +167,44 @@ void FadeSimulation::step(const Illumination& light, double dt_s)
                     mu_s[b] += f[j] * s[b];
                 }
             }
-            sublayer_optics(mu_a, mu_s, dz, &rho[i * kBlock], &tau[i * kBlock], kBlock);
+            sublayer_optics(mu_a, mu_s, dz, &rho[(i + 1) * kBlock], &tau[(i + 1) * kBlock],
+                            kBlock);
         }
-        for (size_t b = 0; b < kBlock; ++b) {
-            rho[N * kBlock + b] = ground[b];
-            tau[N * kBlock + b] = 0.0;
-        }
-        // Forward sweep (see solve_two_flux); rows outside the layer read zeros.
-        const double zeros[kBlock] = {};
+        // Forward sweep (see solve_two_flux): boundary i in row r, the one above in row p.
         for (size_t i = 0; i <= N; ++i) {
-            const double* rho_i = &rho[i * kBlock];
-            const double* tau_i = &tau[i * kBlock];
-            const double* rho_above = i > 0 ? &rho[(i - 1) * kBlock] : zeros;
-            const double* prev_tau = i > 0 ? &tau[(i - 1) * kBlock] : zeros;
-            const double* prev_c1 = i > 0 ? &c1[(i - 1) * kBlock] : zeros;
-            const double* prev_g1 = i > 0 ? &g1[(i - 1) * kBlock] : zeros;
-            const double* from_below = i == N ? e_bottom : zeros;
-            const double* from_top = i == 0 ? e_top : zeros;
-            double* c0_i = &c0[i * kBlock];
-            double* c1_i = &c1[i * kBlock];
-            double* g0_i = &g0[i * kBlock];
-            double* g1_i = &g1[i * kBlock];
+            const size_t r = (i + 1) * kBlock, p = i * kBlock;
+            const double top_on = i == 0 ? 1.0 : 0.0;
+            const double bottom_on = i == N ? 1.0 : 0.0;
             for (size_t b = 0; b < kBlock; ++b) {
-                const double w01 = -rho_i[b];
-                const double w10 = -rho_above[b] + prev_tau[b] * prev_c1[b];
+                const double w01 = -rho[r + b];
+                const double w10 = -rho[p + b] + tau[p + b] * c1[p + b];
                 const double inv_det = 1.0 / (1.0 - w01 * w10);
-                const double r0 = from_below[b];
-                const double r1 = from_top[b] + prev_tau[b] * prev_g1[b];
-                g0_i[b] = (r0 - w01 * r1) * inv_det;
-                g1_i[b] = (r1 - w10 * r0) * inv_det;
-                c0_i[b] = -tau_i[b] * inv_det;
-                c1_i[b] = tau_i[b] * w10 * inv_det;
+                const double r0 = bottom_on * e_bottom[b];
+                const double r1 = top_on * e_top[b] + tau[p + b] * g1[p + b];
+                g0[r + b] = (r0 - w01 * r1) * inv_det;
+                g1[r + b] = (r1 - w10 * r0) * inv_det;
+                c0[r + b] = -tau[r + b] * inv_det;
+                c1[r + b] = tau[r + b] * w10 * inv_det;
             }
         }
         // Back substitution.
         for (size_t b = 0; b < kBlock; ++b) {
-            up[N * kBlock + b] = g0[N * kBlock + b];
-            down[N * kBlock + b] = g1[N * kBlock + b];
+            up[(N + 1) * kBlock + b] = g0[(N + 1) * kBlock + b];
+            down[(N + 1) * kBlock + b] = g1[(N + 1) * kBlock + b];
         }
         for (size_t i = N; i-- > 0;) {
-            const double* u_next = &up[(i + 1) * kBlock];
-            const double* c0_i = &c0[i * kBlock];
-            const double* c1_i = &c1[i * kBlock];
-            const double* g0_i = &g0[i * kBlock];
-            const double* g1_i = &g1[i * kBlock];
-            double* up_i = &up[i * kBlock];
-            double* down_i = &down[i * kBlock];
+            const size_t r = (i + 1) * kBlock, n = (i + 2) * kBlock;
             for (size_t b = 0; b < kBlock; ++b) {
-                up_i[b] = g0_i[b] - c0_i[b] * u_next[b];
-                down_i[b] = g1_i[b] - c1_i[b] * u_next[b];
+                up[r + b] = g0[r + b] - c0[r + b] * up[n + b];
+                down[r + b] = g1[r + b] - c1[r + b] * up[n + b];
             }
         }
         // §4.1: the mean fluence rate of each sublayer; accumulate Eq. (14)'s integrals.
         for (size_t i = 0; i < N; ++i) {
+            const size_t r = (i + 1) * kBlock, n = (i + 2) * kBlock;
             double fluence[kBlock];
             for (size_t b = 0; b < kBlock; ++b)
-                fluence[b] = 0.5 * (down[i * kBlock + b] + up[i * kBlock + b] +
-                                    down[(i + 1) * kBlock + b] + up[(i + 1) * kBlock + b]);
+                fluence[b] = 0.5 * (down[r + b] + up[r + b] + down[n + b] + up[n + b]);
             for (size_t j = 0; j < J; ++j) {
                 if (fades[j]) {
                     const double* fa = &fading_[j * padded_ + w0];
@@ -239,6 +223,7 @@ void FadeSimulation::step(const Illumination& light, double dt_s)
             }
         }
     }
+
     // §4.2, Eq. (35) (first order: the exponent uses a = mu_a / f), and Eq. (15)'s
     // products, each integrated exactly over the step with the fluence held constant.
     for (size_t i = 0; i < N; ++i) {
