@@ -52,8 +52,8 @@ for y in "${years[@]}"; do
   "$render" "$out/frame_$f.toml" --quiet
   frame="$out/frame_$f.png"
   if [[ -f "$font" ]]; then
-    oiiotool "$frame" --text:x=8:y=22:size=18:color=1,1,1:font="$font" "$y years" \
-        -o "$out/label_$f.png"
+    oiiotool "$frame" --text:x=9:y=23:size=18:color=0,0,0:font="$font" "$y years" \
+        --text:x=8:y=22:size=18:color=1,1,1:font="$font" "$y years" -o "$out/label_$f.png"
     frame="$out/label_$f.png"
   fi
   frames+=("$frame")
