@@ -83,7 +83,7 @@ int main(int argc, char** argv)
         const DoseRange range = scan_doses(map, 1.0);
         DoseTableOptions o;
         o.max_dose_j_m2 = range.max;
-        o.knee_dose_j_m2 = range.max * 1e-3;
+        o.knee_dose_j_m2 = range.max * 1e-6;  // as patina-texgen fade
         const DoseTable table = DoseTable::build(material, d65, grid, o);
         DoseTableOptions fine_options = o;
         fine_options.entries = 2 * o.entries - 1;

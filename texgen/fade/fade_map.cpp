@@ -148,6 +148,7 @@ std::vector<float> make_dose_pixels(const ExposureMap& map, const DoseTable& tab
 {
     const size_t width = static_cast<size_t>(map.width);
     std::vector<float> pixels(map.values.size() * 2);
+    const DoseRow row(table);
     std::atomic<size_t> bad{std::numeric_limits<size_t>::max()};
     tbb::parallel_for(tbb::blocked_range<size_t>(0, static_cast<size_t>(map.height), 16),
                       [&](const tbb::blocked_range<size_t>& rows) {
@@ -163,8 +164,7 @@ std::vector<float> make_dose_pixels(const ExposureMap& map, const DoseTable& tab
                                       continue;
                                   }
                                   const double dose = factor * v;
-                                  pixels[2 * i] =
-                                      static_cast<float>(table_coordinate(table, dose));
+                                  pixels[2 * i] = static_cast<float>(row(dose));
                                   pixels[2 * i + 1] = static_cast<float>(dose);
                               }
                           }

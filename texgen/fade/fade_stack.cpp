@@ -60,10 +60,19 @@ namespace {
 
 }  // namespace
 
+DoseRow::DoseRow(const DoseTable& table)
+{
+    // dose_table.h: H_k = H_0 (exp(k du) - 1), du = ln(1 + H_max / H_0) / (n - 1)
+    const DoseTableOptions& o = table.options();
+    const size_t n = table.doses().size();
+    knee_ = o.knee_dose_j_m2;
+    last_ = n > 1 ? static_cast<double>(n - 1) : 0.0;
+    inv_du_ = n > 1 ? last_ / std::log1p(o.max_dose_j_m2 / o.knee_dose_j_m2) : 0.0;
+}
+
 double table_coordinate(const DoseTable& table, double dose_j_m2)
 {
-    const DoseTable::Bracket b = table.locate(std::max(dose_j_m2, 0.0));
-    return static_cast<double>(b.lower) + b.upper_weight;
+    return DoseRow(table)(dose_j_m2);
 }
 
 double interpolation_error(const DoseTable& table, const DoseTable& fine)

@@ -36,6 +36,8 @@
 
 #include "texgen/fade/dose_table.h"
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -70,7 +72,22 @@ struct FadeStackInfo {
     double min_dose = 0.0, mean_dose = 0.0, max_dose = 0.0;
 };
 
-/// The fractional row of `table` at `dose_j_m2` (DoseTable::locate as one number).
+/// The fractional row of a table at a dose, u = ln(1 + H / H_0) / du clamped to the table
+/// (DoseTable::locate as one number), with the rule's constants computed once.
+class DoseRow {
+public:
+    explicit DoseRow(const DoseTable& table);
+    double operator()(double dose_j_m2) const
+    {
+        const double u = std::log1p(std::max(dose_j_m2, 0.0) / knee_) * inv_du_;
+        return std::min(u, last_);
+    }
+
+private:
+    double knee_ = 1.0, inv_du_ = 0.0, last_ = 0.0;
+};
+
+/// The fractional row of `table` at `dose_j_m2`.
 double table_coordinate(const DoseTable& table, double dose_j_m2);
 
 /// The largest |R_total| difference, over wavelengths and interval midpoints, between
