@@ -56,7 +56,7 @@ namespace {
                     }
                 }
         });
-        lat.fill_halo(p);
+        lat.fill_halo(p, &st.active_depth);
 
         const float rate = float(st.dt * st.params.pressure_diffusivity);
         const auto& w = lat.weights();
@@ -105,7 +105,7 @@ namespace {
             }
         });
         std::swap(st.pressure, st.scratch);
-        lat.fill_halo(st.pressure.data());
+        lat.fill_halo(st.pressure.data(), &st.active_depth);
     }
 
     void front_step(StoneState& st, bool wet)
@@ -181,8 +181,8 @@ namespace {
                 }
         });
         std::swap(st.moisture, st.scratch);
-        lat.fill_halo(st.moisture.data());
         update_active_depth(st);
+        lat.fill_halo(st.moisture.data(), &st.active_depth);
     }
 
 } // namespace

@@ -88,8 +88,10 @@ SlabLattice::SlabLattice(const SlabShell& shell, int n_t, int n_d)
         for (int k = 0; k < n_d; ++k)
             for (int j = -1; j <= n_t; ++j)
                 for (int i = -1; i <= n_t; ++i)
-                    if (i < 0 || j < 0 || i >= n_t || j >= n_t)
+                    if (i < 0 || j < 0 || i >= n_t || j >= n_t) {
                         ghost_cell_.push_back(uint32_t(grid_.index(s, i, j, k)));
+                        ghost_k_.push_back(uint16_t(k));
+                    }
     ghost_sources_.resize(ghost_cell_.size());
     std::vector<char> connected(ghost_cell_.size(), 1);
     const int per_slab = int(ghost_cell_.size()) / grid_.slab_count;
@@ -137,9 +139,12 @@ SlabLattice::SlabLattice(const SlabShell& shell, int n_t, int n_d)
             feeding_.push_back(uint32_t(c));
 }
 
-void SlabLattice::fill_halo(float* field) const
+void SlabLattice::fill_halo(float* field, const std::vector<int>* active) const
 {
+    const size_t per_slab = ghost_cell_.size() / size_t(grid_.slab_count);
     tbb::parallel_for(size_t(0), ghost_cell_.size(), [&](size_t g) {
+        if (active && ghost_k_[g] > (*active)[g / per_slab]) // not read this step
+            return;
         const auto& src = ghost_sources_[g];
         float v = 0.0f;
         for (const GhostSource& s : src)
@@ -148,10 +153,12 @@ void SlabLattice::fill_halo(float* field) const
     });
     const SlabGrid& g = grid_;
     tbb::parallel_for(0, g.slab_count, [&](int s) {
+        const bool bottom = !active || (*active)[size_t(s)] >= g.n_d - 1;
         for (int j = -1; j <= g.n_t; ++j)
             for (int i = -1; i <= g.n_t; ++i) {
                 field[g.index(s, i, j, -1)] = field[g.index(s, i, j, 0)];
-                field[g.index(s, i, j, g.n_d)] = field[g.index(s, i, j, g.n_d - 1)];
+                if (bottom)
+                    field[g.index(s, i, j, g.n_d)] = field[g.index(s, i, j, g.n_d - 1)];
             }
     });
 }

@@ -72,8 +72,10 @@ public:
     /// Axis offsets (1, sx, sx*sy): the same in every slab.
     long axis_offset(int a) const { return a == 0 ? 1 : a == 1 ? grid_.sx : long(grid_.sx) * grid_.sy; }
 
-    /// Fill the halo of `field` (cell_count floats) from the neighbours (see above).
-    void fill_halo(float* field) const;
+    /// Fill the halo of `field` (cell_count floats) from the neighbours (see above). With
+    /// `active` (layers per slab that a step reads), halo cells deeper than their slab's
+    /// active layers are left as they are.
+    void fill_halo(float* field, const std::vector<int>* active = nullptr) const;
     /// Ghost cells whose position lies in no other slab (copied from their own slab).
     size_t unconnected_ghosts() const { return unconnected_; }
 
@@ -104,6 +106,7 @@ private:
     std::vector<StencilSigns> signs_;
     std::vector<std::array<long, 6>> offsets_;
     std::vector<uint32_t> ghost_cell_;
+    std::vector<uint16_t> ghost_k_;  ///< depth layer of each ghost
     std::vector<std::array<GhostSource, 8>> ghost_sources_;
     size_t unconnected_ = 0;
     std::vector<uint8_t> flux_partner_;

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string_view>
 
 namespace patina::texgen::stone {
 
@@ -111,9 +112,11 @@ std::vector<std::filesystem::path> write_surface_maps(const std::filesystem::pat
     cmap.baker = "stone";
     // The map writer prefixes parameters itself and records the baker: plain keys here.
     for (const auto& [key, value] : parameters) {
-        const std::string plain = key.rfind("patina:", 0) == 0 ? key.substr(7) : key;
+        std::string_view plain = key;
+        if (plain.rfind("patina:", 0) == 0)
+            plain.remove_prefix(7);
         if (plain != "baker")
-            cmap.parameters.emplace_back(plain, value);
+            cmap.parameters.emplace_back(std::string(plain), value);
     }
     auto f1 = write_texel_map(out_dir, cmap, tiles, colour, out);
     record_in_manifest(out_dir, cmap, f1, tiles);

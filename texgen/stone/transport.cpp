@@ -56,13 +56,21 @@ void transport_step(StoneState& st, bool wet)
     const float inv_eta = float(1.0 / prm.viscosity);
 
     // Concentrations in the water, C = amount / water volume fraction (phi * density).
-    tbb::parallel_for(size_t(0), g.cell_count(), [&](size_t c) {
-        const float water = st.porosity[c] * st.density[c];
-        for (int m = 0; m < kSpecies; ++m)
-            st.concentration[m][c] = water > 0.0f ? st.dissolved[m][c] / water : 0.0f;
+    // Only the active layers (and the one below, read by their stencils) change or are read.
+    tbb::parallel_for(0, g.slab_count * g.n_d, [&](int sk) {
+        const int s = sk / g.n_d, k = sk % g.n_d;
+        if (k > st.active_depth[size_t(s)])
+            return;
+        for (int j = 0; j < g.n_t; ++j)
+            for (int i = 0; i < g.n_t; ++i) {
+                const size_t c = g.index(s, i, j, k);
+                const float water = st.porosity[c] * st.density[c];
+                for (int m = 0; m < kSpecies; ++m)
+                    st.concentration[m][c] = water > 0.0f ? st.dissolved[m][c] / water : 0.0f;
+            }
     });
     for (int m = 0; m < kSpecies; ++m)
-        lat.fill_halo(st.concentration[m].data());
+        lat.fill_halo(st.concentration[m].data(), &st.active_depth);
 
     // Fluxes handed to ghosts (per species; one slab's halo is written by its own task only).
     for (int m = 0; m < kSpecies; ++m)
