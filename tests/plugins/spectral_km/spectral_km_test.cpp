@@ -130,7 +130,7 @@ TEST(SpectralKm, CoatIsReciprocalAndConservesEnergy)
     for (float theta : {0.0f, 40.0f, 75.0f}) {
         const Vec3 wo = dir(theta, 0.0f);
         double sum = 0.0;
-        const int n = 400;
+        const int n = 200;
         for (int i = 0; i < n; ++i)
             for (int j = 0; j < 2 * n; ++j) {
                 const double ct = (i + 0.5) / n;  // uniform in cos θ over the hemisphere
@@ -165,7 +165,7 @@ TEST(SpectralKm, SamplingMatchesPdf)
         const Vec3 wo = dir(c.theta, 30.0f);
         chi2::Options opt;
         opt.test_count = static_cast<int>(std::size(cases));
-        opt.sample_count = 200000;
+        opt.sample_count = 100000;
         std::mt19937 rng(99);
         auto uniform = [&rng] { return static_cast<float>(rng() >> 8) * 0x1p-24f; };
         const chi2::Result r = chi2::run(
