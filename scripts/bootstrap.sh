@@ -12,7 +12,7 @@ packages=(
   libembree-dev libtbb-dev libassimp-dev
   libgtest-dev libgmock-dev libbenchmark-dev embree-tools
   libcli11-dev libfmt-dev libspdlog-dev libtomlplusplus-dev
-  colord-data
+  colord-data fonts-dejavu-core
 )
 
 missing=()
