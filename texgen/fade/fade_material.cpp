@@ -1,5 +1,7 @@
 #include "texgen/fade/fade_material.h"
 
+#include "core/shader_library.h"
+
 #include <fmt/format.h>
 #include <toml++/toml.h>
 
@@ -355,34 +357,7 @@ std::vector<std::string> FadeLibrary::material_names() const
 
 std::vector<fs::path> FadeLibrary::default_files()
 {
-    std::vector<fs::path> dirs;
-    if (const char* env = std::getenv("PATINA_SHADER_PATH"); env && *env) {
-        const std::string s(env);
-        size_t start = 0;
-        while (start <= s.size()) {
-            const size_t end = std::min(s.find(':', start), s.size());
-            if (end > start)
-                dirs.push_back(fs::path(s.substr(start, end - start)) / "fade");
-            start = end + 1;
-        }
-    }
-    std::error_code ec;
-    const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-    if (!ec)
-        dirs.push_back(
-            (exe.parent_path() / ".." / "share" / "patina" / "shaders" / "fade").lexically_normal());
-    std::vector<fs::path> files;
-    for (const fs::path& dir : dirs) {
-        if (!fs::is_directory(dir, ec))
-            continue;
-        std::vector<fs::path> here;
-        for (const auto& entry : fs::directory_iterator(dir, ec))
-            if (entry.path().extension() == ".toml")
-                here.push_back(entry.path());
-        std::sort(here.begin(), here.end());
-        files.insert(files.end(), here.begin(), here.end());
-    }
-    return files;
+    return patina::shader_library_files("fade");
 }
 
 FadeLibrary FadeLibrary::load_files(const std::vector<fs::path>& files)

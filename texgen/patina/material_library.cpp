@@ -1,6 +1,7 @@
 #include "texgen/patina/material_library.h"
 
 #include "core/kubelka_munk.h"
+#include "core/shader_library.h"
 #include "texgen/patina/stack_materials.h"
 
 #include <fmt/format.h>
@@ -316,34 +317,7 @@ std::set<std::string> MaterialLibrary::names() const
 
 std::vector<fs::path> MaterialLibrary::default_files()
 {
-    std::vector<fs::path> dirs;
-    if (const char* env = std::getenv("PATINA_SHADER_PATH"); env && *env) {
-        std::string s(env);
-        size_t start = 0;
-        while (start <= s.size()) {
-            const size_t end = std::min(s.find(':', start), s.size());
-            if (end > start)
-                dirs.push_back(fs::path(s.substr(start, end - start)) / "patina");
-            start = end + 1;
-        }
-    }
-    std::error_code ec;
-    const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-    if (!ec)
-        dirs.push_back((exe.parent_path() / ".." / "share" / "patina" / "shaders" / "patina")
-                           .lexically_normal());
-    std::vector<fs::path> files;
-    for (const fs::path& dir : dirs) {
-        if (!fs::is_directory(dir, ec))
-            continue;
-        std::vector<fs::path> here;
-        for (const auto& entry : fs::directory_iterator(dir, ec))
-            if (entry.path().extension() == ".toml")
-                here.push_back(entry.path());
-        std::sort(here.begin(), here.end());
-        files.insert(files.end(), here.begin(), here.end());
-    }
-    return files;
+    return shader_library_files("patina");
 }
 
 }  // namespace patina::texgen

@@ -1,0 +1,44 @@
+#include "core/shader_library.h"
+
+#include <algorithm>
+#include <cstdlib>
+#include <string>
+#include <system_error>
+
+namespace fs = std::filesystem;
+
+namespace patina {
+
+std::vector<fs::path> shader_library_files(std::string_view folder)
+{
+    std::vector<fs::path> dirs;
+    if (const char* env = std::getenv("PATINA_SHADER_PATH"); env && *env) {
+        const std::string s(env);
+        size_t start = 0;
+        while (start <= s.size()) {
+            const size_t end = std::min(s.find(':', start), s.size());
+            if (end > start)
+                dirs.push_back(fs::path(s.substr(start, end - start)) / folder);
+            start = end + 1;
+        }
+    }
+    std::error_code ec;
+    const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+    if (!ec)
+        dirs.push_back(
+            (exe.parent_path() / ".." / "share" / "patina" / "shaders" / folder).lexically_normal());
+    std::vector<fs::path> files;
+    for (const fs::path& dir : dirs) {
+        if (!fs::is_directory(dir, ec))
+            continue;
+        std::vector<fs::path> here;
+        for (const auto& entry : fs::directory_iterator(dir, ec))
+            if (entry.path().extension() == ".toml")
+                here.push_back(entry.path());
+        std::sort(here.begin(), here.end());
+        files.insert(files.end(), here.begin(), here.end());
+    }
+    return files;
+}
+
+}  // namespace patina
