@@ -3,10 +3,7 @@
 #pragma once
 
 #include <patina/abi.h>
-
-#include <cstdio>
-#include <new>
-#include <utility>
+#include <patina/plugin_support.h>
 
 namespace patina::basic {
 
@@ -19,51 +16,11 @@ PatinaShaderDesc homogeneous_shader();
 /// Roughness below which a BSDF becomes a delta lobe (documented in each shader).
 inline constexpr float kSmoothRoughness = 1e-3f;
 
-/// Reports a create-time error through the host, formatted like printf.
-template <typename... Args>
-void report_error(const PatinaHost* host, const char* shader, const char* format, Args... args)
-{
-    if (!host || !host->error)
-        return;
-    char message[512];
-    if constexpr (sizeof...(Args) == 0) {
-        std::snprintf(message, sizeof message, "%s", format);
-    } else {
-        std::snprintf(message, sizeof message, format, args...);
-    }
-    host->error(host, shader, message);
-}
-
-/// Allocates an instance (create only); reports an error and returns nullptr when memory
-/// runs out, so that no exception crosses the C ABI.
-template <typename T, typename... Args>
-T* make_instance(const PatinaHost* host, const char* shader, Args&&... args)
-{
-    T* instance = new (std::nothrow) T{std::forward<Args>(args)...};
-    if (!instance)
-        report_error(host, shader, "out of memory");
-    return instance;
-}
+using plugin::describe;
+using plugin::make_instance;
+using plugin::report_error;
 
 /// The transport mode of a shading point (radiance when the host gave no context).
-/// A descriptor with the fields every shader fills; the caller sets its function table.
-template <size_t N>
-PatinaShaderDesc describe(const char* name, PatinaShaderKind kind, const char* help,
-                          const PatinaParamDecl (&params)[N],
-                          void* (*create)(const PatinaHost*, const PatinaParamValue*),
-                          void (*destroy)(void*))
-{
-    PatinaShaderDesc d{};
-    d.name = name;
-    d.kind = kind;
-    d.help = help;
-    d.param_count = static_cast<int>(N);
-    d.params = params;
-    d.create = create;
-    d.destroy = destroy;
-    return d;
-}
-
 inline PatinaTransportMode transport_mode(const PatinaShadingContext* ctx)
 {
     return ctx ? ctx->mode : PATINA_TRANSPORT_RADIANCE;

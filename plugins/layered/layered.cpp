@@ -52,6 +52,8 @@
  */
 #include "layered_model.h"
 
+#include <patina/plugin_support.h>
+
 #include <algorithm>
 #include <atomic>
 #include <cstdio>
@@ -230,16 +232,12 @@ const PatinaPluginInfo* patina_plugin_entry(const PatinaHost* /*host*/)
 {
     using namespace patina::layered;
     static const PatinaShaderDesc shaders[] = {[] {
-        PatinaShaderDesc d{};
-        d.name = kName;
-        d.kind = PATINA_SHADER_BSDF;
-        d.help = "A patina stack (stack.toml): Kubelka-Munk layers composited over a metal or "
-                 "dielectric base, one GGX lobe per interface attenuated by the layers above "
-                 "(Dorsey & Hanrahan 1996, section 4).";
-        d.param_count = static_cast<int>(sizeof kParams / sizeof kParams[0]);
-        d.params = kParams;
-        d.create = create;
-        d.destroy = destroy;
+        PatinaShaderDesc d = patina::plugin::describe(
+            kName, PATINA_SHADER_BSDF,
+            "A patina stack (stack.toml): Kubelka-Munk layers composited over a metal or "
+            "dielectric base, one GGX lobe per interface attenuated by the layers above "
+            "(Dorsey & Hanrahan 1996, section 4).",
+            kParams, create, destroy);
         d.bsdf = &kFuncs;
         return d;
     }()};

@@ -42,6 +42,7 @@
 #include "coat.h"
 #include "fade_table.h"
 
+#include <patina/plugin_support.h>
 #include <patina/shading/sampling.h>
 #include <patina/shading/spectral.h>
 
@@ -269,16 +270,12 @@ const PatinaPluginInfo* patina_plugin_entry(const PatinaHost* /*host*/)
 {
     using namespace patina::spectral_km;
     static const PatinaShaderDesc shaders[] = {[] {
-        PatinaShaderDesc d{};
-        d.name = kName;
-        d.kind = PATINA_SHADER_BSDF;
-        d.help = "A pigment layer faded by light (Kimmel et al. 2013) over its substrate: "
-                 "Kubelka-Munk reflectance per wavelength from a fade stack, with an optional "
-                 "clear glossy coat.";
-        d.param_count = static_cast<int>(sizeof kParams / sizeof kParams[0]);
-        d.params = kParams;
-        d.create = create;
-        d.destroy = destroy;
+        PatinaShaderDesc d = patina::plugin::describe(
+            kName, PATINA_SHADER_BSDF,
+            "A pigment layer faded by light (Kimmel et al. 2013) over its substrate: "
+            "Kubelka-Munk reflectance per wavelength from a fade stack, with an optional "
+            "clear glossy coat.",
+            kParams, create, destroy);
         d.bsdf = &kFuncs;
         return d;
     }()};
