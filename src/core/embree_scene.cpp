@@ -70,7 +70,7 @@ Imath::V3f offset_ray_origin(const Imath::V3f& P, const Imath::V3f& Ng, const Im
     return P + (Ng.dot(dir) < 0.0f ? -d : d) * Ng;
 }
 
-EmbreeScene::EmbreeScene()
+EmbreeScene::EmbreeScene(bool robust)
 {
     device_ = rtcNewDevice(nullptr);
     if (!device_)
@@ -80,7 +80,7 @@ EmbreeScene::EmbreeScene()
     scene_ = rtcNewScene(device_);
     check("creating a scene");
     // Robust mode: no traversal shortcuts that lose hits on edges and vertices.
-    rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
+    rtcSetSceneFlags(scene_, robust ? RTC_SCENE_FLAG_ROBUST : RTC_SCENE_FLAG_NONE);
     rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
     check("configuring the scene");
 }

@@ -40,8 +40,8 @@ SceneFile parse_scene_file(const fs::path& path)
                                              e.source().begin.column, e.description()));
     }
     const TomlReader w{file.path};
-    w.check_keys(file.root, "scene", {"plugins", "film", "camera", "environment", "sun", "output",
-                                      "shader", "object"});
+    w.check_keys(file.root, "scene", {"plugins", "film", "render", "camera", "environment", "sun",
+                                      "output", "shader", "object"});
     if (const toml::table* p = w.table(file.root, "plugins")) {
         w.check_keys(*p, "plugins", {"path"});
         if (const toml::node* list = p->get("path")) {
@@ -103,6 +103,11 @@ Scene build_scene(const SceneFile& file, const PluginRegistry& registry, const H
         }
     }
 
+    // Ray tracing: Embree's robust traversal (the default) or its faster one.
+    const toml::table& render = w.table(root, "render") ? *w.table(root, "render") : kEmpty;
+    w.check_keys(render, "render", {"robust"});
+    scene.robust_traversal = w.boolean(render, "robust", scene.robust_traversal, "render");
+
     // Output
     const toml::table& out = w.table(root, "output") ? *w.table(root, "output") : kEmpty;
     w.check_keys(out, "output", {"file", "display", "view", "png", "format"});
@@ -157,7 +162,7 @@ Scene build_scene(const SceneFile& file, const PluginRegistry& registry, const H
         }
     }
     // Objects: built-in shapes or mesh files, each with a bsdf and/or an emitter.
-    scene.geometry = std::make_unique<EmbreeScene>();
+    scene.geometry = std::make_unique<EmbreeScene>(scene.robust_traversal);
     add_objects(w, root, base_dir, scene);
     scene.geometry->commit();
 

@@ -73,6 +73,8 @@ struct Scene {
     std::vector<int> mesh_object;      ///< Embree geometry id -> index into objects
     std::unique_ptr<EmbreeScene> geometry;
     bool has_media = false;            ///< some object has an interior medium
+    /// [render] robust: Embree's RTC_SCENE_FLAG_ROBUST (see EmbreeScene's constructor).
+    bool robust_traversal = true;
 };
 
 /// Second phase: bind shaders through `registry`, build meshes and the Embree scene.

@@ -69,6 +69,16 @@ struct TomlReader {
         return static_cast<int>(v);
     }
 
+    bool boolean(const toml::table& t, std::string_view key, bool def, std::string_view table) const
+    {
+        const toml::node* n = t.get(key);
+        if (!n)
+            return def;
+        if (!n->is_boolean())
+            fail(n, fmt::format("[{}] {} must be true or false", table, key));
+        return **n->as_boolean();
+    }
+
     Imath::V3f vec3(const toml::table& t, std::string_view key, Imath::V3f def,
                     std::string_view table) const
     {
