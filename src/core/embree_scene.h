@@ -51,6 +51,14 @@ struct ShadowRay {
     float tmax = std::numeric_limits<float>::infinity();
 };
 
+/// A closest-hit query of a batch (EmbreeScene::intersect_coherent): t in [tmin, tmax].
+struct RayQuery {
+    Imath::V3f origin;
+    Imath::V3f dir;
+    float tmin = 0.0f;
+    float tmax = std::numeric_limits<float>::infinity();
+};
+
 /// Move a ray origin off a surface so the new ray cannot hit it again: offset P along Ng,
 /// onto the side `dir` leaves by, by a scaled epsilon (2^-16 of P's largest coordinate
 /// plus 1e-6 scene units). Meant for meshes whose triangles are small next to their
@@ -102,6 +110,10 @@ public:
     /// Closest hit with t in [tmin, tmax], or nothing. `dir` need not be unit length.
     std::optional<Hit> intersect(const Imath::V3f& origin, const Imath::V3f& dir, float tmin = 0.0f,
                                  float tmax = std::numeric_limits<float>::infinity()) const;
+    /// Closest hits of a batch of coherent rays (camera rays of neighbouring pixels) in one
+    /// call: Embree's ray stream API with RTC_INTERSECT_CONTEXT_FLAG_COHERENT, which traces
+    /// them as packets. hits[i] answers rays[i] (`hits` as long as `rays`).
+    void intersect_coherent(std::span<const RayQuery> rays, std::span<std::optional<Hit>> hits) const;
     /// True if anything lies along the ray with t in [tmin, tmax] (shadow rays).
     bool occluded(const Imath::V3f& origin, const Imath::V3f& dir, float tmin = 0.0f,
                   float tmax = std::numeric_limits<float>::infinity()) const;

@@ -171,14 +171,26 @@ SampledSpectrum trace_path(const Scene& scene, Ray ray, const PatinaWavelengths&
                            const CieAtWavelengths& cie, SampledSpectrum& pdf, Pcg32& rng,
                            PathAovs* aovs)
 {
+    const std::optional<Hit> first_hit = scene.geometry->intersect(ray.origin, ray.dir, 0.0f, kInf);
+    return trace_path(scene, ray, first_hit, wl, cie, pdf, rng, aovs);
+}
+
+SampledSpectrum trace_path(const Scene& scene, Ray ray, const std::optional<Hit>& first_hit,
+                           const PatinaWavelengths& wl, const CieAtWavelengths& cie,
+                           SampledSpectrum& pdf, Pcg32& rng, PathAovs* aovs)
+{
     SampledSpectrum L(wl.count, 0.0f), beta(wl.count, 1.0f);
     bool secondaries_terminated = false;
     PrevVertex prev;
     const UniformSky sky(scene, wl, cie.d65);
     const ShaderInstance* medium = nullptr;  // the camera is in vacuum
     int pass_through = 0;
+    bool first_segment = true;
     for (int depth = 0;;) {
-        const auto hit = scene.geometry->intersect(ray.origin, ray.dir, 0.0f, kInf);
+        const std::optional<Hit> hit = first_segment
+                                           ? first_hit
+                                           : scene.geometry->intersect(ray.origin, ray.dir, 0.0f, kInf);
+        first_segment = false;
 
         // In a medium: a free flight up to the next surface, maybe ending in a scattering.
         if (medium) {

@@ -26,5 +26,10 @@ struct PathAovs {
 SampledSpectrum trace_path(const Scene& scene, Ray ray, const PatinaWavelengths& wl,
                            const CieAtWavelengths& cie, SampledSpectrum& pdf, Pcg32& rng,
                            PathAovs* aovs = nullptr);
+/// As above, with the closest hit of `ray` already found (by a batch query such as
+/// EmbreeScene::intersect_coherent); the same result as the call above.
+SampledSpectrum trace_path(const Scene& scene, Ray ray, const std::optional<Hit>& first_hit,
+                           const PatinaWavelengths& wl, const CieAtWavelengths& cie,
+                           SampledSpectrum& pdf, Pcg32& rng, PathAovs* aovs = nullptr);
 
 }  // namespace patina::render

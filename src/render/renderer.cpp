@@ -11,6 +11,7 @@
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 
+#include <array>
 #include <charconv>
 #include <chrono>
 #include <cmath>
@@ -36,6 +37,48 @@ namespace {
     struct Accumulator {
         std::vector<double> xyz, albedo, normal, depth;
     };
+
+    // Camera rays go to Embree in batches of one tile row's pixels times up to
+    // kBatchSamples samples each (64 rays, AVX2 packets of 2 pixels x 4 samples).
+    constexpr int kBatchSamples = 4;
+    constexpr size_t kBatchRays = static_cast<size_t>(kTileSize) * kBatchSamples;
+
+    // A camera sample waiting for its ray's hit: its generator, wavelengths and ray.
+    struct CameraSample {
+        Pcg32 rng;
+        PatinaWavelengths wl;
+        SampledSpectrum pdf;
+        Ray ray;
+    };
+    struct CameraBatch {
+        std::array<CameraSample, kBatchRays> samples;
+        std::array<RayQuery, kBatchRays> queries;
+        std::array<std::optional<Hit>, kBatchRays> hits;
+    };
+
+    // Add one sample of pixel i (index into the region) to the film sums.
+    void accumulate(Accumulator& acc, const FilmSettings& film, size_t i, const SampledSpectrum& L,
+                    const PatinaWavelengths& wl, const CieAtWavelengths& cie,
+                    const SampledSpectrum& pdf, const PathAovs& aov)
+    {
+        const Xyz c = xyz_from_samples(L, cie, pdf);
+        for (size_t k = 0; k < 3; ++k)
+            if (std::isfinite(c[k]))
+                acc.xyz[i * 3 + k] += c[k];
+        if (!aov.hit)
+            return;
+        if (film.aov_albedo) {
+            const SampledSpectrum a = aov.albedo * SampledSpectrum::from_function(wl, unit_d65);
+            const Xyz ax = xyz_from_samples(a, wl, visible_wavelength_pdf(wl));
+            for (size_t k = 0; k < 3; ++k)
+                acc.albedo[i * 3 + k] += ax[k];
+        }
+        if (film.aov_normal)
+            for (size_t k = 0; k < 3; ++k)
+                acc.normal[i * 3 + k] += aov.normal[static_cast<int>(k)];
+        if (film.aov_depth)
+            acc.depth[i] += aov.depth;
+    }
 
     int parse_int(std::string_view text, const char* what)
     {
@@ -128,46 +171,55 @@ FilmResult render_region(const Scene& scene, const Region& region, const RenderC
         const int s0 = pass * pass_spp, s1 = std::min(film.spp, s0 + pass_spp);
         tbb::parallel_for(0, tiles_x * tiles_y, [&](int tile) {
             const int tx0 = (tile % tiles_x) * kTileSize, ty0 = (tile / tiles_x) * kTileSize;
-            for (int ly = ty0; ly < std::min(ty0 + kTileSize, h); ++ly)
-                for (int lx = tx0; lx < std::min(tx0 + kTileSize, w); ++lx) {
-                    const int x = region.x0 + lx, y = region.y0 + ly;
-                    const size_t i = static_cast<size_t>(ly) * w + lx;
-                    const uint64_t stream = pixel_stream(film.seed, x, y);
-                    for (int s = s0; s < s1; ++s) {
-                        // pixel_sample_rng(seed, x, y, s), with the pixel's hash taken once.
-                        Pcg32 rng = sample_rng(stream, film.seed, static_cast<uint64_t>(s));
-                        const float fx = (static_cast<float>(x) + rng.uniform_float()) /
-                                         static_cast<float>(film.width);
-                        const float fy = (static_cast<float>(y) + rng.uniform_float()) /
-                                         static_cast<float>(film.height);
-                        const Imath::V2f lens{rng.uniform_float(), rng.uniform_float()};
-                        SampledSpectrum pdf;
-                        const PatinaWavelengths wl =
-                            sample_wavelengths_visible(rng.uniform_float(), film.wavelengths, pdf);
-                        const CieAtWavelengths cie = cie_at_wavelengths(wl);
-                        PathAovs aov;
-                        const SampledSpectrum L = trace_path(
-                            scene, scene.camera.generate(fx, fy, lens), wl, cie, pdf, rng,
-                            want_aovs ? &aov : nullptr);
-                        const Xyz c = xyz_from_samples(L, cie, pdf);
-                        for (size_t k = 0; k < 3; ++k)
-                            if (std::isfinite(c[k]))
-                                acc.xyz[i * 3 + k] += c[k];
-                        if (!aov.hit)
-                            continue;
-                        if (film.aov_albedo) {
-                            const SampledSpectrum a = aov.albedo * SampledSpectrum::from_function(wl, unit_d65);
-                            const Xyz ax = xyz_from_samples(a, wl, visible_wavelength_pdf(wl));
-                            for (size_t k = 0; k < 3; ++k)
-                                acc.albedo[i * 3 + k] += ax[k];
+            const int tx1 = std::min(tx0 + kTileSize, w);
+            CameraBatch batch;
+            for (int ly = ty0; ly < std::min(ty0 + kTileSize, h); ++ly) {
+                const int y = region.y0 + ly;
+                std::array<uint64_t, kTileSize> streams;  // each pixel's hash, taken once
+                for (int lx = tx0; lx < tx1; ++lx)
+                    streams[static_cast<size_t>(lx - tx0)] = pixel_stream(film.seed, region.x0 + lx, y);
+                // Samples in groups aligned to multiples of kBatchSamples, whatever the pass
+                // size, so that a batch holds the same rays in every render of the pixel.
+                for (int g0 = s0; g0 < s1; g0 = std::min(s1, (g0 / kBatchSamples + 1) * kBatchSamples)) {
+                    const int g1 = std::min(s1, (g0 / kBatchSamples + 1) * kBatchSamples);
+                    // The camera rays of the row's pixels and these samples, traced as one
+                    // coherent stream; each sample keeps its own generator for its path.
+                    size_t n = 0;
+                    for (int lx = tx0; lx < tx1; ++lx) {
+                        const int x = region.x0 + lx;
+                        for (int s = g0; s < g1; ++s, ++n) {
+                            CameraSample& cs = batch.samples[n];
+                            // pixel_sample_rng(seed, x, y, s), with the pixel's hash taken once.
+                            cs.rng = sample_rng(streams[static_cast<size_t>(lx - tx0)], film.seed,
+                                                static_cast<uint64_t>(s));
+                            const float fx = (static_cast<float>(x) + cs.rng.uniform_float()) /
+                                             static_cast<float>(film.width);
+                            const float fy = (static_cast<float>(y) + cs.rng.uniform_float()) /
+                                             static_cast<float>(film.height);
+                            const Imath::V2f lens{cs.rng.uniform_float(), cs.rng.uniform_float()};
+                            cs.wl = sample_wavelengths_visible(cs.rng.uniform_float(),
+                                                               film.wavelengths, cs.pdf);
+                            cs.ray = scene.camera.generate(fx, fy, lens);
+                            batch.queries[n] = {cs.ray.origin, cs.ray.dir};
                         }
-                        if (film.aov_normal)
-                            for (size_t k = 0; k < 3; ++k)
-                                acc.normal[i * 3 + k] += aov.normal[static_cast<int>(k)];
-                        if (film.aov_depth)
-                            acc.depth[i] += aov.depth;
+                    }
+                    scene.geometry->intersect_coherent(std::span(batch.queries.data(), n),
+                                                       std::span(batch.hits.data(), n));
+                    n = 0;
+                    for (int lx = tx0; lx < tx1; ++lx) {
+                        const size_t i = static_cast<size_t>(ly) * w + lx;
+                        for (int s = g0; s < g1; ++s, ++n) {
+                            CameraSample& cs = batch.samples[n];
+                            const CieAtWavelengths cie = cie_at_wavelengths(cs.wl);
+                            PathAovs aov;
+                            const SampledSpectrum L =
+                                trace_path(scene, cs.ray, batch.hits[n], cs.wl, cie, cs.pdf,
+                                           cs.rng, want_aovs ? &aov : nullptr);
+                            accumulate(acc, film, i, L, cs.wl, cie, cs.pdf, aov);
+                        }
                     }
                 }
+            }
             progress.step();
         });
         spp_done = s1;
