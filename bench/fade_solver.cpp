@@ -2,9 +2,10 @@
 // (330-700 nm at 1 nm), 100 sublayers and 100 time steps on one core. The paper: 34.15 s
 // on one core of a 2.8 GHz Xeon (2013). Target (issue 7): under 10 ms.
 //
-//   bench_fade_solver [--repeats R] [--sublayers N] [--steps T]
+//   bench_fade_solver [--repeats R] [--sublayers N] [--steps T] [--dump FILE]
 // Prints the best time of R runs, the ratio target / time (>= 1 meets the target) and
-// paper / time.
+// paper / time. --dump writes the final reflectance and fractions (%a, exact) to FILE, to
+// compare two builds.
 #include "texgen/fade/fading_simulation.h"
 #include "texgen/fade/illuminant.h"
 
@@ -12,12 +13,15 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <stdexcept>
+#include <string>
 
 using namespace patina::texgen::fade;
 
 int main(int argc, char** argv)
 {
     int repeats = 5, sublayers = 100, steps = 100;
+    std::string dump;
     for (int i = 1; i + 1 < argc; i += 2) {
         if (!std::strcmp(argv[i], "--repeats"))
             repeats = std::atoi(argv[i + 1]);
@@ -25,6 +29,8 @@ int main(int argc, char** argv)
             sublayers = std::atoi(argv[i + 1]);
         else if (!std::strcmp(argv[i], "--steps"))
             steps = std::atoi(argv[i + 1]);
+        else if (!std::strcmp(argv[i], "--dump"))
+            dump = argv[i + 1];
     }
     try {
         const FadeLibrary lib = FadeLibrary::load_files({});
@@ -34,14 +40,26 @@ int main(int argc, char** argv)
         const Illumination light = illuminant_by_name("D65").illumination(grid, 100.0);
         const double duration = 7.0 * 86400.0;
         double best = 1e30, checksum = 0.0;
+        std::vector<double> refl, fractions;
         for (int r = 0; r < repeats; ++r) {
             const auto t0 = std::chrono::steady_clock::now();
             FadeSimulation sim(newsprint, grid, sublayers);
             sim.run(light, duration, steps);
-            const std::vector<double> refl = sim.reflectance();
+            refl = sim.reflectance();
             const auto t1 = std::chrono::steady_clock::now();
             best = std::min(best, std::chrono::duration<double>(t1 - t0).count());
             checksum = refl[70];  // 400 nm
+            fractions = sim.fractions();
+        }
+        if (!dump.empty()) {
+            std::FILE* f = std::fopen(dump.c_str(), "w");
+            if (!f)
+                throw std::runtime_error("cannot write " + dump);
+            for (double v : refl)
+                std::fprintf(f, "R %a\n", v);
+            for (double v : fractions)
+                std::fprintf(f, "f %a\n", v);
+            std::fclose(f);
         }
         const double target = 10e-3, paper = 34.15;
         std::printf("fade_solver: %zu wavelengths, %d sublayers, %d steps, best of %d\n",

@@ -7,16 +7,10 @@ namespace patina::texgen::fade {
 LayerOpticsValue fold_sublayers(std::span<const double> rho, std::span<const double> tau)
 {
     assert(rho.size() == tau.size());
-    // Adding a sublayer (rho, tau) below the stack (Kubelka 1948): interreflections between
-    // the stack's bottom and the sublayer's top sum to 1 / (1 - R_bottom rho).
+    // The same formulas as the simulation's vector fold (a = rho, t = tau, d = 1).
     LayerOpticsValue v;
-    for (size_t i = 0; i < rho.size(); ++i) {
-        const double inv = 1.0 / (1.0 - v.r_bottom * rho[i]);
-        const double t_inv = v.t * inv;
-        v.r_top += v.t * t_inv * rho[i];
-        v.r_bottom = rho[i] + tau[i] * tau[i] * v.r_bottom * inv;
-        v.t = t_inv * tau[i];
-    }
+    for (size_t i = 0; i < rho.size(); ++i)
+        fold_sublayer(v.r_top, v.t, v.r_bottom, rho[i], tau[i], 1.0);
     return v;
 }
 

@@ -5,7 +5,6 @@
 #include "texgen/fade/two_flux.h"
 
 #include <cassert>
-#include <cmath>
 #include <vector>
 
 namespace patina::texgen::fade {
@@ -26,48 +25,29 @@ void solve_two_flux(std::span<const double> rho, std::span<const double> tau,
 {
     const size_t n = rho.size();
     assert(tau.size() == n && down.size() == n + 1 && up.size() == n + 1);
-    // Block Thomas elimination of (I - M) x = E_0 with x_i = (E^u_i, E^d_i) and the 2x2
-    // blocks of Eqs. (32)-(34):
-    //   diagonal D_i = I - R_i = [[1, -rho_i], [-rho_{i-1}, 1]]  (rho_{-1} = 0, rho_N = rho*)
-    //   upper    U_i = -T^u_i  = [[-tau_i, 0], [0, 0]]
-    //   lower    L_i = -T^d_{i-1} = [[0, 0], [0, -tau_{i-1}]].
-    // Forward: W_i = D_i - L_i C_{i-1}, C_i = W_i^-1 U_i, g_i = W_i^-1 (b_i - L_i g_{i-1});
-    // back: x_N = g_N, x_i = g_i - C_i x_{i+1}. U_i has one non-zero entry, so C_i has one
-    // non-zero column (c0, c1) and L_i C_{i-1} one non-zero entry, at (1, 0).
+    // The adding method is the block elimination of (I - M) x = E_0 (blocks of Eqs. 32-34)
+    // from the ground up: R_i and src_i are what eliminating rows i + 1..N leaves of row i.
     thread_local std::vector<double> scratch;
     scratch.resize(4 * (n + 1));
-    double* c0 = scratch.data();
-    double* c1 = c0 + (n + 1);
-    double* g0 = c1 + (n + 1);
-    double* g1 = g0 + (n + 1);
-
-    double prev_c1 = 0.0, prev_g1 = 0.0, prev_tau = 0.0;
-    for (size_t i = 0; i <= n; ++i) {
-        const double rho_above = i > 0 ? rho[i - 1] : 0.0;
-        const double rho_here = i < n ? rho[i] : boundary.ground_reflectance;
-        // W = [[1, -rho_i], [w10, 1]] with w10 = -rho_{i-1} + tau_{i-1} c1_{i-1}.
-        const double w01 = -rho_here;
-        const double w10 = -rho_above + prev_tau * prev_c1;
-        const double inv_det = 1.0 / (1.0 - w01 * w10);
-        // Right-hand side b_i - L_i g_{i-1}: b_0 = (0, E_0), b_N = (E_below, 0).
-        const double r0 = i == n ? boundary.bottom_irradiance : 0.0;
-        const double r1 = (i == 0 ? boundary.top_irradiance : 0.0) + prev_tau * prev_g1;
-        // W^-1 = [[1, -w01], [-w10, 1]] / det.
-        g0[i] = (r0 - w01 * r1) * inv_det;
-        g1[i] = (r1 - w10 * r0) * inv_det;
-        const double t = i < n ? tau[i] : 0.0;
-        c0[i] = -t * inv_det;
-        c1[i] = t * w10 * inv_det;
-        prev_c1 = c1[i];
-        prev_g1 = g1[i];
-        prev_tau = t;
-    }
-    up[n] = g0[n];
-    down[n] = g1[n];
+    double* r = scratch.data();
+    double* src = r + (n + 1);
+    double* t_over_p = src + (n + 1);
+    double* a_over_p = t_over_p + (n + 1);
+    r[n] = boundary.ground_reflectance;
+    src[n] = boundary.bottom_irradiance;
     for (size_t i = n; i-- > 0;) {
-        up[i] = g0[i] - c0[i] * up[i + 1];
-        down[i] = g1[i] - c1[i] * up[i + 1];
+        const AddingStep<double> s = adding_step(SublayerTerms<double>{rho[i], tau[i], 1.0},
+                                                 r[i + 1]);
+        r[i] = s.r;
+        t_over_p[i] = s.t_over_p;
+        a_over_p[i] = s.a_over_p;
+        src[i] = s.t_over_p * src[i + 1];
     }
+    down[0] = boundary.top_irradiance;
+    for (size_t i = 0; i < n; ++i)
+        down[i + 1] = t_over_p[i] * down[i] + a_over_p[i] * src[i + 1];
+    for (size_t i = 0; i <= n; ++i)
+        up[i] = r[i] * down[i] + src[i];
 }
 
 void sublayer_fluence_rate(std::span<const double> down, std::span<const double> up,

@@ -1,38 +1,78 @@
 // The depth-discretised two-flux model (Kimmel et al. 2013, §4.1): N sublayers of uniform
 // absorption and scattering, each with Kubelka's reflectance and transmittance (Eqs. 22,
 // 23); the irradiances E^u_i, E^d_i at the N + 1 sublayer boundaries solve the block
-// tridiagonal system E = M E + E_0 (Eqs. 24-34), here in O(N) by block Thomas elimination
-// (Isaacson & Keller 1994).
+// tridiagonal system E = M E + E_0 (Eqs. 24-34), here in O(N) by the adding method
+// (Kubelka 1948): the block elimination of the system from the ground up.
+//
+// The formulas are templates on the lane type, double or Vec4 (four wavelengths at once),
+// so that the scalar functions the tests check and the vector kernels of the fading
+// simulation (fading_simulation.cpp) compute the same thing.
 #pragma once
 
 #include <cstddef>
+#include <new>
 #include <span>
+#include <vector>
 
 namespace patina::texgen::fade {
 
-/// Reflectance rho and transmittance tau of one sublayer (the same from either side).
-struct SublayerOptics {
-    double rho = 0.0;
-    double tau = 1.0;
+/// Four doubles, one wavelength each (GCC vector extension): one AVX register where the
+/// kernel is compiled for AVX2, two SSE2 registers elsewhere.
+using Vec4 = double __attribute__((vector_size(32)));
+using Vec4i = long long __attribute__((vector_size(32)));
+
+/// Heap storage of Vec4 aligned for AVX loads: alignof(Vec4) is only 16 where AVX is not
+/// enabled, and the AVX2 kernels load Vec4 with 32-byte aligned moves.
+template <class T>
+struct Align32Allocator {
+    using value_type = T;
+    Align32Allocator() = default;
+    template <class U>
+    Align32Allocator(const Align32Allocator<U>&) noexcept {}
+    T* allocate(size_t n)
+    {
+        return static_cast<T*>(::operator new(n * sizeof(T), std::align_val_t{32}));
+    }
+    void deallocate(T* p, size_t) noexcept { ::operator delete(p, std::align_val_t{32}); }
+    template <class U>
+    bool operator==(const Align32Allocator<U>&) const noexcept { return true; }
 };
+using Vec4Vector = std::vector<Vec4, Align32Allocator<Vec4>>;
+
+/// The integer lane type of the same width, for bit manipulation.
+template <class T>
+struct LaneBits;
+template <>
+struct LaneBits<double> {
+    using type = long long;
+};
+template <>
+struct LaneBits<Vec4> {
+    using type = Vec4i;
+};
+
+// Vec4 arguments of inline functions: no ABI is involved once inlined.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wpsabi"
 
 /// exp(y) for y <= 0 (y < -708 gives ~1e-308, not 0), relative error < 4e-16, without
 /// branches or library calls, so that loops over wavelengths vectorise: y = n ln2 + r,
 /// |r| <= ln2/2, e^r by its Taylor polynomial to degree 12 (remainder < 2e-16), 2^n from
 /// the exponent bits.
-[[gnu::always_inline]] inline double exp_nonpositive(double y)
+template <class T>
+[[gnu::always_inline]] inline T exp_nonpositive(T y)
 {
+    using I = typename LaneBits<T>::type;
     // Plain selects and builtins, not std:: wrappers: they inline into callers compiled with
     // other floating-point options (fading_simulation.cpp) and keep the loops vectorisable.
     y = y < -708.0 ? -708.0 : y;
     y = y > 0.0 ? 0.0 : y;
     constexpr double kShift = 6755399441055744.0;  // 1.5 * 2^52: rounds to an integer
-    const double t = y * 1.4426950408889634 + kShift;
-    const double n = t - kShift;
+    const T t = y * 1.4426950408889634 + kShift;
+    const T n = t - kShift;
     // ln 2 split as in fdlibm (Cody-Waite): n * kLn2Hi is exact for |n| < 2^11.
-    const double r = (y - n * 6.93147180369123816490e-01) - n * 1.90821492927058770002e-10;
-    double p = 1.0 / 479001600.0;
-    p = p * r + 1.0 / 39916800.0;
+    const T r = (y - n * 6.93147180369123816490e-01) - n * 1.90821492927058770002e-10;
+    T p = r * (1.0 / 479001600.0) + 1.0 / 39916800.0;
     p = p * r + 1.0 / 3628800.0;
     p = p * r + 1.0 / 362880.0;
     p = p * r + 1.0 / 40320.0;
@@ -45,27 +85,40 @@ struct SublayerOptics {
     p = p * r + 1.0;
     p = p * r + 1.0;
     // The low bits of t hold n; 2^n = (n + 1023) << 52.
-    const long long bits_t = __builtin_bit_cast(long long, t);
-    const long long n_int = bits_t - __builtin_bit_cast(long long, kShift);
-    return p * __builtin_bit_cast(double, (n_int + 1023) << 52);
+    const I n_int = __builtin_bit_cast(I, t) - __builtin_bit_cast(long long, kShift);
+    return p * __builtin_bit_cast(T, (n_int + 1023) << 52);
 }
 
-/// sqrt(v) for v >= 0 (relative error < 1e-15), without the errno branch of std::sqrt:
-/// 1/sqrt from the exponent bits (error < 4%), four Newton steps (quadratic: < 1e-20),
-/// times v.
-[[gnu::always_inline]] inline double sqrt_nonnegative(double v)
+/// 1 / sqrt(max(v, 1e-300)) (relative error < 1e-15) without a library call or division:
+/// from the exponent bits (error < 4%), then four Newton steps (quadratic: < 1e-20).
+template <class T>
+[[gnu::always_inline]] inline T rsqrt_positive(T v)
+{
+    using I = typename LaneBits<T>::type;
+    const T safe = v > 1e-300 ? v : 1e-300;
+    T y = __builtin_bit_cast(T, 0x5fe6eb50c7b537a9LL - (__builtin_bit_cast(I, safe) >> 1));
+    const T half = 0.5 * safe;
+    y = y * (1.5 - half * y * y);
+    y = y * (1.5 - half * y * y);
+    y = y * (1.5 - half * y * y);
+    y = y * (1.5 - half * y * y);
+    return y;
+}
+
+/// sqrt(v) for v >= 0 (relative error < 1e-15), without the errno branch of std::sqrt.
+template <class T>
+[[gnu::always_inline]] inline T sqrt_nonnegative(T v)
 {
     v = v > 0.0 ? v : 0.0;
-    const double safe = v > 1e-300 ? v : 1e-300;
-    double y = __builtin_bit_cast(double, 0x5fe6eb50c7b537a9LL -
-                                              (__builtin_bit_cast(long long, safe) >> 1));
-    const double half = 0.5 * safe;
-    y = y * (1.5 - half * y * y);
-    y = y * (1.5 - half * y * y);
-    y = y * (1.5 - half * y * y);
-    y = y * (1.5 - half * y * y);
-    return v * y;
+    return v * rsqrt_positive(v);
 }
+
+/// One sublayer's Eqs. (22), (23) as rho = a / d, tau = t / d (d >= 1): the kernels fold
+/// the division by d into the adding method's one division.
+template <class T>
+struct SublayerTerms {
+    T a, t, d;
+};
 
 /// Eqs. (22), (23) for absorption mu_a and scattering mu_s (1/m) and thickness dz (m).
 /// With K = mu_a, S = mu_s, b S = sqrt(K^2 + 2 K S), x = b S dz, e = exp(-x) and
@@ -73,29 +126,73 @@ struct SublayerOptics {
 ///   rho = S q dz / D, tau = 2 e / D, D = (K + S) q dz + 1 + e^2,
 /// Kubelka's formulas multiplied through by 2 e / x: finite for S = 0 (rho = 0,
 /// tau = exp(-K dz)) and K = 0 (rho = S dz / (1 + S dz)), no overflow for any thickness,
-/// and branch-free so that loops over wavelengths vectorise.
-[[gnu::always_inline]] inline SublayerOptics sublayer_optics(double mu_a, double mu_s, double dz)
+/// and branch-free so that loops over wavelengths vectorise. 1/x comes from the square
+/// root's 1/sqrt: no division.
+template <class T>
+[[gnu::always_inline]] inline SublayerTerms<T> sublayer_terms(T mu_a, T mu_s, double dz)
 {
-    const double K = mu_a > 0.0 ? mu_a : 0.0;
-    const double S = mu_s > 0.0 ? mu_s : 0.0;
+    const T K = mu_a > 0.0 ? mu_a : 0.0;
+    const T S = mu_s > 0.0 ? mu_s : 0.0;
     const double d = dz > 0.0 ? dz : 0.0;
-    const double x = sqrt_nonnegative(K * (K + 2.0 * S)) * d;
-    const double e = exp_nonpositive(-x);
-    const double e2 = e * e;
+    const double inv_d = dz > 0.0 ? 1.0 / dz : 0.0;
+    const T v = K * (K + 2.0 * S);
+    const T inv_root = rsqrt_positive(v);
+    const T x = v * inv_root * d;  // sqrt(v) dz (v <= 0: 0)
+    const T e = exp_nonpositive(-x);
+    const T e2 = e * e;
     // 2 e sinh(x) / x: (1 - e^2)/x, or 2 e (1 + x^2/6 + x^4/120 + x^6/5040) near 0.
-    const double x2 = x * x;
-    const double series = 2.0 * e * (1.0 + x2 * (1.0 / 6.0 + x2 * (1.0 / 120.0 + x2 / 5040.0)));
-    // Both computed, then selected: no branch (and no division by x = 0 that counts).
-    const double big = (1.0 - e2) / (x < 1e-2 ? 1e-2 : x);
-    const double q = x < 1e-2 ? series : big;
-    const double inv = 1.0 / ((K + S) * q * d + 1.0 + e2);
-    return {S * q * d * inv, 2.0 * e * inv};
+    const T x2 = x * x;
+    const T series = 2.0 * e * (1.0 + x2 * (1.0 / 6.0 + x2 * (1.0 / 120.0 + x2 / 5040.0)));
+    // Both computed, then selected: no branch (big is meaningless where x < 1e-2).
+    const T big = (1.0 - e2) * (inv_root * inv_d);
+    const T q = x < 1e-2 ? series : big;
+    const T qd = q * d;
+    return {S * qd, 2.0 * e, (K + S) * qd + 1.0 + e2};
 }
 
-/// sublayer_optics for n values at once (a loop that vectorises; the per-wavelength
-/// blocks of the fading simulation).
+/// Rho and tau of one sublayer (the same from either side).
+struct SublayerOptics {
+    double rho = 0.0;
+    double tau = 1.0;
+};
+
+[[gnu::always_inline]] inline SublayerOptics sublayer_optics(double mu_a, double mu_s, double dz)
+{
+    const SublayerTerms<double> s = sublayer_terms(mu_a, mu_s, dz);
+    const double inv = 1.0 / s.d;
+    return {s.a * inv, s.t * inv};
+}
+
+/// sublayer_optics for n values at once.
 void sublayer_optics(const double* mu_a, const double* mu_s, double dz, double* rho,
                      double* tau, size_t n);
+
+/// One step of the adding method, from the ground up: sublayer i (rho = a / d,
+/// tau = t / d) over everything below boundary i + 1, which reflects `r_below` of the light
+/// coming down and sends up `src_below` of its own (light entered from below):
+/// E^u_{i+1} = r_below E^d_{i+1} + src_below. Interreflections between the sublayer and
+/// what is below sum to 1 / (1 - rho r_below) = d / p, p = d - a r_below; then
+///   R_i = rho + tau^2 r_below d / p = (a p + t^2 r_below) / (d p),
+///   E^d_{i+1} = (tau E^d_i + rho src_below) d / p = t/p E^d_i + a/p src_below,
+///   src_i = tau src_below d / p = t/p src_below.
+/// One division.
+template <class T>
+struct AddingStep {
+    T r;        // R_i: E^u_i = R_i E^d_i + src_i
+    T t_over_p;  // E^d_{i+1} = t_over_p E^d_i + a_over_p src_below
+    T a_over_p;
+};
+
+template <class T>
+[[gnu::always_inline]] inline AddingStep<T> adding_step(const SublayerTerms<T>& s, T r_below)
+{
+    const T p = s.d - s.a * r_below;
+    const T inv_dp = 1.0 / (s.d * p);
+    const T inv_p = s.d * inv_dp;
+    return {(s.a * p + s.t * s.t * r_below) * inv_dp, s.t * inv_p, s.a * inv_p};
+}
+
+#pragma GCC diagnostic pop
 
 /// The boundary conditions: irradiance E_0 entering at the top (Eq. 24), an optional
 /// irradiance entering from below through the ground (illumination from both sides; 0 for
@@ -111,6 +208,8 @@ struct TwoFluxBoundary {
 /// Row i of (I - M) E = E_0, unknowns x_i = (E^u_i, E^d_i):
 ///   E^u_i - rho_i E^d_i - tau_i E^u_{i+1} = 0   (i < N; i = N: E^u_N - rho* E^d_N = E_below)
 ///   E^d_i - rho_{i-1} E^u_i - tau_{i-1} E^d_{i-1} = 0   (i > 0; i = 0: E^d_0 = E_0)
+/// By adding_step from the ground up (R_N = rho*, src_N = E_below), then from the top down
+/// (E^d_0 = E_0, E^u_i = R_i E^d_i + src_i): the same sweeps as the simulation's kernel.
 void solve_two_flux(std::span<const double> rho, std::span<const double> tau,
                     const TwoFluxBoundary& boundary, std::span<double> down,
                     std::span<double> up);
