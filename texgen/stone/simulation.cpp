@@ -103,7 +103,9 @@ void initialise_state(StoneState& st, const SlabLattice& lattice, const Triangle
     update_flags(st);
 
     // dt: forward Euler is stable for dt <= 2 / rho(L); Gershgorin bounds rho(L) by
-    // |centre| + sum |off-diagonal| = 2 sum c + 2 sum |c|; keep a margin of 0.4.
+    // |centre| + sum |off-diagonal| = 2 sum c + 2 sum |c|; keep a margin of 0.4. The solutes
+    // (transport.cpp) diffuse at alpha D_i phi, at most d_max times the pressure's rate, and
+    // their pairwise couplings at most double the Gershgorin sum: still below 2 / rho.
     double g_max = 0.0;
     float phi_max = 0.0f;
     for (size_t c = 0; c < cells; ++c) {
@@ -199,6 +201,33 @@ double species_mass(const StoneState& st, int m)
             return acc;
         },
         std::plus<double>());
+}
+
+void check_state_finite(const StoneState& st)
+{
+    const SlabGrid& g = st.lattice->grid();
+    static const char* const kSpeciesNames[kSpecies] = {"binder", "iron", "salt"};
+    auto check = [&](const std::vector<float>& field, const std::string& name) {
+        for (int s = 0; s < g.slab_count; ++s)
+            for (int k = 0; k < g.n_d; ++k)
+                for (int j = 0; j < g.n_t; ++j)
+                    for (int i = 0; i < g.n_t; ++i)
+                        if (!std::isfinite(field[g.index(s, i, j, k)]))
+                            throw std::runtime_error(fmt::format(
+                                "stone: the simulation diverged: {} is {} at slab {} voxel "
+                                "({}, {}, {}) after {} cycles; nothing written",
+                                name, field[g.index(s, i, j, k)], s, i, j, k, st.cycles_done));
+    };
+    check(st.density, "density");
+    check(st.moisture, "moisture");
+    check(st.pressure, "pressure");
+    check(st.decay, "decay index");
+    check(st.black, "black crust");
+    for (int m = 0; m < kSpecies; ++m) {
+        check(st.solid[m], fmt::format("solid {}", kSpeciesNames[m]));
+        check(st.dissolved[m], fmt::format("dissolved {}", kSpeciesNames[m]));
+        check(st.crust[m], fmt::format("{} crust", kSpeciesNames[m]));
+    }
 }
 
 double moist_depth(const StoneState& st, const std::vector<char>* selector)

@@ -50,6 +50,7 @@ namespace {
 void write_stone_outputs(const fs::path& dir, const StoneState& st, const TriangleMesh& mesh,
                          const StoneJobOptions& o)
 {
+    check_state_finite(st);
     fs::create_directories(dir);
     const Metadata meta = job_metadata(o, st);
     const WorldVolume world = resample_to_world(st, mesh, o.grid_resolution);

@@ -28,7 +28,8 @@ struct StoneParameters {
     // Dissolution and transport (§4.3.3), per species (soluble binder, iron, salt).
     std::array<double, kSpecies> solubility{2.0, 1.0, 20.0};     ///< k_i (rate, 1/time)
     std::array<double, kSpecies> saturation{0.02, 0.005, 0.05};  ///< m_i (volume fraction)
-    std::array<double, kSpecies> diffusivity{0.5, 0.5, 0.5};     ///< D_i, times alpha
+    /// D_i: the solute diffuses in the pores at alpha D_i phi (transport.cpp)
+    std::array<double, kSpecies> diffusivity{0.5, 0.5, 0.5};
     double crystallisation_rate = 20.0; ///< 1/time: dissolved matter crystallising at the
                                         ///< surface in dry phases
     // Crusts from the environment.
@@ -61,6 +62,7 @@ struct StoneState {
     std::vector<float> scratch;  ///< double buffer
     std::array<std::vector<float>, kSpecies> solid, dissolved, crust, concentration;
     std::array<std::vector<float>, kSpecies> ghost_flux;  ///< seam fluxes (transport.cpp)
+    std::vector<uint8_t> full_stencil;  ///< moist with all 12 stencil partners moist
     std::vector<float> black, decay, wet_time;
     std::vector<uint8_t> flags;
     /// Per slab: layers k < active_depth can change in a step (the deepest surface or moist
@@ -89,6 +91,10 @@ void update_active_depth(StoneState& st);
 /// Total of species i (solid + dissolved + crust, and black crust for the binder), volume
 /// weighted over the interior voxels.
 double species_mass(const StoneState& st, int species);
+
+/// Throws std::runtime_error naming the field, slab, voxel and cycle if any interior voxel
+/// of the state is NaN or infinite, so that no output is written from a broken simulation.
+void check_state_finite(const StoneState& st);
 
 /// Mean depth of the moist zone below the surface, in metres, over the columns whose
 /// surface lies in `selector` (nullptr: all).

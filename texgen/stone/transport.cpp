@@ -7,9 +7,21 @@
 // cuts off dissolution upon saturation", needs the + sign.)
 //
 // Transport: d(phi C)/dt + v . grad(phi C) = div(phi D grad C) in conservative form between
-// pairs of moist voxels: the 13-point stencil's weight for a direction is the coupling of
-// the pair (made symmetric by averaging both ends' weight x water volume), and advection by
-// Darcy's velocity is upwinded across each face; a flux leaving one voxel enters the other.
+// pairs of moist voxels: the 13-point stencil's weight for a direction (the mean of both
+// ends' weights) times the smaller water volume of the pair is the coupling, and advection
+// by Darcy's velocity is upwinded across each face; a flux leaving one voxel enters the
+// other. Two things keep this explicit step stable (without them the marble statue's salt
+// grew to 1e38 after 20 cycles):
+// - The solute's diffusivity in the pores is D = alpha D_i phi (Archie's law with exponent
+//   1; the paper gives no value): it diffuses at most as fast as the pressure, whose step
+//   limit dt already covers (simulation.cpp), and in practice much slower, as solutes do.
+//   With the smaller water volume of the pair, no voxel's rate exceeds alpha D_i phi_max
+//   times its stencil weights, however little water it holds.
+// - The 13-point stencil has negative weights (§4.3.5); they are part of a consistent
+//   Laplacian only when the whole stencil is there. Where a voxel's stencil is cut by the
+//   dry front, the surface or the shell's ends, a negative coupling would pump solute
+//   uphill without bound (two moist voxels joined only by a negative weight), so couplings
+//   touching such a voxel are clamped to >= 0.
 // Across a slab seam the partner is a ghost (an interpolation of the neighbour slab's
 // voxels) and both slabs see the exchange: each takes half of its own flux, and the ghost
 // hands the opposite half to its source voxels with the interpolation weights. So the total
@@ -55,18 +67,32 @@ void transport_step(StoneState& st, bool wet)
     const float alpha = float(prm.pressure_diffusivity);
     const float inv_eta = float(1.0 / prm.viscosity);
 
-    // Concentrations in the water, C = amount / water volume fraction (phi * density).
+    // Concentrations in the water, C = amount / water volume fraction (phi * density), and
+    // whether each moist voxel has its whole stencil of moist partners.
     // Only the active layers (and the one below, read by their stencils) change or are read.
+    if (st.full_stencil.size() != g.cell_count())
+        st.full_stencil.assign(g.cell_count(), 0);
     tbb::parallel_for(0, g.slab_count * g.n_d, [&](int sk) {
         const int s = sk / g.n_d, k = sk % g.n_d;
         if (k > st.active_depth[size_t(s)])
             return;
+        const auto& o = lat.offsets(s);
+        const StencilSigns& sg = lat.signs(s);
+        const int dk[6] = {0, 0, 1, 0, sg.s[1], sg.s[2]};
         for (int j = 0; j < g.n_t; ++j)
             for (int i = 0; i < g.n_t; ++i) {
                 const size_t c = g.index(s, i, j, k);
                 const float water = st.porosity[c] * st.density[c];
                 for (int m = 0; m < kSpecies; ++m)
                     st.concentration[m][c] = water > 0.0f ? st.dissolved[m][c] / water : 0.0f;
+                bool full = moist(st, c);
+                for (int d = 0; d < 6 && full; ++d)
+                    for (int sign = -1; sign <= 1 && full; sign += 2) {
+                        const int ky = k + sign * dk[d];
+                        const size_t y = c + sign * o[d];
+                        full = ky >= 0 && ky < g.n_d && lat.flux_partner(y) && moist(st, y);
+                    }
+                st.full_stencil[c] = full;
             }
     });
     for (int m = 0; m < kSpecies; ++m)
@@ -109,6 +135,7 @@ void transport_step(StoneState& st, bool wet)
                     continue;
                 const float water_c = st.porosity[c] * st.density[c];
                 const float vw_c = water_c * vol[c];
+                const bool full_c = st.full_stencil[c] != 0;
                 // Is this a front voxel (a dry stone face neighbour)?
                 bool front = false;
                 for (int a = 0; a < 3 && !front; ++a)
@@ -141,12 +168,16 @@ void transport_step(StoneState& st, bool wet)
                             const size_t y = c + sign * o[d];
                             if (!lat.flux_partner(y) || !moist(st, y))
                                 continue;
-                            // Ghosts carry no weights or volume: use c's for both ends.
-                            const float wy = vol[y] != 0.0f ? w[d][y] : w[d][c];
-                            const float vy = vol[y] != 0.0f ? vol[y] : vol[c];
-                            const float kappa = 0.5f * dm *
-                                                (w[d][c] * vw_c +
-                                                 wy * st.porosity[y] * st.density[y] * vy);
+                            // Ghosts carry no weights, volume or stencil flag: use c's.
+                            const bool ghost = vol[y] == 0.0f;
+                            const float wy = ghost ? w[d][c] : w[d][y];
+                            const float vy = ghost ? vol[c] : vol[y];
+                            const float vw_y = st.porosity[y] * st.density[y] * vy;
+                            float kappa = dm * 0.5f * (w[d][c] + wy) *
+                                          std::min(st.porosity[c], st.porosity[y]) *
+                                          std::min(vw_c, vw_y);
+                            if (kappa < 0.0f && !(full_c && (ghost || st.full_stencil[y])))
+                                kappa = 0.0f;
                             exchange(y, kappa * (C[y] - cc));
                         }
                     for (int a = 0; a < 3; ++a)
