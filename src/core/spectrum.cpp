@@ -355,24 +355,43 @@ Xyz xyz_from_samples(const SampledSpectrum& L, const PatinaWavelengths& wl,
 
 CieAtWavelengths cie_at_wavelengths(const PatinaWavelengths& wl)
 {
+    static_assert(PATINA_MAX_WAVELENGTHS % 4 == 0, "whole blocks of four lanes");
     CieAtWavelengths cie;  // all entries 0
     cie.x.count = cie.y.count = cie.z.count = cie.d65.count = wl.count;
-    for (int i = 0; i < wl.count; ++i) {
-        // lerp_table's position, shared by the four tables: one SIMD lerp of two nodes.
-        const float lambda = wl.lambda_nm[i];
-        if (!(lambda >= kLambdaMinNm && lambda <= kLambdaMaxNm))
-            continue;
-        const float p = (lambda - kLambdaMinNm) / kCieStepNm;
-        const int k = std::min(static_cast<int>(p), kCieSamples - 2);
-        const float f = p - static_cast<float>(k);
-        Float4 a, b;
-        std::memcpy(&a, &kCieXyzNodes[static_cast<size_t>(k)], sizeof a);
-        std::memcpy(&b, &kCieXyzNodes[static_cast<size_t>(k) + 1], sizeof b);
-        const Float4 v = a + f * (b - a);
-        cie.x.v[i] = v[0];
-        cie.y.v[i] = v[1];
-        cie.z.v[i] = v[2];
-        cie.d65.v[i] = v[3];
+    // Four wavelengths at a time: lerp_table's position of each (the same float operations,
+    // in SIMD lanes), one SIMD lerp of the two (x̄, ȳ, z̄, D65) nodes per wavelength, then a
+    // 4x4 transpose into the four spectra. Lanes past the count or outside the tables stay 0.
+    for (int first = 0; first < wl.count; first += 4) {
+        const Float4 lane = {0.0f, 1.0f, 2.0f, 3.0f};
+        Float4 lambda;
+        std::memcpy(&lambda, wl.lambda_nm + first, sizeof lambda);
+        const Int4 valid = (lambda >= kLambdaMinNm) & (lambda <= kLambdaMaxNm) &
+                           (lane + static_cast<float>(first) < static_cast<float>(wl.count));
+        const Float4 p = (lambda - kLambdaMinNm) / kCieStepNm;
+        Int4 k = __builtin_convertvector(p, Int4);
+        k = k < kCieSamples - 2 ? k : kCieSamples - 2;
+        k = valid ? k : 0;  // any node: the lane is masked below
+        const Float4 f = p - __builtin_convertvector(k, Float4);
+        Float4 rows[4];
+        for (int i = 0; i < 4; ++i) {
+            Float4 a, b;
+            std::memcpy(&a, &kCieXyzNodes[static_cast<size_t>(k[i])], sizeof a);
+            std::memcpy(&b, &kCieXyzNodes[static_cast<size_t>(k[i]) + 1], sizeof b);
+            rows[i] = a + f[i] * (b - a);
+        }
+        const Float4 t0 = __builtin_shufflevector(rows[0], rows[1], 0, 4, 1, 5);  // x0 x1 y0 y1
+        const Float4 t1 = __builtin_shufflevector(rows[2], rows[3], 0, 4, 1, 5);  // x2 x3 y2 y3
+        const Float4 t2 = __builtin_shufflevector(rows[0], rows[1], 2, 6, 3, 7);  // z0 z1 d0 d1
+        const Float4 t3 = __builtin_shufflevector(rows[2], rows[3], 2, 6, 3, 7);  // z2 z3 d2 d3
+        const Float4 zero = {};
+        const Float4 x = valid ? __builtin_shufflevector(t0, t1, 0, 1, 4, 5) : zero;
+        const Float4 y = valid ? __builtin_shufflevector(t0, t1, 2, 3, 6, 7) : zero;
+        const Float4 z = valid ? __builtin_shufflevector(t2, t3, 0, 1, 4, 5) : zero;
+        const Float4 d = valid ? __builtin_shufflevector(t2, t3, 2, 3, 6, 7) : zero;
+        std::memcpy(cie.x.v + first, &x, sizeof x);
+        std::memcpy(cie.y.v + first, &y, sizeof y);
+        std::memcpy(cie.z.v + first, &z, sizeof z);
+        std::memcpy(cie.d65.v + first, &d, sizeof d);
     }
     return cie;
 }
