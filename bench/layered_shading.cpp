@@ -30,6 +30,7 @@ namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
 int g_samples = 400000;  // argv[1] overrides (e.g. a short run under callgrind)
+bool g_reference = true; // argv[2] = "noref" skips the slow random-walk reference
 constexpr int kSize = 256;
 
 /// A 5-layer stack like the urban §5.1 strip: tarnish, cuprite, two patina stages, dirt.
@@ -95,9 +96,15 @@ std::vector<Input> make_inputs()
     return in;
 }
 
-/// Best of 3 runs, ns per sample.
-template <typename F> double time_per_sample(F&& shade)
+volatile int g_config = 0;
+
+/// Best of 3 runs, ns per sample. `Config` only gives each configuration its own symbol (the
+/// store keeps the compiler from folding them into one), so callgrind's inclusive cost of
+/// time_per_sample<N, ...> / (3 x samples) is its instructions per sample (0: layered
+/// through the ABI, 1: linked in, 2: lambert + map, 3: lambert).
+template <int Config, typename F> [[gnu::noinline]] double time_per_sample(F&& shade)
 {
+    g_config = Config;
     double best = 1e30;
     for (int run = 0; run < 3; ++run) {
         const auto t0 = Clock::now();
@@ -117,6 +124,8 @@ int main(int argc, char** argv)
 {
     if (argc > 1)
         g_samples = std::max(1, std::atoi(argv[1]));
+    if (argc > 2 && std::string(argv[2]) == "noref")
+        g_reference = false;
     const fs::path dir = fs::temp_directory_path() / "patina_bench_layered";
     const fs::path stack = write_bench_stack(dir);
     std::vector<float> scale(kSize * kSize, 0.8f);
@@ -178,7 +187,7 @@ int main(int argc, char** argv)
 
     // The reference mode, for scale: eval only, 64 walks per wavelength.
     values[2].s = "random_walk";
-    void* reference = patina::layered::create(host.c_host(), values);
+    void* reference = g_reference ? patina::layered::create(host.c_host(), values) : nullptr;
     double t_reference = 0.0;
     if (reference) {
         const auto t0 = Clock::now();
@@ -194,10 +203,10 @@ int main(int argc, char** argv)
         patina::layered::destroy(reference);
     }
 
-    const double t_layered = time_per_sample(through_abi(*layered));
-    const double t_direct = time_per_sample(linked_in);
-    const double t_lambert_map = time_per_sample(through_abi(*lambert_map));
-    const double t_lambert = time_per_sample(through_abi(*lambert));
+    const double t_layered = time_per_sample<0>(through_abi(*layered));
+    const double t_direct = time_per_sample<1>(linked_in);
+    const double t_lambert_map = time_per_sample<2>(through_abi(*lambert_map));
+    const double t_lambert = time_per_sample<3>(through_abi(*lambert));
 
     std::printf("layered_km, 5 layers over copper, eval + sample + pdf, 4 wavelengths, "
                 "%d samples, best of 3:\n", g_samples);

@@ -56,6 +56,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <exception>
@@ -89,38 +90,62 @@ namespace {
 
     std::atomic<uint64_t> g_next_id{1};
 
-    /// The set-up of the last shading point of this thread. A renderer calls sample, eval
-    /// and pdf at one point with one set of wavelengths: the thickness lookups and the KM
-    /// compositing run once for all three.
+    /// The set-up of the last shading point of this thread, and the terms of its last wo. A
+    /// renderer calls sample, eval and pdf at one point with one set of wavelengths and one
+    /// wo: the thickness lookups and the KM compositing run once for all three, and the
+    /// wo terms (E(μo), Λ(wo), the lobe probabilities) once per wo. Keys compare bits, so a
+    /// hit returns exactly what a fresh set-up would.
     struct CachedPoint {
         uint64_t owner = 0;
         float key[6] = {};
         PatinaWavelengths wl{};
         PointState state;
+        bool has_outgoing = false;
+        float wo_key[3] = {};
+        Outgoing outgoing;
     };
 
-    const PointState& point(const void* instance, const PatinaShadingContext* ctx,
-                            const PatinaWavelengths& wl)
+    struct Shading {
+        const PointState& state;
+        const Outgoing& outgoing;
+    };
+
+    CachedPoint& point(const Instance& inst, const PatinaShadingContext* ctx,
+                       const PatinaWavelengths& wl)
     {
-        const Instance& inst = *static_cast<const Instance*>(instance);
+        thread_local CachedPoint cache;
         if (!ctx) {
-            thread_local PointState uncached;
-            inst.model.setup(ctx, wl, &uncached);
+            thread_local CachedPoint uncached;
+            inst.model.setup(ctx, wl, &uncached.state);
+            uncached.has_outgoing = false;
             return uncached;
         }
-        thread_local CachedPoint cache;
         const float key[6] = {ctx->uv.x,     ctx->uv.y,     ctx->duvdx[0],
                               ctx->duvdx[1], ctx->duvdy[0], ctx->duvdy[1]};
         const int n = std::clamp(wl.count, 0, PATINA_MAX_WAVELENGTHS);
         if (cache.owner == inst.id && std::memcmp(cache.key, key, sizeof key) == 0 &&
             cache.wl.count == wl.count &&
             std::memcmp(cache.wl.lambda_nm, wl.lambda_nm, sizeof(float) * n) == 0)
-            return cache.state;
+            return cache;
         inst.model.setup(ctx, wl, &cache.state);
         cache.owner = inst.id;
         std::memcpy(cache.key, key, sizeof key);
         cache.wl = wl;
-        return cache.state;
+        cache.has_outgoing = false;
+        return cache;
+    }
+
+    Shading shading(const void* instance, const PatinaShadingContext* ctx,
+                    const PatinaWavelengths& wl, PatinaVec3 wo)
+    {
+        CachedPoint& p = point(*static_cast<const Instance*>(instance), ctx, wl);
+        const float wo_key[3] = {wo.x, wo.y, std::abs(wo.z)};  // outgoing() folds wo.z
+        if (!p.has_outgoing || std::memcmp(p.wo_key, wo_key, sizeof wo_key) != 0) {
+            LayeredModel::outgoing(p.state, wo, &p.outgoing);
+            std::memcpy(p.wo_key, wo_key, sizeof wo_key);
+            p.has_outgoing = true;
+        }
+        return {p.state, p.outgoing};
     }
 
     void report(const PatinaHost* host, const std::string& message)
@@ -193,26 +218,29 @@ namespace {
     void eval(const void* instance, const PatinaShadingContext* ctx, PatinaVec3 wo, PatinaVec3 wi,
               const PatinaWavelengths* wl, float* f)
     {
-        model_of(instance).eval(point(instance, ctx, *wl), wo, wi, f);
+        const Shading s = shading(instance, ctx, *wl, wo);
+        model_of(instance).eval(s.state, s.outgoing, wo, wi, f);
     }
 
     float pdf(const void* instance, const PatinaShadingContext* ctx, PatinaVec3 wo, PatinaVec3 wi,
               const PatinaWavelengths* wl)
     {
-        return model_of(instance).pdf(point(instance, ctx, *wl), wo, wi);
+        const Shading s = shading(instance, ctx, *wl, wo);
+        return model_of(instance).pdf(s.state, s.outgoing, wo, wi);
     }
 
     int sample(const void* instance, const PatinaShadingContext* ctx, PatinaVec3 wo, float u_lobe,
                PatinaVec2 u, const PatinaWavelengths* wl, PatinaBsdfSample* out)
     {
-        return model_of(instance).sample(point(instance, ctx, *wl), wo, u_lobe, u,
-                                         out);
+        const Shading s = shading(instance, ctx, *wl, wo);
+        return model_of(instance).sample(s.state, s.outgoing, wo, u_lobe, u, out);
     }
 
     void albedo(const void* instance, const PatinaShadingContext* ctx, PatinaVec3 wo,
                 const PatinaWavelengths* wl, float* a)
     {
-        model_of(instance).albedo(point(instance, ctx, *wl), wo, a);
+        model_of(instance).albedo(point(*static_cast<const Instance*>(instance), ctx, *wl).state,
+                                  wo, a);
     }
 
     const PatinaBsdfFuncs kFuncs = {eval, pdf, sample, albedo};

@@ -18,6 +18,32 @@ namespace {
     /// model sums rough lobes only).
     constexpr float kMinRoughness = 0.03f;
 
+    /// 8-point Gauss-Legendre nodes and weights over μ in [0, 1] (the mean ḡ in setup).
+    constexpr float kGaussMu[kGaussNodes] = {0.0198550718f, 0.1016667613f, 0.2372337950f,
+                                             0.4082826788f, 0.5917173212f, 0.7627662050f,
+                                             0.8983332387f, 0.9801449282f};
+    constexpr float kGaussWeight[kGaussNodes] = {0.0506142681f, 0.1111905172f, 0.1568533229f,
+                                                 0.1813418917f, 0.1813418917f, 0.1568533229f,
+                                                 0.1111905172f, 0.0506142681f};
+
+    /// Where μ falls in an albedo table row: node n and weight t.
+    struct MuPos {
+        int n;
+        float t;
+    };
+    MuPos mu_pos(float mu)
+    {
+        const float x = std::clamp(mu, 0.0f, 1.0f) * (kAlbedoNodes - 1);
+        const int n = std::min(static_cast<int>(x), kAlbedoNodes - 2);
+        return {n, x - static_cast<float>(n)};
+    }
+
+    /// Row `row` of a kAlbedoNodes table at μ (the interpolation interface_albedo does).
+    float row_at(const float* row, MuPos m)
+    {
+        return row[m.n] + m.t * (row[m.n + 1] - row[m.n]);
+    }
+
     /// `values` over `lambda` (linear, clamped ends) resampled onto the common grid.
     Grid resample(const std::vector<float>& lambda, const std::vector<float>& values)
     {
@@ -65,6 +91,10 @@ namespace {
             for (int q = 0; q < kF0Nodes; ++q)
                 m->albedo[q * kAlbedoNodes + node] = static_cast<float>(e[q] * kInvCount);
         }
+        for (int q = 0; q < kF0Nodes; ++q)
+            for (int g = 0; g < kGaussNodes; ++g)
+                m->albedo_gauss[q * kGaussNodes + g] =
+                    row_at(&m->albedo[q * kAlbedoNodes], mu_pos(kGaussMu[g]));
     }
 
     CompiledMaterial compile(const MaterialOptics& o)
@@ -121,33 +151,11 @@ namespace {
         return true;
     }
 
-    /// Lobe selection probabilities at wo (glossy lobes, then the diffuse one), in proportion
-    /// to an estimate of each lobe's albedo; false when every estimate is 0.
-    bool lobe_probabilities(const PointState& s, float mu_o, float* p)
+    /// Two lobes with the same microfacet widths: D, G and the visible-normal density of one
+    /// are those of the other.
+    bool same_widths(const TrowbridgeReitz& a, const TrowbridgeReitz& b)
     {
-        const int count = wavelength_count(s.wl);
-        SpectralArray coupling(1.0f);
-        float total = 0.0f;
-        for (int j = 0; j < s.interfaces; ++j) {
-            const Interface& lobe = s.lobe[j];
-            SpectralArray e;
-            if (lobe.material->metal)
-                e = lobe.hemispherical * albedo_table(lobe.material->albedo_one, mu_o);
-            else
-                e = LayeredModel::interface_albedo(lobe, mu_o, count);
-            p[j] = mean(coupling * lobe.attenuation * e, count);
-            total += p[j];
-            if (lobe.coupled)
-                for (int i = 0; i < count; ++i)
-                    coupling[i] *= 1.0f - lobe.attenuation[i] * e[i];
-        }
-        p[s.interfaces] = mean(coupling * s.diffuse_albedo, count);
-        total += p[s.interfaces];
-        if (!(total > 0.0f) || !is_finite(total))
-            return false;
-        for (int j = 0; j <= s.interfaces; ++j)
-            p[j] /= total;
-        return true;
+        return a.alpha_x() == b.alpha_x() && a.alpha_y() == b.alpha_y();
     }
 
     /// Adds a layer of `m`, thickness d, under the composite of the layers above it (its
@@ -208,10 +216,23 @@ void km_layer(float K, float S, float d, float* R, float* T)
     // (β = Sb = sqrt(K (K + 2S)), x = βd): R = S g / ((S + K) g + 1 + e^-2x),
     // T = 2 e^-x / (...), g = (1 - e^-2x) / β → 2d as β → 0: finite at K = 0, S = 0 and
     // for any thickness (the same form as src/core/kubelka_munk.cpp).
+    // One transcendental: below x = 0.25, e^-x = 1 + expm1(-x) and 1 - e^-2x =
+    // -expm1(-x) (1 + e^-x) keep their relative accuracy; above, 1 - e^-2x >= 0.39 has none
+    // to lose.
     const float beta = std::sqrt(K * (K + 2.0f * S));
     const float x = beta * d;
-    const float e = std::exp(-x);
-    const float g = x > 1e-4f ? -std::expm1(-2.0f * x) / beta : 2.0f * d * (1.0f - x);
+    float e, g;
+    if (x > 0.25f) {
+        e = std::exp(-x);
+        g = (1.0f - e * e) / beta;
+    } else if (x > 1e-4f) {
+        const float em = std::expm1(-x);
+        e = 1.0f + em;
+        g = -em * (1.0f + e) / beta;
+    } else {
+        e = 1.0f - x;
+        g = 2.0f * d * (1.0f - x);
+    }
     const float denom = (S + K) * g + 1.0f + e * e;
     *R = S * g / denom;
     *T = 2.0f * e / denom;
@@ -406,23 +427,27 @@ void LayeredModel::setup_thickness(const float* thickness_um, const PatinaWavele
     // reflectance (g_j = fade T_above² E_j, see eval) and ḡ = 2 ∫ g(μ) μ dμ, the diffuse lobe
     // is (1 - g(μo)) (1 - g(μi)) R_d / (π (1 - R_d ḡ)): its albedo (1 - g(μo)) R_d (1 - ḡ) /
     // (1 - R_d ḡ) is 1 - g(μo) for a white stack (R_d = 1) and never more.
-    // ḡ by 8-point Gauss-Legendre quadrature over μ in [0, 1].
-    constexpr float kNodes[8] = {0.0198550718f, 0.1016667613f, 0.2372337950f, 0.4082826788f,
-                                 0.5917173212f, 0.7627662050f, 0.8983332387f, 0.9801449282f};
-    constexpr float kWeights[8] = {0.0506142681f, 0.1111905172f, 0.1568533229f, 0.1813418917f,
-                                   0.1813418917f, 0.1568533229f, 0.1111905172f, 0.0506142681f};
+    // ḡ by 8-point Gauss-Legendre quadrature over μ in [0, 1]; E_j at the nodes comes from
+    // the material's albedo_gauss rows (the values interface_albedo would interpolate), all
+    // nodes of one wavelength at once.
     SpectralArray pass_mean(0.0f);
-    for (int q = 0; q < 8; ++q) {
-        SpectralArray pass(1.0f);
+    for (int i = 0; i < count; ++i) {
+        float pass[kGaussNodes];
+        for (float& p : pass)
+            p = 1.0f;
         for (int j = 0; j < s->interfaces; ++j) {
             const Interface& l = s->lobe[j];
             if (!l.coupled)
                 continue;
-            const SpectralArray e = interface_albedo(l, kNodes[q], count);
-            for (int i = 0; i < count; ++i)
-                pass[i] *= 1.0f - l.attenuation[i] * e[i];
+            const float* row0 = &l.material->albedo_gauss[l.albedo_row[i] * kGaussNodes];
+            const float* row1 = row0 + kGaussNodes;
+            const float t = l.albedo_row_t[i], scale = l.albedo_scale[i];
+            const float a = l.attenuation[i];
+            for (int q = 0; q < kGaussNodes; ++q)
+                pass[q] *= 1.0f - a * ((row0[q] + t * (row1[q] - row0[q])) * scale);
         }
-        pass_mean += pass * (2.0f * kNodes[q] * kWeights[q]);
+        for (int q = 0; q < kGaussNodes; ++q)
+            pass_mean[i] += pass[q] * (2.0f * kGaussMu[q] * kGaussWeight[q]);
     }
     for (int i = 0; i < PATINA_MAX_WAVELENGTHS; ++i) {
         const float g_mean = std::clamp(1.0f - pass_mean[i], 0.0f, 1.0f);
@@ -432,7 +457,42 @@ void LayeredModel::setup_thickness(const float* thickness_um, const PatinaWavele
     }
 }
 
-void LayeredModel::eval_km(const PointState& s, Vec3 wo, Vec3 wi, SpectralArray* f) const
+void LayeredModel::outgoing(const PointState& s, Vec3 wo, Outgoing* o)
+{
+    o->wo = Vec3(wo.x, wo.y, std::abs(wo.z));
+    const float mu_o = o->wo.z;
+    const int count = wavelength_count(s.wl);
+    // Lobe selection probabilities at wo (glossy lobes, then the diffuse one), in proportion
+    // to an estimate of each lobe's albedo, with E(μo) and Λ(wo) kept for eval.
+    SpectralArray coupling(1.0f);
+    float total = 0.0f;
+    for (int j = 0; j < s.interfaces; ++j) {
+        const Interface& lobe = s.lobe[j];
+        SpectralArray& e = o->e[j];
+        if (lobe.material->metal)
+            e = lobe.hemispherical * albedo_table(lobe.material->albedo_one, mu_o);
+        else
+            e = interface_albedo(lobe, mu_o, count);
+        const TrowbridgeReitz& dist = lobe.material->distribution;
+        o->lambda[j] = j > 0 && same_widths(dist, s.lobe[j - 1].material->distribution)
+                           ? o->lambda[j - 1]
+                           : dist.lambda(o->wo);
+        o->p[j] = mean(coupling * lobe.attenuation * e, count);
+        total += o->p[j];
+        if (lobe.coupled)
+            for (int i = 0; i < count; ++i)
+                coupling[i] *= 1.0f - lobe.attenuation[i] * e[i];
+    }
+    o->p[s.interfaces] = mean(coupling * s.diffuse_albedo, count);
+    total += o->p[s.interfaces];
+    o->sampleable = mu_o > 0.0f && total > 0.0f && is_finite(total);
+    if (o->sampleable)
+        for (int j = 0; j <= s.interfaces; ++j)
+            o->p[j] /= total;
+}
+
+void LayeredModel::eval_km(const PointState& s, const Outgoing& o, Vec3 wo, Vec3 wi,
+                           SpectralArray* f) const
 {
     *f = SpectralArray(0.0f);
     if (!to_upper(&wo, &wi))
@@ -447,11 +507,15 @@ void LayeredModel::eval_km(const PointState& s, Vec3 wo, Vec3 wi, SpectralArray*
     // Sum of the glossy lobes from the top interface down; `coupling` is the part of the
     // light that passed the interfaces above, (1 - E(μo)) (1 - E(μi)) per interface.
     SpectralArray coupling(1.0f);
+    float dg = 0.0f;
     for (int j = 0; j < s.interfaces; ++j) {
         const Interface& lobe = s.lobe[j];
         const TrowbridgeReitz& dist = lobe.material->distribution;
-        // Torrance-Sparrow with GGX and Smith G2: Walter et al. 2007 Eq. 20
-        const float dg = dist.d(wm) * dist.g(wo, wi) / (4.0f * mu_o * mu_i);
+        // Torrance-Sparrow with GGX and Smith G2: Walter et al. 2007 Eq. 20 (the same
+        // value as the lobe above when the widths are the same)
+        if (j == 0 || !same_widths(dist, s.lobe[j - 1].material->distribution))
+            dg = dist.d(wm) * (1.0f / (1.0f + o.lambda[j] + dist.lambda(wi))) /
+                 (4.0f * mu_o * mu_i);
         if (dg > 0.0f && is_finite(dg)) {
             for (int i = 0; i < count; ++i) {
                 const float F = lobe.material->metal
@@ -461,7 +525,7 @@ void LayeredModel::eval_km(const PointState& s, Vec3 wo, Vec3 wi, SpectralArray*
             }
         }
         if (lobe.coupled) {
-            const SpectralArray eo = interface_albedo(lobe, mu_o, count);
+            const SpectralArray& eo = o.e[j];
             const SpectralArray ei = interface_albedo(lobe, mu_i, count);
             for (int i = 0; i < count; ++i)
                 coupling[i] *= (1.0f - lobe.attenuation[i] * eo[i]) *
@@ -472,57 +536,59 @@ void LayeredModel::eval_km(const PointState& s, Vec3 wo, Vec3 wi, SpectralArray*
         (*f)[i] += coupling[i] * s.diffuse_lobe[i] * kInvPi;
 }
 
-void LayeredModel::eval(const PointState& s, Vec3 wo, Vec3 wi, float* f) const
+void LayeredModel::eval(const PointState& s, const Outgoing& o, Vec3 wo, Vec3 wi,
+                        float* f) const
 {
     SpectralArray value;
     if (options_.model == Model::random_walk)
         eval_random_walk(s, wo, wi, &value);
     else
-        eval_km(s, wo, wi, &value);
+        eval_km(s, o, wo, wi, &value);
     store(value, s.wl, f);
 }
 
-float LayeredModel::pdf(const PointState& s, Vec3 wo, Vec3 wi) const
+float LayeredModel::pdf(const PointState& s, const Outgoing& o, Vec3 wo, Vec3 wi) const
 {
-    if (!to_upper(&wo, &wi))
+    if (!to_upper(&wo, &wi) || !o.sampleable)
         return 0.0f;
-    float p[kMaxLayers + 2];
-    if (!lobe_probabilities(s, wo.z, p))
-        return 0.0f;
-    return mixture_pdf(s, p, wo, wi);
+    return mixture_pdf(s, o, wi);
 }
 
-float LayeredModel::mixture_pdf(const PointState& s, const float* p, Vec3 wo, Vec3 wi)
+float LayeredModel::mixture_pdf(const PointState& s, const Outgoing& o, Vec3 wi)
 {
-    float pdf = p[s.interfaces] * cosine_hemisphere_pdf(wi.z);
+    const Vec3 wo = o.wo;
+    float pdf = o.p[s.interfaces] * cosine_hemisphere_pdf(wi.z);
     const Vec3 h = wo + wi;
     if (length_squared(h) > 0.0f) {
         const Vec3 wm = normalize(h);
         const float c = dot(wo, wm);
-        if (c > 0.0f)
-            for (int j = 0; j < s.interfaces; ++j)
-                if (p[j] > 0.0f)
-                    pdf += p[j] * s.lobe[j].material->distribution.pdf(wo, wm) / (4.0f * c);
+        if (c > 0.0f) {
+            float lobe_pdf = 0.0f;
+            for (int j = 0; j < s.interfaces; ++j) {
+                const TrowbridgeReitz& dist = s.lobe[j].material->distribution;
+                // the visible-normal density of the lobe above when the widths are the same
+                if (j == 0 || !same_widths(dist, s.lobe[j - 1].material->distribution))
+                    lobe_pdf = dist.pdf(wo, wm) / (4.0f * c);
+                if (o.p[j] > 0.0f)
+                    pdf += o.p[j] * lobe_pdf;
+            }
+        }
     }
     return is_finite(pdf) ? pdf : 0.0f;
 }
 
-int LayeredModel::sample(const PointState& s, Vec3 wo, float u_lobe, Vec2 u,
+int LayeredModel::sample(const PointState& s, const Outgoing& o, Vec3 wo, float u_lobe, Vec2 u,
                          PatinaBsdfSample* out) const
 {
-    if (wo.z == 0.0f)
+    if (wo.z == 0.0f || !o.sampleable)
         return 0;
     const bool below = wo.z < 0.0f;
-    Vec3 w = wo;
-    w.z = std::abs(w.z);
-    float p[kMaxLayers + 2];
-    if (!lobe_probabilities(s, w.z, p))
-        return 0;
+    const Vec3 w = o.wo;
     // Pick a lobe by u_lobe in proportion to its estimated albedo.
     int chosen = s.interfaces;
     float cdf = 0.0f;
     for (int j = 0; j < s.interfaces; ++j) {
-        cdf += p[j];
+        cdf += o.p[j];
         if (u_lobe < cdf) {
             chosen = j;
             break;
@@ -540,12 +606,12 @@ int LayeredModel::sample(const PointState& s, Vec3 wo, float u_lobe, Vec2 u,
     if (!(wi.z > 0.0f))
         return 0;
     // f and pdf exactly as eval and pdf compute them (the same mixture probabilities p).
-    const float pdf_value = mixture_pdf(s, p, w, wi);
+    const float pdf_value = mixture_pdf(s, o, wi);
     if (below)
         wi.z = -wi.z;
     if (!(pdf_value > 0.0f))
         return 0;
-    eval(s, wo, wi, out->f);
+    eval(s, o, wo, wi, out->f);
     out->wi = wi;
     out->pdf = pdf_value;
     out->eta = 1.0f;

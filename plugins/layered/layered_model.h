@@ -35,6 +35,8 @@ inline constexpr float kGridStepNm = 5.0f;
 /// Nodes of the directional albedo tables over cos θ in [0, 1] and over F0 in [0, 1].
 inline constexpr int kAlbedoNodes = 32;
 inline constexpr int kF0Nodes = 24;
+/// Gauss-Legendre nodes of the hemispherical mean ḡ (setup_thickness).
+inline constexpr int kGaussNodes = 8;
 /// The F0 rows are uniform in x = √F0 over [kF0MinSqrt, kF0MaxSqrt]: E(F0, μ) is smooth in
 /// x there, but jumps near F0 = 0 at grazing angles (any index > 1 reflects grazing light);
 /// below kF0MinSqrt E is scaled down linearly in x to 0 at F0 = 0.
@@ -66,6 +68,10 @@ struct CompiledMaterial {
     /// μ = i / (kAlbedoNodes - 1) (row q); albedo_one is the row F = 1 (metal estimate).
     std::array<float, kF0Nodes * kAlbedoNodes> albedo{};
     std::array<float, kAlbedoNodes> albedo_one{};
+    /// The rows of `albedo` interpolated in μ at the kGaussNodes nodes (row q: nodes
+    /// q * kGaussNodes ...), with the very float operations interface_albedo does, so the
+    /// quadrature of ḡ reads them instead of interpolating per point.
+    std::array<float, kF0Nodes * kGaussNodes> albedo_gauss{};
 };
 
 /// Grid position of a wavelength: index and weight for linear interpolation.
@@ -105,6 +111,21 @@ struct PointState {
     float u = 0.0f, v = 0.0f;
 };
 
+/// What depends on the point and wo only (not wi), computed once by LayeredModel::outgoing:
+/// eval, pdf and sample at one wo share it (a renderer's light sample, its pdf and the BSDF
+/// sample all leave the point towards the same wo).
+struct Outgoing {
+    Vec3 wo;  ///< wo in the upper hemisphere (z = |wo.z|)
+    /// Per lobe: E(μo) (a dielectric's directional albedo; a metal's hemispherical reflectance
+    /// times its F = 1 albedo, for lobe selection only) and the Smith Λ(wo) of its distribution.
+    std::array<SpectralArray, kMaxLayers + 1> e;
+    std::array<float, kMaxLayers + 1> lambda{};
+    /// Lobe selection probabilities (glossy lobes, then the diffuse one); sampleable is false
+    /// when every estimate is 0 (pdf and sample then return 0).
+    std::array<float, kMaxLayers + 2> p{};
+    bool sampleable = false;
+};
+
 struct ModelOptions {
     Model model = Model::kubelka_munk;
     float thickness_scale = 1.0f;
@@ -125,13 +146,20 @@ public:
     void setup_thickness(const float* thickness_um, const PatinaWavelengths& wl,
                          PointState* state) const;
 
-    void eval(const PointState& s, Vec3 wo, Vec3 wi, float* f) const;
-    float pdf(const PointState& s, Vec3 wo, Vec3 wi) const;
-    int sample(const PointState& s, Vec3 wo, float u_lobe, Vec2 u, PatinaBsdfSample* out) const;
+    /// The wo-dependent terms of the point (for wo on either side; wo.z = 0 leaves the
+    /// point unsampleable).
+    static void outgoing(const PointState& s, Vec3 wo, Outgoing* o);
+
+    /// eval, pdf and sample take the Outgoing of their wo (from outgoing(s, wo, ...)).
+    void eval(const PointState& s, const Outgoing& o, Vec3 wo, Vec3 wi, float* f) const;
+    float pdf(const PointState& s, const Outgoing& o, Vec3 wo, Vec3 wi) const;
+    int sample(const PointState& s, const Outgoing& o, Vec3 wo, float u_lobe, Vec2 u,
+               PatinaBsdfSample* out) const;
     void albedo(const PointState& s, Vec3 wo, float* albedo) const;
 
     /// The Kubelka-Munk model whatever `options.model` says (the reference compares both).
-    void eval_km(const PointState& s, Vec3 wo, Vec3 wi, SpectralArray* f) const;
+    void eval_km(const PointState& s, const Outgoing& o, Vec3 wo, Vec3 wi,
+                 SpectralArray* f) const;
     /// The random-walk reference: f estimated with `walk_samples` walks (random_walk.cpp).
     void eval_random_walk(const PointState& s, Vec3 wo, Vec3 wi, SpectralArray* f) const;
     /// Directional albedo by analog random walks (`walks` of them per wavelength).
@@ -145,8 +173,8 @@ public:
     static SpectralArray interface_albedo(const Interface& i, float mu, int count);
 
 private:
-    /// The mixture density for lobe probabilities p (both directions in the upper hemisphere).
-    static float mixture_pdf(const PointState& s, const float* p, Vec3 wo, Vec3 wi);
+    /// The mixture density of o.p (wi in the upper hemisphere).
+    static float mixture_pdf(const PointState& s, const Outgoing& o, Vec3 wi);
 
     std::vector<CompiledMaterial> materials_;
     const CompiledMaterial* base_ = nullptr;
