@@ -24,6 +24,7 @@ namespace {
         std::string stone = "sandstone";
         std::string up = "y";
         std::vector<double> rain_dir;
+        double chemistry_scale = 1.0;
         int threads = 0;
     };
 
@@ -54,6 +55,12 @@ namespace {
         job.quarry.kind = stone::stone_kind_from_name(o.stone);
         job.quarry.up = job.params.up = axis_of(o.up);
         job.params.seed = job.quarry.seed;
+        // Chemistry accelerated against the hydraulic time (like a morphological factor).
+        for (double& k : job.params.solubility)
+            k *= o.chemistry_scale;
+        job.params.crystallisation_rate *= o.chemistry_scale;
+        job.params.black_crust_rate *= o.chemistry_scale;
+        job.params.salt_supply *= o.chemistry_scale;
         if (o.rain_dir.size() == 3)
             job.rain_direction = Imath::V3d(o.rain_dir[0], o.rain_dir[1], o.rain_dir[2]);
         if (job.rain_direction && !(job.rain_direction->length() > 0.0))
@@ -137,6 +144,15 @@ void register_stone_command(CLI::App& app)
     cmd->add_option("--salt-supply", p.salt_supply,
                     "salt brought in per unit deposit and time in wet phases")
         ->capture_default_str();
+    cmd->add_option("--chemistry-scale", o->chemistry_scale,
+                    "speeds up dissolution, crystallisation, black crusts and salt supply "
+                    "against the flow of water (whose step is short on fine lattices)")
+        ->capture_default_str()
+        ->check(CLI::PositiveNumber);
+    cmd->add_option("--mineral-iron-scale", p.mineral_iron_scale,
+                    "solid iron fraction that shows as fully iron-stained in the iron channel")
+        ->capture_default_str()
+        ->check(CLI::PositiveNumber);
     cmd->add_option("--grid", j.grid_resolution,
                     "world-grid voxels along the longest side of volume.exr")
         ->capture_default_str()

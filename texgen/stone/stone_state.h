@@ -47,6 +47,10 @@ struct StoneParameters {
     uint64_t seed = 1;
     // Output scales: the amount that counts as a full crust (volume fraction).
     double crust_scale = 0.02, iron_scale = 0.005, salt_scale = 0.02;
+    /// The solid iron-bearing mineral fraction that colours the stone as much as a full iron
+    /// crust: the output's iron channel is crust / iron_scale + solid / this, so sandstone's
+    /// iron-rich bedding planes (0.06 against 0.01, quarry.cpp) show as ochre bands.
+    double mineral_iron_scale = 0.1;
 };
 
 enum CellFlags : uint8_t { kStone = 1, kSurface = 2 };

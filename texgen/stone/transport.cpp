@@ -204,9 +204,10 @@ void transport_step(StoneState& st, bool wet)
                     float amount = st.dissolved[m][c] + dt * flux / vol[c];
                     if (front) {
                         // Dissolution up to saturation, from the solid mineral.
+                        // At most up to saturation in one step, however fast the rate.
                         const float take = std::min(
                             st.solid[m][c],
-                            dt * float(prm.solubility[m]) *
+                            std::min(1.0f, dt * float(prm.solubility[m])) *
                                 std::max(0.0f, float(prm.saturation[m]) - cc) * water_c);
                         st.solid[m][c] -= take;
                         amount += take;

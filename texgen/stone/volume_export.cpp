@@ -34,7 +34,10 @@ void output_fractions(const StoneState& st, std::vector<float>& crust, std::vect
     const StoneParameters& p = st.params;
     tbb::parallel_for(size_t(0), n, [&](size_t c) {
         crust[c] = std::clamp(float(st.black[c] / p.crust_scale), 0.0f, 1.0f);
-        iron[c] = std::clamp(float(st.crust[kIron][c] / p.iron_scale), 0.0f, 1.0f);
+        // Iron oxide seen at c: the yellowing crust and the stone's own iron minerals.
+        iron[c] = std::clamp(float(st.crust[kIron][c] / p.iron_scale +
+                                   st.solid[kIron][c] / p.mineral_iron_scale),
+                             0.0f, 1.0f);
         salt[c] = std::clamp(float(st.crust[kSalt][c] / p.salt_scale), 0.0f, 1.0f);
     });
     for (auto* f : {&crust, &iron, &salt})

@@ -41,7 +41,8 @@ struct WorldVolume {
     Imath::V3d centre(int i, int j, int k) const;
 };
 
-/// Crust, iron and salt fractions per cell ([0, 1], the output scales of the parameters).
+/// Crust, iron and salt fractions per cell ([0, 1], the output scales of the parameters);
+/// iron counts the iron crust and the solid iron-bearing minerals (mineral_iron_scale).
 void output_fractions(const StoneState& st, std::vector<float>& crust, std::vector<float>& iron,
                       std::vector<float>& salt);
 

@@ -183,6 +183,29 @@ TEST(StoneSimulation, ANonFiniteStateIsRefusedWithItsFieldAndVoxel)
     EXPECT_NE(m.find("slab 2 voxel (1, 3, 4)"), std::string::npos) << m;
 }
 
+// Figure 9: sandstone's bedding planes carry more iron (quarry.cpp: 0.01 + 0.05 x plane),
+// and the iron channel of the outputs must show them before any weathering.
+TEST(StoneVolume, FreshSandstoneShowsItsIronRichBeddingPlanes)
+{
+    auto s = sandstone_box(no_erosion());
+    const StoneState& st = s->st;
+    std::vector<float> crust, iron, salt;
+    output_fractions(st, crust, iron, salt);
+    float lo = 1.0f, hi = 0.0f;
+    for (size_t c = 0; c < st.density.size(); ++c) {
+        if (!(st.flags[c] & kStone) || st.density[c] < 1.0f)
+            continue;
+        // No crust yet: the channel is the mineral iron over its scale.
+        EXPECT_NEAR(iron[c], std::min(1.0, st.solid[kIron][c] / st.params.mineral_iron_scale),
+                    1e-6);
+        lo = std::min(lo, iron[c]);
+        hi = std::max(hi, iron[c]);
+    }
+    std::printf("iron channel of fresh sandstone: %.3f (matrix) to %.3f (planes)\n", lo, hi);
+    EXPECT_LT(lo, 0.15f); // matrix: 0.01 / 0.1
+    EXPECT_GT(hi, 0.45f); // plane centres: 0.06 / 0.1
+}
+
 TEST(StoneSimulation, SameBitsForAnyThreadCount)
 {
     std::vector<float> density[2], moisture[2], iron[2];
