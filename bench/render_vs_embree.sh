@@ -9,7 +9,8 @@
 #   bench/render_vs_embree.sh [--rays] [--keep DIR]
 #
 #   --rays       also count the rays each renderer traces per sample (a second, untimed pair
-#                of runs at 128x128 with a 20-line LD_PRELOAD shim around rtcIntersect1 and
+#                of runs at 128x128 with a 30-line LD_PRELOAD shim around rtcIntersect1,
+#                rtcIntersect1M (patina-render's camera rays) and
 #                rtcOccluded1, compiled with cc into the temporary folder)
 #   --keep DIR   copy the scene, Patina's EXR and PNG and one Embree frame (PPM) into DIR
 #
@@ -94,6 +95,11 @@ seed = 1
 max_depth = $max_depth
 wavelengths = 4
 integrator = "mis"
+
+# Embree's traversal without RTC_SCENE_FLAG_ROBUST, as the tutorial builds its scene (it has
+# no option for the flag); patina-render's default is robust = true.
+[render]
+robust = false
 
 [camera]
 from = [${cam_from[0]}.0, ${cam_from[1]}, ${cam_from[2]}.0]
@@ -218,6 +224,14 @@ void rtcIntersect1(void* scene, void* context, void* rayhit)
     if (!real) real = (query_fn)dlsym(RTLD_NEXT, "rtcIntersect1");
     atomic_fetch_add_explicit(&n_intersect, 1, memory_order_relaxed);
     real(scene, context, rayhit);
+}
+typedef void (*stream_fn)(void*, void*, void*, unsigned, size_t);
+void rtcIntersect1M(void* scene, void* context, void* rayhits, unsigned m, size_t stride)
+{
+    static stream_fn real;
+    if (!real) real = (stream_fn)dlsym(RTLD_NEXT, "rtcIntersect1M");
+    atomic_fetch_add_explicit(&n_intersect, m, memory_order_relaxed);
+    real(scene, context, rayhits, m, stride);
 }
 void rtcOccluded1(void* scene, void* context, void* ray)
 {
