@@ -19,13 +19,21 @@ namespace patina::texgen::fade {
 
 namespace {
 
-// A block of kVecs Vec4 (16 wavelengths) goes through all sublayers at once: independent
-// lanes for the recurrences of the adding method to overlap, and a block's rows (2-4
-// arrays of N + 1 rows of 128 bytes) stay in the L1 cache.
+// A block of kVecs vectors (16 wavelengths in double, 32 in float) goes through all
+// sublayers at once: independent lanes for the recurrences of the adding method to
+// overlap, and a block's rows (2-4 arrays of N + 1 rows of 128 bytes) stay in the L1 cache.
 constexpr size_t kVecs = 4;
-constexpr size_t kBlock = 4 * kVecs;
+constexpr size_t kMaxBlock = 8 * kVecs;  // wavelengths are padded to whole float blocks
 
-Vec4 splat(double x) { return Vec4{x, x, x, x}; }
+template <class V>
+constexpr size_t kLanes = sizeof(V) / sizeof(typename LaneTraits<V>::Elem);
+
+template <class V>
+V splat(typename LaneTraits<V>::Elem x)
+{
+    V v = {};
+    return v + x;
+}
 
 // (exp(-a T) - exp(-b T)) / (b - a) = exp(-a T) T phi((b - a) T), phi(x) = (1 - e^-x) / x:
 // the product of a first-order chain parent -> product over one step, stable for a = b.
@@ -36,30 +44,33 @@ double chain_gain(double a, double b, double T)
     return std::exp(-a * T) * T * phi;
 }
 
-// What the kernels read of the simulation.
+// What the kernels read of the simulation, in the kernel's precision (V: Vec4 or Vec8f).
+template <class V>
 struct KernelView {
-    size_t sublayers = 0, colorants = 0, vecs = 0;
-    double dz = 0.0;
-    const double* fractions = nullptr;  // [i * colorants + j]
-    const Vec4* absorption = nullptr;   // [j * vecs + v]
-    const Vec4* scattering = nullptr;
+    using E = typename LaneTraits<V>::Elem;
+    size_t sublayers = 0, colorants = 0, vecs = 0;  // vecs: vectors per spectrum
+    E dz = 0, inv_dz = 0;          // sublayer thickness (> 0) and its inverse
+    const E* fractions = nullptr;  // [i * colorants + j]
+    const V* absorption = nullptr;  // [j * vecs + v]
+    const V* scattering = nullptr;
     const size_t* absorbers = nullptr;
     size_t n_absorbers = 0;
     const size_t* scatterers = nullptr;
     size_t n_scatterers = 0;
-    const Vec4* substrate = nullptr;    // [v]
+    const V* substrate = nullptr;  // [v]
 };
 
 // One solve of the two-flux system at every wavelength (step(), fluence_rates()).
+template <class V>
 struct SolveJob {
-    const Vec4* top = nullptr;        // [v]
-    const Vec4* bottom = nullptr;     // [v], or nullptr: no light from below
-    const Vec4* rates = nullptr;      // [k * vecs + v]
+    const V* top = nullptr;           // [v]
+    const V* bottom = nullptr;        // [v], or nullptr: no light from below
+    const V* rates = nullptr;         // [k * vecs + v]
     size_t n_rates = 0;
     const char* block_has_rate = nullptr;  // skip blocks without (nullptr: none skipped)
-    Vec4* work = nullptr;             // 4 (N + 1) kVecs
-    Vec4* acc = nullptr;              // [i * n_rates + k]: lane sums of rate x fluence
-    double* fluence = nullptr;        // optional: [i * 4 vecs + w]
+    V* work = nullptr;                // 4 (N + 1) kVecs
+    V* acc = nullptr;                 // [i * n_rates + k]: lane sums of rate x fluence
+    double* fluence = nullptr;        // optional: [i * lanes * vecs + w]
 };
 
 // The layer's R_top, T, R_bottom at every wavelength (spectra()).
@@ -69,52 +80,60 @@ struct FoldJob {
     double* r_bottom = nullptr;
 };
 
-// Eqs. (12), (13), (22), (23): sublayer i's terms for the block's kVecs vectors from v0.
-[[gnu::always_inline]] inline void block_terms(const KernelView& k, size_t i, size_t v0,
-                                               SublayerTerms<Vec4> (&out)[kVecs])
+// Eqs. (12), (13), (22), (23): the terms of sublayer i for the kVecs vectors of a block
+// from v0. The fractions and spectra are non-negative (validated), so are K and S.
+template <class V>
+[[gnu::always_inline]] inline void row_terms(const KernelView<V>& k, size_t i, size_t v0,
+                                             SublayerTerms<V> (&out)[kVecs])
 {
-    Vec4 K[kVecs] = {}, S[kVecs] = {};
-    const double* f = k.fractions + i * k.colorants;
+    using E = typename LaneTraits<V>::Elem;
+    const E* f = k.fractions + i * k.colorants;
+    V K[kVecs], S[kVecs];
+    for (size_t v = 0; v < kVecs; ++v)
+        K[v] = S[v] = splat<V>(0);
     for (size_t n = 0; n < k.n_absorbers; ++n) {
         const size_t j = k.absorbers[n];
-        const Vec4* a = k.absorption + j * k.vecs + v0;
+        const V* a = k.absorption + j * k.vecs + v0;
+        const E fj = f[j];
         for (size_t v = 0; v < kVecs; ++v)
-            K[v] += f[j] * a[v];
+            K[v] += fj * a[v];
     }
     for (size_t n = 0; n < k.n_scatterers; ++n) {
         const size_t j = k.scatterers[n];
-        const Vec4* s = k.scattering + j * k.vecs + v0;
+        const V* s = k.scattering + j * k.vecs + v0;
+        const E fj = f[j];
         for (size_t v = 0; v < kVecs; ++v)
-            S[v] += f[j] * s[v];
+            S[v] += fj * s[v];
     }
     for (size_t v = 0; v < kVecs; ++v)
-        out[v] = sublayer_terms(K[v], S[v], k.dz);
+        out[v] = sublayer_terms_nonnegative(K[v], S[v], k.dz, k.inv_dz);
 }
 
-// The two-flux solve of one block (solve_two_flux's sweeps, four wavelengths per lane):
-// the sublayer optics and the adding method from the ground up, then the irradiances from
-// the top down, the fluence per sublayer and its products with the rate spectra.
-template <bool kBottom>
-[[gnu::always_inline]] inline void solve_block(const KernelView& k, const SolveJob& job,
+// The two-flux solve of one block (solve_two_flux's sweeps, one wavelength per lane): the
+// sublayer optics and the adding method from the ground up, then the irradiances from the
+// top down, the fluence per sublayer and its products with the rate spectra.
+template <class V, bool kBottom>
+[[gnu::always_inline]] inline void solve_block(const KernelView<V>& k, const SolveJob<V>& job,
                                                size_t block)
 {
+    constexpr size_t L = kLanes<V>;
     const size_t N = k.sublayers;
     const size_t v0 = block * kVecs;
-    Vec4* r = job.work;                  // R_i, rows 0..N
-    Vec4* t_over_p = r + (N + 1) * kVecs;  // rows 0..N-1
-    Vec4* a_over_p = t_over_p + (N + 1) * kVecs;
-    Vec4* src = a_over_p + (N + 1) * kVecs;  // rows 0..N
-    Vec4 r_below[kVecs], src_below[kVecs];
+    V* r = job.work;                         // R_i, rows 0..N
+    V* t_over_p = r + (N + 1) * kVecs;       // rows 0..N-1
+    V* a_over_p = t_over_p + (N + 1) * kVecs;
+    V* src = a_over_p + (N + 1) * kVecs;     // rows 0..N
+    V r_below[kVecs], src_below[kVecs];
     for (size_t v = 0; v < kVecs; ++v) {
         r_below[v] = r[N * kVecs + v] = k.substrate[v0 + v];
         if constexpr (kBottom)
             src_below[v] = src[N * kVecs + v] = job.bottom[v0 + v];
     }
     for (size_t i = N; i-- > 0;) {
-        SublayerTerms<Vec4> terms[kVecs];
-        block_terms(k, i, v0, terms);
+        SublayerTerms<V> terms[kVecs];
+        row_terms(k, i, v0, terms);
         for (size_t v = 0; v < kVecs; ++v) {
-            const AddingStep<Vec4> s = adding_step(terms[v], r_below[v]);
+            const AddingStep<V> s = adding_step(terms[v], r_below[v]);
             r_below[v] = r[i * kVecs + v] = s.r;
             t_over_p[i * kVecs + v] = s.t_over_p;
             if constexpr (kBottom) {
@@ -125,22 +144,22 @@ template <bool kBottom>
     }
     // Top down: E^d_0 = E_0, E^d_{i+1} = t/p E^d_i + a/p src_{i+1}, E^u_i = R_i E^d_i + src_i;
     // F_i = E^d_i + E^u_i + E^d_{i+1} + E^u_{i+1} (the 0.5 of the mean is in the rates).
-    Vec4 down[kVecs], above[kVecs];  // E^d_i and E^d_i + E^u_i
+    V down[kVecs], above[kVecs];  // E^d_i and E^d_i + E^u_i
     for (size_t v = 0; v < kVecs; ++v) {
         down[v] = job.top[v0 + v];
-        Vec4 up = r[v] * down[v];
+        V up = r[v] * down[v];
         if constexpr (kBottom)
             up += src[v];
         above[v] = down[v] + up;
     }
     for (size_t i = 0; i < N; ++i) {
         const size_t row = i * kVecs, next = (i + 1) * kVecs;
-        Vec4 fluence[kVecs];
+        V fluence[kVecs];
         for (size_t v = 0; v < kVecs; ++v) {
-            Vec4 d = t_over_p[row + v] * down[v];
+            V d = t_over_p[row + v] * down[v];
             if constexpr (kBottom)
                 d += a_over_p[row + v] * src[next + v];
-            Vec4 u = r[next + v] * d;
+            V u = r[next + v] * d;
             if constexpr (kBottom)
                 u += src[next + v];
             fluence[v] = above[v] + d + u;
@@ -148,20 +167,21 @@ template <bool kBottom>
             down[v] = d;
         }
         for (size_t n = 0; n < job.n_rates; ++n) {
-            const Vec4* rate = job.rates + n * k.vecs + v0;
-            Vec4 sum = rate[0] * fluence[0];
+            const V* rate = job.rates + n * k.vecs + v0;
+            V sum = rate[0] * fluence[0];
             for (size_t v = 1; v < kVecs; ++v)
                 sum += rate[v] * fluence[v];
             job.acc[i * job.n_rates + n] += sum;
         }
         if (job.fluence)
             for (size_t v = 0; v < kVecs; ++v)
-                for (size_t l = 0; l < 4; ++l)
-                    job.fluence[i * 4 * k.vecs + 4 * (v0 + v) + l] = 0.5 * fluence[v][l];
+                for (size_t l = 0; l < L; ++l)
+                    job.fluence[i * L * k.vecs + L * (v0 + v) + l] = 0.5 * fluence[v][l];
     }
 }
 
-[[gnu::always_inline]] inline void solve_blocks(const KernelView& k, const SolveJob& job)
+template <class V>
+[[gnu::always_inline]] inline void solve_blocks(const KernelView<V>& k, const SolveJob<V>& job)
 {
     for (size_t b = 0; b < k.vecs / kVecs; ++b) {
         if (job.block_has_rate && !job.block_has_rate[b])
@@ -169,33 +189,32 @@ template <bool kBottom>
         // Unlit blocks have zero fluence everywhere.
         bool lit = false;
         for (size_t v = 0; v < kVecs; ++v)
-            for (size_t l = 0; l < 4; ++l)
-                lit |= job.top[b * kVecs + v][l] != 0.0 ||
-                       (job.bottom && job.bottom[b * kVecs + v][l] != 0.0);
+            for (size_t l = 0; l < kLanes<V>; ++l)
+                lit |= job.top[b * kVecs + v][l] != 0 ||
+                       (job.bottom && job.bottom[b * kVecs + v][l] != 0);
         if (!lit && !job.fluence)
             continue;
         if (job.bottom)
-            solve_block<true>(k, job, b);
+            solve_block<V, true>(k, job, b);
         else
-            solve_block<false>(k, job, b);
+            solve_block<V, false>(k, job, b);
     }
 }
 
-[[gnu::always_inline]] inline void fold_blocks(const KernelView& k, const FoldJob& job)
+[[gnu::always_inline]] inline void fold_blocks(const KernelView<Vec4>& k, const FoldJob& job)
 {
     for (size_t b = 0; b < k.vecs / kVecs; ++b) {
         const size_t v0 = b * kVecs;
         Vec4 r_top[kVecs], t[kVecs], r_bottom[kVecs];
         for (size_t v = 0; v < kVecs; ++v) {
-            r_top[v] = r_bottom[v] = splat(0.0);
-            t[v] = splat(1.0);
+            r_top[v] = r_bottom[v] = splat<Vec4>(0.0);
+            t[v] = splat<Vec4>(1.0);
         }
         for (size_t i = 0; i < k.sublayers; ++i) {
             SublayerTerms<Vec4> terms[kVecs];
-            block_terms(k, i, v0, terms);
+            row_terms(k, i, v0, terms);
             for (size_t v = 0; v < kVecs; ++v)
-                fold_sublayer(r_top[v], t[v], r_bottom[v], terms[v].a, terms[v].t,
-                              terms[v].d);
+                fold_sublayer(r_top[v], t[v], r_bottom[v], terms[v].a, terms[v].t, terms[v].d);
         }
         for (size_t v = 0; v < kVecs; ++v)
             for (size_t l = 0; l < 4; ++l) {
@@ -207,18 +226,27 @@ template <bool kBottom>
     }
 }
 
-// The kernels compiled twice: for AVX2 + FMA (4 doubles per instruction) and for the
-// x86-64 baseline (SSE2, 2 per instruction); the caller picks by the CPU.
-[[gnu::target("avx2,fma")]] void solve_avx2(const KernelView& k, const SolveJob& job)
+// The kernels compiled twice: for AVX2 + FMA (4 doubles or 8 floats per instruction) and
+// for the x86-64 baseline (SSE2, half that); the caller picks by the CPU.
+[[gnu::target("avx2,fma")]] void solve_avx2(const KernelView<Vec4>& k, const SolveJob<Vec4>& job)
 {
     solve_blocks(k, job);
 }
-void solve_portable(const KernelView& k, const SolveJob& job) { solve_blocks(k, job); }
-[[gnu::target("avx2,fma")]] void fold_avx2(const KernelView& k, const FoldJob& job)
+[[gnu::target("avx2,fma")]] void solve_avx2(const KernelView<Vec8f>& k,
+                                            const SolveJob<Vec8f>& job)
+{
+    solve_blocks(k, job);
+}
+void solve_portable(const KernelView<Vec4>& k, const SolveJob<Vec4>& job) { solve_blocks(k, job); }
+void solve_portable(const KernelView<Vec8f>& k, const SolveJob<Vec8f>& job)
+{
+    solve_blocks(k, job);
+}
+[[gnu::target("avx2,fma")]] void fold_avx2(const KernelView<Vec4>& k, const FoldJob& job)
 {
     fold_blocks(k, job);
 }
-void fold_portable(const KernelView& k, const FoldJob& job) { fold_blocks(k, job); }
+void fold_portable(const KernelView<Vec4>& k, const FoldJob& job) { fold_blocks(k, job); }
 
 bool cpu_has_avx2_fma()
 {
@@ -227,6 +255,15 @@ bool cpu_has_avx2_fma()
         return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
     }();
     return has;
+}
+
+template <class V>
+double lane_sum(const V& v)
+{
+    double sum = 0.0;
+    for (size_t l = 0; l < kLanes<V>; ++l)
+        sum += v[l];
+    return sum;
 }
 
 }  // namespace
@@ -261,32 +298,20 @@ FadeSimulation::FadeSimulation(const FadeMaterial& material, const WavelengthGri
     const size_t W = grid.size();
     const size_t J = material.colorants.size();
     const size_t N = static_cast<size_t>(sublayers);
-    padded_ = (W + kBlock - 1) / kBlock * kBlock;
-    vecs_ = padded_ / 4;
-    const size_t blocks = padded_ / kBlock;
-    absorption_.assign(J * vecs_, splat(0.0));
-    scattering_.assign(J * vecs_, splat(0.0));
+    const size_t Wp = padded_ = (W + kMaxBlock - 1) / kMaxBlock * kMaxBlock;
+    absorption_.assign(J * Wp, 0.0);
+    scattering_.assign(J * Wp, 0.0);
     product_.assign(J, -1);
-    block_has_rate_.assign(blocks, 0);
-    // Lane w % 4 of vector w / 4 of spectrum k.
-    auto lane = [&](Vec4Vector& s, size_t k, size_t w) -> double& {
-        return reinterpret_cast<double*>(&s[k * vecs_])[w];
-    };
+    block_has_rate_.assign(Wp / (4 * kVecs), 0);
     auto add_rate = [&](size_t j, bool gain, const WavelengthRate& rate) {
-        Vec4Vector spectrum(vecs_, splat(0.0));
-        bool any = false;
-        for (size_t w = 0; w < W; ++w) {
+        std::vector<double> spectrum(Wp, 0.0);
+        for (size_t w = 0; w < W; ++w)
             // Eq. (14): the energy absorbed by colorant j, weighted by β_j(λ) (§3.1.2).
-            const double a = lane(absorption_, j, w);
-            const double value = 0.5 * (weights_[w] * rate.at(grid.nm[w]) * a);
-            lane(spectrum, 0, w) = value;
-            if (value != 0.0) {
-                any = true;
-                block_has_rate_[w / kBlock] = 1;
-            }
-        }
-        if (!any)
+            spectrum[w] = 0.5 * (weights_[w] * rate.at(grid.nm[w]) * absorption_[j * Wp + w]);
+        if (std::all_of(spectrum.begin(), spectrum.end(), [](double v) { return v == 0.0; }))
             return;  // this colorant never fades (or never breaks down): no work
+        for (size_t w = 0; w < W; ++w)
+            block_has_rate_[w / (4 * kVecs)] |= spectrum[w] != 0.0;
         rates_.insert(rates_.end(), spectrum.begin(), spectrum.end());
         rate_colorant_.push_back(j);
         rate_is_gain_.push_back(gain ? 1 : 0);
@@ -297,10 +322,10 @@ FadeSimulation::FadeSimulation(const FadeMaterial& material, const WavelengthGri
         bool absorbs = false, scatters = false;
         for (size_t w = 0; w < W; ++w) {
             const double nm = grid.nm[w];
-            lane(absorption_, j, w) = c.absorption_per_m.at(nm);
-            lane(scattering_, j, w) = c.scattering_per_m.at(nm);
-            absorbs |= lane(absorption_, j, w) != 0.0;
-            scatters |= lane(scattering_, j, w) != 0.0;
+            absorption_[j * Wp + w] = c.absorption_per_m.at(nm);
+            scattering_[j * Wp + w] = c.scattering_per_m.at(nm);
+            absorbs |= absorption_[j * Wp + w] != 0.0;
+            scatters |= scattering_[j * Wp + w] != 0.0;
         }
         // A colorant with a zero spectrum adds exactly 0 to Eqs. (12), (13): left out.
         if (absorbs)
@@ -316,21 +341,40 @@ FadeSimulation::FadeSimulation(const FadeMaterial& material, const WavelengthGri
             add_rate(j, true, c.breakdown->rate);
         }
     }
-    substrate_.assign(vecs_, splat(0.0));
-    const std::vector<double> substrate = grid.sample(material.substrate_reflectance);
-    for (size_t w = 0; w < W; ++w)
-        lane(substrate_, 0, w) = substrate[w];
+    substrate_ = grid.sample(material.substrate_reflectance);
+    substrate_.resize(Wp, 0.0);
     fractions_.resize(N * J);
     for (size_t i = 0; i < N; ++i)
         for (size_t j = 0; j < J; ++j)
             fractions_[i * J + j] = material.initial_fractions[j];
-    work_.assign(4 * (N + 1) * kVecs, splat(0.0));
-    acc_.assign(N * rate_colorant_.size(), splat(0.0));
-    top_.assign(vecs_, splat(0.0));
-    bottom_.assign(vecs_, splat(0.0));
+    init_lanes(lanes64_);
+    init_lanes(lanes32_);
     loss_.assign(N * J, 0.0);
     gain_.assign(N * J, 0.0);
     start_.assign(J, 0.0);
+}
+
+template <class V>
+void FadeSimulation::init_lanes(Lanes<V>& lanes) const
+{
+    using E = typename LaneTraits<V>::Elem;
+    constexpr size_t L = kLanes<V>;
+    const size_t N = static_cast<size_t>(sublayers_);
+    lanes.vecs = padded_ / L;
+    // Spectra of padded_ values each, one after the other, into vectors of L lanes.
+    auto to_lanes = [&](const std::vector<double>& flat, typename Lanes<V>::Vector& out) {
+        out.assign(flat.size() / L, splat<V>(0));
+        for (size_t i = 0; i < flat.size(); ++i)
+            out[i / L][i % L] = static_cast<E>(flat[i]);
+    };
+    to_lanes(absorption_, lanes.absorption);
+    to_lanes(scattering_, lanes.scattering);
+    to_lanes(rates_, lanes.rates);
+    to_lanes(substrate_, lanes.substrate);
+    lanes.work.assign(4 * (N + 1) * kVecs, splat<V>(0));
+    lanes.acc.assign(N * rate_colorant_.size(), splat<V>(0));
+    lanes.top.assign(lanes.vecs, splat<V>(0));
+    lanes.bottom.assign(lanes.vecs, splat<V>(0));
 }
 
 void FadeSimulation::set_fractions(std::vector<double> fractions)
@@ -338,6 +382,10 @@ void FadeSimulation::set_fractions(std::vector<double> fractions)
     if (fractions.size() != fractions_.size())
         throw std::runtime_error(fmt::format("fade simulation: {} fractions given, {} expected",
                                              fractions.size(), fractions_.size()));
+    // The kernels rely on K, S >= 0 (row_terms).
+    for (double f : fractions)
+        if (!(f >= 0.0 && f <= 1.0))
+            throw std::runtime_error(fmt::format("fade simulation: fraction {} not in [0, 1]", f));
     fractions_ = std::move(fractions);
 }
 
@@ -362,15 +410,67 @@ void FadeSimulation::check_light(const Illumination& light) const
             light.top.size(), light.bottom.size(), W));
 }
 
-void FadeSimulation::load_light(const Illumination& light, Vec4Vector& top,
-                                Vec4Vector& bottom) const
+template <class V>
+void FadeSimulation::solve(const Illumination& light, Lanes<V>& lanes, bool rates,
+                           double* fluence) const
 {
-    top.assign(vecs_, splat(0.0));
-    bottom.assign(vecs_, splat(0.0));
-    double* t = reinterpret_cast<double*>(top.data());
-    double* b = reinterpret_cast<double*>(bottom.data());
-    std::copy(light.top.begin(), light.top.end(), t);
-    std::copy(light.bottom.begin(), light.bottom.end(), b);
+    using E = typename LaneTraits<V>::Elem;
+    constexpr size_t L = kLanes<V>;
+    const size_t N = static_cast<size_t>(sublayers_);
+    const size_t J = colorants();
+    for (size_t w = 0; w < padded_; ++w) {
+        lanes.top[w / L][w % L] = w < light.top.size() ? static_cast<E>(light.top[w]) : E(0);
+        lanes.bottom[w / L][w % L] =
+            w < light.bottom.size() ? static_cast<E>(light.bottom[w]) : E(0);
+    }
+    const bool from_below =
+        std::any_of(light.bottom.begin(), light.bottom.end(), [](double e) { return e != 0.0; });
+    const E* fractions = nullptr;
+    if constexpr (sizeof(E) == sizeof(double)) {
+        fractions = fractions_.data();
+    } else {
+        lanes.fractions.assign(fractions_.begin(), fractions_.end());
+        fractions = lanes.fractions.data();
+    }
+    std::fill(lanes.acc.begin(), lanes.acc.end(), splat<V>(0));
+    const KernelView<V> view{N,
+                             J,
+                             lanes.vecs,
+                             static_cast<E>(dz_),
+                             static_cast<E>(1.0 / dz_),
+                             fractions,
+                             lanes.absorption.data(),
+                             lanes.scattering.data(),
+                             absorbers_.data(),
+                             absorbers_.size(),
+                             scatterers_.data(),
+                             scatterers_.size(),
+                             lanes.substrate.data()};
+    // Blocks are 16 (double) or 32 (float) wavelengths: block_has_rate_ is per 16.
+    const char* block_has_rate = nullptr;
+    if (rates && !fluence) {
+        if constexpr (L == 4) {
+            block_has_rate = block_has_rate_.data();
+        } else {
+            thread_local std::vector<char> pairs;
+            pairs.assign(block_has_rate_.size() / 2, 0);
+            for (size_t b = 0; b < block_has_rate_.size(); ++b)
+                pairs[b / 2] |= block_has_rate_[b];
+            block_has_rate = pairs.data();
+        }
+    }
+    const SolveJob<V> job{lanes.top.data(),
+                          from_below ? lanes.bottom.data() : nullptr,
+                          lanes.rates.data(),
+                          rates ? rate_colorant_.size() : 0,
+                          block_has_rate,
+                          lanes.work.data(),
+                          lanes.acc.data(),
+                          fluence};
+    if (kernel_ == Kernel::avx2)
+        solve_avx2(view, job);
+    else
+        solve_portable(view, job);
 }
 
 void FadeSimulation::step(const Illumination& light, double dt_s)
@@ -382,40 +482,23 @@ void FadeSimulation::step(const Illumination& light, double dt_s)
         throw std::runtime_error("fade simulation: negative time step");
 
     // Per sublayer and colorant: loss rate r = ∫ β a F dλ and gain rate ∫ γ a F dλ (1/s),
-    // accumulated per lane by the kernel, the four lanes summed here.
-    load_light(light, top_, bottom_);
-    const bool from_below =
-        std::any_of(light.bottom.begin(), light.bottom.end(), [](double e) { return e != 0.0; });
-    std::fill(acc_.begin(), acc_.end(), splat(0.0));
-    const KernelView view{N,
-                          J,
-                          vecs_,
-                          dz_,
-                          fractions_.data(),
-                          absorption_.data(),
-                          scattering_.data(),
-                          absorbers_.data(),
-                          absorbers_.size(),
-                          scatterers_.data(),
-                          scatterers_.size(),
-                          substrate_.data()};
-    const size_t n_rates = rate_colorant_.size();
-    const SolveJob job{top_.data(),   from_below ? bottom_.data() : nullptr,
-                       rates_.data(), n_rates,
-                       block_has_rate_.data(), work_.data(),
-                       acc_.data(),   nullptr};
-    if (kernel_ == Kernel::avx2)
-        solve_avx2(view, job);
-    else
-        solve_portable(view, job);
+    // accumulated per lane by the kernel, the lanes summed here.
     std::fill(loss_.begin(), loss_.end(), 0.0);
     std::fill(gain_.begin(), gain_.end(), 0.0);
-    for (size_t i = 0; i < N; ++i)
-        for (size_t n = 0; n < n_rates; ++n) {
-            const Vec4 a = acc_[i * n_rates + n];
-            const double sum = (a[0] + a[1]) + (a[2] + a[3]);
-            (rate_is_gain_[n] ? gain_ : loss_)[i * J + rate_colorant_[n]] = sum;
-        }
+    const size_t n_rates = rate_colorant_.size();
+    auto gather = [&](const auto& acc) {
+        for (size_t i = 0; i < N; ++i)
+            for (size_t n = 0; n < n_rates; ++n)
+                (rate_is_gain_[n] ? gain_ : loss_)[i * J + rate_colorant_[n]] =
+                    lane_sum(acc[i * n_rates + n]);
+    };
+    if (precision_ == Precision::float64) {
+        solve(light, lanes64_, true, nullptr);
+        gather(lanes64_.acc);
+    } else {
+        solve(light, lanes32_, true, nullptr);
+        gather(lanes32_.acc);
+    }
 
     // §4.2, Eq. (35) (first order: the exponent uses a = mu_a / f), and Eq. (15)'s
     // products, each integrated exactly over the step with the fluence held constant.
@@ -441,29 +524,14 @@ std::vector<double> FadeSimulation::fluence_rates(const Illumination& light) con
     check_light(light);
     const size_t N = static_cast<size_t>(sublayers_);
     const size_t W = grid_.size();
-    Vec4Vector top, bottom, work(4 * (N + 1) * kVecs, splat(0.0));
-    load_light(light, top, bottom);
     std::vector<double> padded(N * padded_, 0.0);
-    const KernelView view{N,
-                          colorants(),
-                          vecs_,
-                          dz_,
-                          fractions_.data(),
-                          absorption_.data(),
-                          scattering_.data(),
-                          absorbers_.data(),
-                          absorbers_.size(),
-                          scatterers_.data(),
-                          scatterers_.size(),
-                          substrate_.data()};
-    const SolveJob job{top.data(), light.bottom.empty() ? nullptr : bottom.data(),
-                       nullptr,    0,
-                       nullptr,    work.data(),
-                       nullptr,    padded.data()};
-    if (kernel_ == Kernel::avx2)
-        solve_avx2(view, job);
-    else
-        solve_portable(view, job);
+    if (precision_ == Precision::float64) {
+        Lanes<Vec4> lanes = lanes64_;  // scratch of its own: this is const
+        solve(light, lanes, false, padded.data());
+    } else {
+        Lanes<Vec8f> lanes = lanes32_;
+        solve(light, lanes, false, padded.data());
+    }
     std::vector<double> out(N * W);
     for (size_t i = 0; i < N; ++i)
         std::copy_n(&padded[i * padded_], W, &out[i * W]);
@@ -482,18 +550,19 @@ LayerSpectra FadeSimulation::spectra() const
 {
     const size_t W = grid_.size();
     std::vector<double> r_top(padded_), t(padded_), r_bottom(padded_);
-    const KernelView view{static_cast<size_t>(sublayers_),
-                          colorants(),
-                          vecs_,
-                          dz_,
-                          fractions_.data(),
-                          absorption_.data(),
-                          scattering_.data(),
-                          absorbers_.data(),
-                          absorbers_.size(),
-                          scatterers_.data(),
-                          scatterers_.size(),
-                          substrate_.data()};
+    const KernelView<Vec4> view{static_cast<size_t>(sublayers_),
+                                colorants(),
+                                lanes64_.vecs,
+                                dz_,
+                                1.0 / dz_,
+                                fractions_.data(),
+                                lanes64_.absorption.data(),
+                                lanes64_.scattering.data(),
+                                absorbers_.data(),
+                                absorbers_.size(),
+                                scatterers_.data(),
+                                scatterers_.size(),
+                                lanes64_.substrate.data()};
     const FoldJob job{r_top.data(), t.data(), r_bottom.data()};
     if (kernel_ == Kernel::avx2)
         fold_avx2(view, job);
@@ -505,8 +574,7 @@ LayerSpectra FadeSimulation::spectra() const
     out.r_bottom.assign(r_bottom.begin(), r_bottom.begin() + W);
     out.reflectance.resize(W);
     for (size_t w = 0; w < W; ++w)
-        out.reflectance[w] =
-            reflectance_over({r_top[w], t[w], r_bottom[w]}, substrate_[w / 4][w % 4]);
+        out.reflectance[w] = reflectance_over({r_top[w], t[w], r_bottom[w]}, substrate_[w]);
     return out;
 }
 
@@ -516,7 +584,7 @@ std::vector<double> FadeSimulation::absorption_profile(size_t w) const
     std::vector<double> out(static_cast<size_t>(sublayers_), 0.0);
     for (size_t i = 0; i < out.size(); ++i)
         for (size_t j = 0; j < J; ++j)
-            out[i] += fractions_[i * J + j] * absorption_[j * vecs_ + w / 4][w % 4];
+            out[i] += fractions_[i * J + j] * absorption_[j * padded_ + w];
     return out;
 }
 
@@ -526,7 +594,7 @@ std::vector<double> FadeSimulation::scattering_profile(size_t w) const
     std::vector<double> out(static_cast<size_t>(sublayers_), 0.0);
     for (size_t i = 0; i < out.size(); ++i)
         for (size_t j = 0; j < J; ++j)
-            out[i] += fractions_[i * J + j] * scattering_[j * vecs_ + w / 4][w % 4];
+            out[i] += fractions_[i * J + j] * scattering_[j * padded_ + w];
     return out;
 }
 
@@ -536,7 +604,7 @@ std::vector<double> FadeSimulation::fluence_rate(const Illumination& light, size
     std::vector<double> rho(N), tau(N), down(N + 1), up(N + 1), fluence(N);
     sublayer_optics_at(w, rho, tau);
     const double bottom = light.bottom.empty() ? 0.0 : light.bottom.at(w);
-    solve_two_flux(rho, tau, {light.top.at(w), bottom, substrate_[w / 4][w % 4]}, down, up);
+    solve_two_flux(rho, tau, {light.top.at(w), bottom, substrate_[w]}, down, up);
     sublayer_fluence_rate(down, up, fluence);
     return fluence;
 }

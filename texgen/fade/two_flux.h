@@ -6,7 +6,8 @@
 //
 // The formulas are templates on the lane type, double or Vec4 (four wavelengths at once),
 // so that the scalar functions the tests check and the vector kernels of the fading
-// simulation (fading_simulation.cpp) compute the same thing.
+// simulation (fading_simulation.cpp) compute the same thing; float and Vec8f (eight
+// wavelengths) for the simulation's single-precision kernel.
 #pragma once
 
 #include <cstddef>
@@ -16,13 +17,15 @@
 
 namespace patina::texgen::fade {
 
-/// Four doubles, one wavelength each (GCC vector extension): one AVX register where the
-/// kernel is compiled for AVX2, two SSE2 registers elsewhere.
+/// Four doubles or eight floats, one wavelength each (GCC vector extensions): one AVX
+/// register where a kernel is compiled for AVX2, two SSE2 registers elsewhere.
 using Vec4 = double __attribute__((vector_size(32)));
 using Vec4i = long long __attribute__((vector_size(32)));
+using Vec8f = float __attribute__((vector_size(32)));
+using Vec8i = int __attribute__((vector_size(32)));
 
-/// Heap storage of Vec4 aligned for AVX loads: alignof(Vec4) is only 16 where AVX is not
-/// enabled, and the AVX2 kernels load Vec4 with 32-byte aligned moves.
+/// Heap storage of vectors aligned for AVX loads: alignof(Vec4) is only 16 where AVX is
+/// not enabled, and the AVX2 kernels load them with 32-byte aligned moves.
 template <class T>
 struct Align32Allocator {
     using value_type = T;
@@ -38,71 +41,117 @@ struct Align32Allocator {
     bool operator==(const Align32Allocator<U>&) const noexcept { return true; }
 };
 using Vec4Vector = std::vector<Vec4, Align32Allocator<Vec4>>;
+using Vec8fVector = std::vector<Vec8f, Align32Allocator<Vec8f>>;
 
-/// The integer lane type of the same width, for bit manipulation.
+/// A lane type's element type and the integer type of the same width (bit manipulation).
 template <class T>
-struct LaneBits;
+struct LaneTraits;
 template <>
-struct LaneBits<double> {
-    using type = long long;
+struct LaneTraits<double> {
+    using Elem = double;
+    using Bits = long long;
 };
 template <>
-struct LaneBits<Vec4> {
-    using type = Vec4i;
+struct LaneTraits<Vec4> {
+    using Elem = double;
+    using Bits = Vec4i;
+};
+template <>
+struct LaneTraits<float> {
+    using Elem = float;
+    using Bits = int;
+};
+template <>
+struct LaneTraits<Vec8f> {
+    using Elem = float;
+    using Bits = Vec8i;
 };
 
-// Vec4 arguments of inline functions: no ABI is involved once inlined.
+// Vector arguments of inline functions: no ABI is involved once inlined.
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wpsabi"
 
-/// exp(y) for y <= 0 (y < -708 gives ~1e-308, not 0), relative error < 4e-16, without
-/// branches or library calls, so that loops over wavelengths vectorise: y = n ln2 + r,
-/// |r| <= ln2/2, e^r by its Taylor polynomial to degree 12 (remainder < 2e-16), 2^n from
-/// the exponent bits.
+/// exp(y) for y <= 0, without branches or library calls, so that loops over wavelengths
+/// vectorise: y = n ln2 + r, |r| <= ln2/2, e^r by its Taylor polynomial, 2^n from the
+/// exponent bits. Double: degree 12 (remainder < 2e-16), relative error < 4e-16, y < -708
+/// gives ~1e-308, not 0. Float: degree 7 (remainder < 6e-9), relative error < 2e-7,
+/// y < -87 gives ~1e-38.
 template <class T>
 [[gnu::always_inline]] inline T exp_nonpositive(T y)
 {
-    using I = typename LaneBits<T>::type;
+    using E = typename LaneTraits<T>::Elem;
+    using I = typename LaneTraits<T>::Bits;
     // Plain selects and builtins, not std:: wrappers: they inline into callers compiled with
     // other floating-point options (fading_simulation.cpp) and keep the loops vectorisable.
-    y = y < -708.0 ? -708.0 : y;
-    y = y > 0.0 ? 0.0 : y;
-    constexpr double kShift = 6755399441055744.0;  // 1.5 * 2^52: rounds to an integer
-    const T t = y * 1.4426950408889634 + kShift;
-    const T n = t - kShift;
-    // ln 2 split as in fdlibm (Cody-Waite): n * kLn2Hi is exact for |n| < 2^11.
-    const T r = (y - n * 6.93147180369123816490e-01) - n * 1.90821492927058770002e-10;
-    T p = r * (1.0 / 479001600.0) + 1.0 / 39916800.0;
-    p = p * r + 1.0 / 3628800.0;
-    p = p * r + 1.0 / 362880.0;
-    p = p * r + 1.0 / 40320.0;
-    p = p * r + 1.0 / 5040.0;
-    p = p * r + 1.0 / 720.0;
-    p = p * r + 1.0 / 120.0;
-    p = p * r + 1.0 / 24.0;
-    p = p * r + 1.0 / 6.0;
-    p = p * r + 0.5;
-    p = p * r + 1.0;
-    p = p * r + 1.0;
-    // The low bits of t hold n; 2^n = (n + 1023) << 52.
-    const I n_int = __builtin_bit_cast(I, t) - __builtin_bit_cast(long long, kShift);
-    return p * __builtin_bit_cast(T, (n_int + 1023) << 52);
+    if constexpr (sizeof(E) == 8) {
+        y = y < -708.0 ? -708.0 : y;
+        y = y > 0.0 ? 0.0 : y;
+        constexpr double kShift = 6755399441055744.0;  // 1.5 * 2^52: rounds to an integer
+        const T t = y * 1.4426950408889634 + kShift;
+        const T n = t - kShift;
+        // ln 2 split as in fdlibm (Cody-Waite): n * kLn2Hi is exact for |n| < 2^11.
+        const T r = (y - n * 6.93147180369123816490e-01) - n * 1.90821492927058770002e-10;
+        T p = r * (1.0 / 479001600.0) + 1.0 / 39916800.0;
+        p = p * r + 1.0 / 3628800.0;
+        p = p * r + 1.0 / 362880.0;
+        p = p * r + 1.0 / 40320.0;
+        p = p * r + 1.0 / 5040.0;
+        p = p * r + 1.0 / 720.0;
+        p = p * r + 1.0 / 120.0;
+        p = p * r + 1.0 / 24.0;
+        p = p * r + 1.0 / 6.0;
+        p = p * r + 0.5;
+        p = p * r + 1.0;
+        p = p * r + 1.0;
+        // The low bits of t hold n; 2^n = (n + 1023) << 52.
+        const I n_int = __builtin_bit_cast(I, t) - __builtin_bit_cast(long long, kShift);
+        return p * __builtin_bit_cast(T, (n_int + 1023) << 52);
+    } else {
+        y = y < -87.0f ? -87.0f : y;
+        y = y > 0.0f ? 0.0f : y;
+        constexpr float kShift = 12582912.0f;  // 1.5 * 2^23
+        const T t = y * 1.44269504f + kShift;
+        const T n = t - kShift;
+        // ln 2 split as in Cephes: n * 0.693359375 is exact for |n| < 2^8.
+        const T r = (y - n * 0.693359375f) - n * -2.12194440e-4f;
+        T p = r * E(1.0 / 5040.0) + E(1.0 / 720.0);
+        p = p * r + E(1.0 / 120.0);
+        p = p * r + E(1.0 / 24.0);
+        p = p * r + E(1.0 / 6.0);
+        p = p * r + 0.5f;
+        p = p * r + 1.0f;
+        p = p * r + 1.0f;
+        const I n_int = __builtin_bit_cast(I, t) - __builtin_bit_cast(int, kShift);
+        return p * __builtin_bit_cast(T, (n_int + 127) << 23);
+    }
 }
 
-/// 1 / sqrt(max(v, 1e-300)) (relative error < 1e-15) without a library call or division:
-/// from the exponent bits (error < 4%), then four Newton steps (quadratic: < 1e-20).
+/// 1 / sqrt(max(v, tiny)) without a library call or division: from the exponent bits
+/// (error < 4%), then Newton steps (quadratic): four for double (relative error < 1e-15),
+/// three for float (< 2e-7).
 template <class T>
 [[gnu::always_inline]] inline T rsqrt_positive(T v)
 {
-    using I = typename LaneBits<T>::type;
-    const T safe = v > 1e-300 ? v : 1e-300;
-    T y = __builtin_bit_cast(T, 0x5fe6eb50c7b537a9LL - (__builtin_bit_cast(I, safe) >> 1));
-    const T half = 0.5 * safe;
-    y = y * (1.5 - half * y * y);
-    y = y * (1.5 - half * y * y);
-    y = y * (1.5 - half * y * y);
-    y = y * (1.5 - half * y * y);
-    return y;
+    using E = typename LaneTraits<T>::Elem;
+    using I = typename LaneTraits<T>::Bits;
+    if constexpr (sizeof(E) == 8) {
+        const T safe = v > 1e-300 ? v : 1e-300;
+        T y = __builtin_bit_cast(T, 0x5fe6eb50c7b537a9LL - (__builtin_bit_cast(I, safe) >> 1));
+        const T half = 0.5 * safe;
+        y = y * (1.5 - half * y * y);
+        y = y * (1.5 - half * y * y);
+        y = y * (1.5 - half * y * y);
+        y = y * (1.5 - half * y * y);
+        return y;
+    } else {
+        const T safe = v > 1e-30f ? v : 1e-30f;
+        T y = __builtin_bit_cast(T, 0x5f375a86 - (__builtin_bit_cast(I, safe) >> 1));
+        const T half = 0.5f * safe;
+        y = y * (1.5f - half * y * y);
+        y = y * (1.5f - half * y * y);
+        y = y * (1.5f - half * y * y);
+        return y;
+    }
 }
 
 /// sqrt(v) for v >= 0 (relative error < 1e-15), without the errno branch of std::sqrt.
@@ -128,26 +177,41 @@ struct SublayerTerms {
 /// tau = exp(-K dz)) and K = 0 (rho = S dz / (1 + S dz)), no overflow for any thickness,
 /// and branch-free so that loops over wavelengths vectorise. 1/x comes from the square
 /// root's 1/sqrt: no division.
+/// The same with the thickness d > 0 and 1 / d given (hoisted out of the kernels' loops),
+/// for K, S >= 0 (the kernels' sums of non-negative terms).
 template <class T>
-[[gnu::always_inline]] inline SublayerTerms<T> sublayer_terms(T mu_a, T mu_s, double dz)
+[[gnu::always_inline]] inline SublayerTerms<T> sublayer_terms_nonnegative(
+    T K, T S, typename LaneTraits<T>::Elem d, typename LaneTraits<T>::Elem inv_d)
 {
-    const T K = mu_a > 0.0 ? mu_a : 0.0;
-    const T S = mu_s > 0.0 ? mu_s : 0.0;
-    const double d = dz > 0.0 ? dz : 0.0;
-    const double inv_d = dz > 0.0 ? 1.0 / dz : 0.0;
-    const T v = K * (K + 2.0 * S);
+    using E = typename LaneTraits<T>::Elem;
+    // The series below x = 1e-2 (double) or 0.1 (float: 1 - e^2 loses more digits to
+    // cancellation); its truncation error there is < x^8 / 9! (3e-14 at 0.1).
+    constexpr E kSeriesBelow = sizeof(E) == 8 ? E(1e-2) : E(0.1);
+    const T v = K * (K + E(2) * S);
     const T inv_root = rsqrt_positive(v);
     const T x = v * inv_root * d;  // sqrt(v) dz (v <= 0: 0)
     const T e = exp_nonpositive(-x);
     const T e2 = e * e;
     // 2 e sinh(x) / x: (1 - e^2)/x, or 2 e (1 + x^2/6 + x^4/120 + x^6/5040) near 0.
     const T x2 = x * x;
-    const T series = 2.0 * e * (1.0 + x2 * (1.0 / 6.0 + x2 * (1.0 / 120.0 + x2 / 5040.0)));
-    // Both computed, then selected: no branch (big is meaningless where x < 1e-2).
-    const T big = (1.0 - e2) * (inv_root * inv_d);
-    const T q = x < 1e-2 ? series : big;
+    const T series =
+        E(2) * e * (E(1) + x2 * (E(1.0 / 6.0) + x2 * (E(1.0 / 120.0) + x2 * E(1.0 / 5040.0))));
+    // Both computed, then selected: no branch (big is meaningless where x is small).
+    const T big = (E(1) - e2) * (inv_root * inv_d);
+    const T q = x < kSeriesBelow ? series : big;
     const T qd = q * d;
-    return {S * qd, 2.0 * e, (K + S) * qd + 1.0 + e2};
+    return {S * qd, E(2) * e, (K + S) * qd + E(1) + e2};
+}
+
+template <class T>
+[[gnu::always_inline]] inline SublayerTerms<T> sublayer_terms(T mu_a, T mu_s,
+                                                              typename LaneTraits<T>::Elem dz)
+{
+    using E = typename LaneTraits<T>::Elem;
+    const E d = dz > E(0) ? dz : E(0);
+    const E inv_d = dz > E(0) ? E(1) / dz : E(0);
+    return sublayer_terms_nonnegative(mu_a > E(0) ? mu_a : E(0), mu_s > E(0) ? mu_s : E(0), d,
+                                      inv_d);
 }
 
 /// Rho and tau of one sublayer (the same from either side).
@@ -186,8 +250,9 @@ struct AddingStep {
 template <class T>
 [[gnu::always_inline]] inline AddingStep<T> adding_step(const SublayerTerms<T>& s, T r_below)
 {
+    using E = typename LaneTraits<T>::Elem;
     const T p = s.d - s.a * r_below;
-    const T inv_dp = 1.0 / (s.d * p);
+    const T inv_dp = E(1) / (s.d * p);
     const T inv_p = s.d * inv_dp;
     return {(s.a * p + s.t * s.t * r_below) * inv_dp, s.t * inv_p, s.a * inv_p};
 }
