@@ -60,6 +60,7 @@
 #include <cstdio>
 #include <cstring>
 #include <exception>
+#include <map>
 #include <new>
 #include <string>
 
@@ -183,19 +184,24 @@ namespace {
         }
         try {
             const StackFile stack = read_stack_file(path);
-            std::vector<const PatinaTexture*> textures;
+            // Each map file opened once: layers reading channels of one file share a handle
+            // (and the model one lookup).
+            std::map<std::string, const PatinaTexture*> opened;
+            std::vector<ThicknessSource> sources;
             for (size_t l = 0; l < stack.layers.size(); ++l) {
-                const PatinaTexture* t =
-                    host->open_texture(host, stack.layers[l].map_file.c_str(), "raw");
+                const std::string file = stack.layers[l].map_file.string();
+                const PatinaTexture*& t = opened[file];
+                if (!t)
+                    t = host->open_texture(host, file.c_str(), "raw");
                 if (!t) {
                     report(host, std::string(path) + ": layer " + std::to_string(l + 1) + " (" +
                                      stack.layers[l].material + "): cannot open thickness map '" +
-                                     stack.layers[l].map_file.string() + "'");
+                                     file + "'");
                     return nullptr;
                 }
-                textures.push_back(t);
+                sources.push_back({t, stack.layers[l].channel});
             }
-            return new Instance{LayeredModel(stack, std::move(textures), host, options),
+            return new Instance{LayeredModel(stack, sources, host, options),
                                 g_next_id.fetch_add(1)};
         } catch (const std::exception& e) {
             report(host, e.what());

@@ -238,9 +238,9 @@ void km_layer(float K, float S, float d, float* R, float* T)
     *T = 2.0f * e / denom;
 }
 
-LayeredModel::LayeredModel(const StackFile& stack, std::vector<const PatinaTexture*> textures,
+LayeredModel::LayeredModel(const StackFile& stack, const std::vector<ThicknessSource>& sources,
                            const PatinaHost* host, const ModelOptions& options)
-    : textures_(std::move(textures)), host_(host), options_(options)
+    : host_(host), options_(options)
 {
     if (stack.layers.size() > static_cast<size_t>(kMaxLayers))
         throw std::runtime_error(stack.path.string() + ": " +
@@ -257,7 +257,32 @@ LayeredModel::LayeredModel(const StackFile& stack, std::vector<const PatinaTextu
     base_ = by_name.at(stack.base);
     for (const StackLayer& l : stack.layers)
         layers_.push_back(by_name.at(l.material));
-    textures_.resize(layers_.size(), nullptr);
+
+    // Group the layers by texture: one lookup per texture fetches the channels of all its
+    // layers (a multi-channel thickness map costs one lookup for the whole stack).
+    layer_fetch_.assign(layers_.size(), {-1, 0});
+    for (size_t l = 0; l < layers_.size() && l < sources.size(); ++l) {
+        const ThicknessSource& src = sources[l];
+        if (!src.texture || src.channel < 0)
+            continue;
+        int lo = src.channel, hi = src.channel;
+        for (size_t k = l + 1; k < sources.size(); ++k)
+            if (sources[k].texture == src.texture && layer_fetch_[k][0] < 0 &&
+                sources[k].channel >= 0) {
+                lo = std::min(lo, sources[k].channel);
+                hi = std::max(hi, sources[k].channel);
+            }
+        if (layer_fetch_[l][0] >= 0)
+            continue;
+        if (hi - lo + 1 > kMaxFetchChannels)
+            lo = hi = src.channel;  // too wide a span: this layer alone
+        const int f = static_cast<int>(fetches_.size());
+        fetches_.push_back({src.texture, lo, hi - lo + 1});
+        for (size_t k = l; k < sources.size(); ++k)
+            if (sources[k].texture == src.texture && layer_fetch_[k][0] < 0 &&
+                sources[k].channel >= lo && sources[k].channel <= hi)
+                layer_fetch_[k] = {f, sources[k].channel - lo};
+    }
 }
 
 float albedo_table(const CompiledMaterial& m, float f0, float mu)
@@ -336,10 +361,18 @@ void LayeredModel::setup(const PatinaShadingContext* ctx, const PatinaWavelength
 {
     std::array<float, kMaxLayers> thickness{};
     const float u = ctx ? ctx->uv.x : 0.0f, v = ctx ? ctx->uv.y : 0.0f;
+    // One lookup per texture; a failed lookup reads as thickness 0 for its layers.
+    std::array<float, kMaxLayers * kMaxFetchChannels> fetched;
+    std::array<bool, kMaxLayers> fetch_ok{};
+    for (size_t f = 0; f < fetches_.size(); ++f) {
+        const Fetch& x = fetches_[f];
+        fetch_ok[f] = host_->texture_lookup(host_, x.texture, ctx, u, v, x.first, x.count,
+                                            &fetched[f * kMaxFetchChannels]) != 0;
+    }
     for (size_t l = 0; l < layers_.size(); ++l) {
-        float t = 0.0f;
-        if (textures_[l] && host_->texture_lookup(host_, textures_[l], ctx, u, v, 0, 1, &t))
-            thickness[l] = t * options_.thickness_scale;
+        const auto [f, offset] = layer_fetch_[l];
+        if (f >= 0 && fetch_ok[f])
+            thickness[l] = fetched[f * kMaxFetchChannels + offset] * options_.thickness_scale;
     }
     setup_thickness(thickness.data(), wl, state);
     state->u = u;

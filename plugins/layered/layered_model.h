@@ -126,6 +126,12 @@ struct Outgoing {
     bool sampleable = false;
 };
 
+/// Where a layer's thickness comes from: a channel of a texture (null: thickness 0).
+struct ThicknessSource {
+    const PatinaTexture* texture = nullptr;
+    int channel = 0;
+};
+
 struct ModelOptions {
     Model model = Model::kubelka_munk;
     float thickness_scale = 1.0f;
@@ -134,9 +140,10 @@ struct ModelOptions {
 
 class LayeredModel {
 public:
-    /// `textures[l]` is the thickness map of stack.layers[l] (bottom to top); a null texture
-    /// reads as thickness 0. Throws std::runtime_error for a stack deeper than kMaxLayers.
-    LayeredModel(const StackFile& stack, std::vector<const PatinaTexture*> textures,
+    /// `sources[l]` is the thickness map channel of stack.layers[l] (bottom to top). Layers
+    /// reading one texture share one lookup of the channels they span. Throws
+    /// std::runtime_error for a stack deeper than kMaxLayers.
+    LayeredModel(const StackFile& stack, const std::vector<ThicknessSource>& sources,
                  const PatinaHost* host, const ModelOptions& options);
 
     /// Layer thicknesses at ctx->uv and the KM compositing (§4.1, §4.2) at wl.
@@ -179,7 +186,16 @@ private:
     std::vector<CompiledMaterial> materials_;
     const CompiledMaterial* base_ = nullptr;
     std::vector<const CompiledMaterial*> layers_;  ///< bottom to top
-    std::vector<const PatinaTexture*> textures_;
+    /// One texture lookup of channels [first, first + count) per distinct texture (at most
+    /// kMaxFetchChannels; a wider span is split), and per layer the fetch and offset of its
+    /// channel (fetch -1: no texture, thickness 0).
+    static constexpr int kMaxFetchChannels = 16;
+    struct Fetch {
+        const PatinaTexture* texture = nullptr;
+        int first = 0, count = 0;
+    };
+    std::vector<Fetch> fetches_;
+    std::vector<std::array<int, 2>> layer_fetch_;  ///< {fetch, offset} per layer
     const PatinaHost* host_ = nullptr;
     ModelOptions options_;
 };

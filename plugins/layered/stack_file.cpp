@@ -107,6 +107,25 @@ namespace {
         return m;
     }
 
+    /// A layer's `channel`: an index >= 0 or a name from its map's `channels` list.
+    int channel_of(const fs::path& file, const toml::node& c, const toml::table& map,
+                   const std::string& context)
+    {
+        if (const auto index = c.value<int64_t>()) {
+            if (*index < 0 || *index > 1023)
+                fail(file, c, context + ": 'channel' must be an index in [0, 1023]");
+            return static_cast<int>(*index);
+        }
+        const auto name = c.value<std::string>();
+        if (!name)
+            fail(file, c, context + ": 'channel' must be an index or a channel name");
+        if (const toml::array* names = map["channels"].as_array())
+            for (size_t i = 0; i < names->size(); ++i)
+                if (names->get(i)->value<std::string>() == *name)
+                    return static_cast<int>(i);
+        fail(file, c, context + ": channel '" + *name + "' is not in its map's 'channels'");
+    }
+
 }  // namespace
 
 StackFile read_stack_file(const fs::path& path)
@@ -171,6 +190,8 @@ StackFile read_stack_file(const fs::path& path)
             const char* key = entry->contains("file") ? "file" : "pattern";
             const fs::path file = string_of(path, *entry, key, "[maps." + map + "]");
             layer.map_file = (path.parent_path() / file).lexically_normal();
+            if (const toml::node* c = l->get("channel"))
+                layer.channel = channel_of(path, *c, *entry, context);
             stack.layers.push_back(std::move(layer));
         }
     }

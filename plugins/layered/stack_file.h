@@ -26,7 +26,11 @@ struct MaterialOptics {
 
 struct StackLayer {
     std::string material;
-    std::filesystem::path map_file; ///< absolute: the thickness map (µm), channel 0
+    std::filesystem::path map_file; ///< absolute: the thickness map (µm)
+    /// The map's channel holding this layer's thickness: the layer's `channel` (an index, or
+    /// a name listed in the map's `channels`), 0 when not given. Layers sharing one
+    /// multi-channel map are read with one texture lookup.
+    int channel = 0;
 };
 
 struct StackFile {

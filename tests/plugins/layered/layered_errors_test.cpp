@@ -101,4 +101,16 @@ TEST(LayeredErrors, BadTablesAndParameters)
     }
 }
 
+TEST(LayeredErrors, UnknownChannelOfAMultiChannelMap)
+{
+    const fs::path p = write_stack("err_channel", {"copper", {{"green", 1.0f}, {"green", 0.5f}},
+                                                   {kCopper, kGreen}},
+                                   MapLayout::one_map);
+    replace(p, "channel = 'c0_layer2'", "channel = 'layer7'");
+    const Layered l(p);
+    EXPECT_FALSE(l);
+    EXPECT_NE(l.errors().find("channel 'layer7'"), std::string::npos) << l.errors();
+    EXPECT_NE(l.errors().find("stack.toml:"), std::string::npos) << l.errors();
+}
+
 }  // namespace patina::test

@@ -71,14 +71,48 @@ inline std::string toml_array(float a, float b)
     return s.str();
 }
 
-/// Writes `name`/stack.toml and one 4x4 constant thickness map per layer; returns the
-/// stack.toml path.
-inline fs::path write_stack(const std::string& name, const TestStack& stack)
+/// How write_stack stores the thicknesses: one map per layer (as patina-texgen writes them)
+/// or one multi-channel map for the whole stack, layer l in channel n - 1 - l (named
+/// "c<n-1-l>_layer<l+1>"; the layers refer to it by name, the bottom one by index).
+enum class MapLayout { per_layer, one_map };
+
+/// Writes `name`/stack.toml and 4x4 constant thickness maps; returns the stack.toml path.
+inline fs::path write_stack(const std::string& name, const TestStack& stack,
+                            MapLayout layout = MapLayout::per_layer)
 {
     const fs::path dir = scratch_dir(name);
     std::ostringstream t;
     t.precision(9);
-    for (size_t l = 0; l < stack.layers.size(); ++l) {
+    const size_t n = stack.layers.size();
+    if (layout == MapLayout::one_map && n > 0) {
+        std::vector<float> texels(16 * n);
+        std::vector<std::string> channels(n);
+        for (size_t l = 0; l < n; ++l) {
+            // OpenEXR stores channels sorted by name: the c<index> prefix keeps this order
+            std::ostringstream name;
+            name << "c" << n - 1 - l << "_layer" << l + 1;
+            channels[n - 1 - l] = name.str();
+            for (int p = 0; p < 16; ++p)
+                texels[p * n + (n - 1 - l)] = stack.layers[l].thickness_um;
+        }
+        TextureOptions options;
+        options.format = OIIO::TypeDesc::FLOAT;
+        make_texture_atomic(dir / "thickness.exr", texels.data(), 4, 4, static_cast<int>(n),
+                            channels, options);
+        t << "[maps.thickness]\nfile = 'thickness.exr'\nchannels = [";
+        for (size_t c = 0; c < n; ++c)
+            t << (c ? ", '" : "'") << channels[c] << "'";
+        t << "]\n\n[patina]\nbase = '" << stack.base << "'\nthickness_units = 'um'\n\n";
+        for (size_t l = 0; l < n; ++l) {
+            t << "[[patina.layers]]\nmaterial = '" << stack.layers[l].material
+              << "'\nmap = 'thickness'\n";
+            if (l == 0)
+                t << "channel = " << n - 1 << "\n\n";
+            else
+                t << "channel = 'c" << n - 1 - l << "_layer" << l + 1 << "'\n\n";
+        }
+    }
+    for (size_t l = 0; l < stack.layers.size() && layout == MapLayout::per_layer; ++l) {
         const std::string map = "layer" + std::to_string(l + 1);
         std::vector<float> texels(16, stack.layers[l].thickness_um);
         TextureOptions options;
@@ -87,8 +121,9 @@ inline fs::path write_stack(const std::string& name, const TestStack& stack)
                             options);
         t << "[maps." << map << "]\nfile = '" << map << ".exr'\nchannels = ['thickness']\n\n";
     }
-    t << "[patina]\nbase = '" << stack.base << "'\nthickness_units = 'um'\n\n";
-    for (size_t l = 0; l < stack.layers.size(); ++l)
+    if (layout == MapLayout::per_layer || n == 0)
+        t << "[patina]\nbase = '" << stack.base << "'\nthickness_units = 'um'\n\n";
+    for (size_t l = 0; l < stack.layers.size() && layout == MapLayout::per_layer; ++l)
         t << "[[patina.layers]]\nmaterial = '" << stack.layers[l].material << "'\nmap = 'layer"
           << l + 1 << "'\n\n";
     for (const TestMaterial& m : stack.materials) {

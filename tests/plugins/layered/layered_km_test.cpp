@@ -180,4 +180,30 @@ TEST(LayeredKm, ThicknessScaleMultipliesTheMaps)
         expect_close(doubled.f(wo, wi), thick.f(wo, wi), 1e-6f, "scale");
 }
 
+TEST(LayeredKm, OneMultiChannelMapEqualsOneMapPerLayer)
+{
+    // The same thicknesses from one 4-channel map (one texture lookup for the stack, layers
+    // in reversed channel order, named and indexed) and from four single-channel maps: the
+    // shader computes exactly the same f and pdf.
+    const TestStack stack{"copper",
+                          {{"green", 0.7f}, {"brown", 0.3f}, {"green", 1.9f}, {"dirt", 0.45f}},
+                          {kCopper, kGreen, kBrown, kDirt}};
+    const Layered separate(write_stack("maps_separate", stack));
+    const Layered one(write_stack("maps_one", stack, MapLayout::one_map));
+    ASSERT_TRUE(separate && one) << separate.errors() << one.errors();
+    for (const auto& [wo, wi] : direction_pairs()) {
+        const Spectrum a = one.f(wo, wi), b = separate.f(wo, wi);
+        for (int c = 0; c < 8; ++c)
+            EXPECT_EQ(a[c], b[c]) << "λ#" << c;
+        EXPECT_EQ(one.pdf(wo, wi), separate.pdf(wo, wi));
+    }
+    // and the layers do differ from each other (a wrong channel would change f)
+    const Layered swapped(write_stack("maps_swapped", {"copper",
+                                                       {{"green", 0.45f}, {"brown", 0.3f},
+                                                        {"green", 1.9f}, {"dirt", 0.7f}},
+                                                       {kCopper, kGreen, kBrown, kDirt}}));
+    const auto [wo, wi] = direction_pairs()[5];
+    EXPECT_GT(std::abs(swapped.f(wo, wi)[0] - one.f(wo, wi)[0]), 1e-4f * one.f(wo, wi)[0]);
+}
+
 }  // namespace patina::test
