@@ -1,8 +1,10 @@
-// The two-flux system of Kimmel et al. 2013 §4.1: the O(N) block Thomas solve against a
+// The two-flux system of Kimmel et al. 2013 §4.1: the O(N) adding-method solve against a
 // dense solve of the same matrix (Eqs. 28-34), Kubelka's sublayer formulas (Eqs. 22, 23)
 // and the folding of sublayers into a layer's R_top, T, R_bottom.
 #include "texgen/fade/layer_optics.h"
 #include "texgen/fade/two_flux.h"
+
+#include "dense_two_flux.h"
 
 #include "core/kubelka_munk.h"
 #include "core/sampling.h"
@@ -14,65 +16,9 @@
 #include <vector>
 
 using namespace patina::texgen::fade;
+using patina::texgen::fade::test::dense_solve;
 
 namespace {
-
-// (I - M) E = E_0 assembled literally from Eqs. (29)-(34) and solved by Gaussian
-// elimination with partial pivoting: the O(N^3) reference.
-void dense_solve(const std::vector<double>& rho, const std::vector<double>& tau,
-                 const TwoFluxBoundary& bc, std::vector<double>& down, std::vector<double>& up)
-{
-    const size_t n = rho.size();
-    const size_t dim = 2 * (n + 1);
-    std::vector<double> A(dim * dim, 0.0), b(dim, 0.0);
-    auto rho_at = [&](long i) {
-        return i < 0 ? 0.0 : (static_cast<size_t>(i) == n ? bc.ground_reflectance : rho[i]);
-    };
-    // M: R_i = [[0, rho_i], [rho_{i-1}, 0]] on the diagonal (Eq. 32), T^u_i = [[tau_i, 0],
-    // [0, 0]] above (Eq. 33), T^d_i = [[0, 0], [0, tau_i]] below (Eq. 34).
-    std::vector<double> M(dim * dim, 0.0);
-    for (size_t i = 0; i <= n; ++i) {
-        const size_t r = 2 * i;
-        M[r * dim + r + 1] = rho_at(static_cast<long>(i));
-        M[(r + 1) * dim + r] = rho_at(static_cast<long>(i) - 1);
-        if (i < n) {
-            M[r * dim + r + 2] = tau[i];                   // T^u_i: E^u_i <- E^u_{i+1}
-            M[(r + 3) * dim + r + 1] = tau[i];             // T^d_i: E^d_{i+1} <- E^d_i
-        }
-    }
-    for (size_t i = 0; i < dim * dim; ++i)
-        A[i] = (i % (dim + 1) == 0 ? 1.0 : 0.0) - M[i];
-    b[1] = bc.top_irradiance;          // Eq. (30)
-    b[2 * n] = bc.bottom_irradiance;   // light entering from below
-    for (size_t c = 0; c < dim; ++c) {
-        size_t p = c;
-        for (size_t r = c + 1; r < dim; ++r)
-            if (std::abs(A[r * dim + c]) > std::abs(A[p * dim + c]))
-                p = r;
-        for (size_t k = 0; k < dim; ++k)
-            std::swap(A[c * dim + k], A[p * dim + k]);
-        std::swap(b[c], b[p]);
-        for (size_t r = c + 1; r < dim; ++r) {
-            const double m = A[r * dim + c] / A[c * dim + c];
-            for (size_t k = c; k < dim; ++k)
-                A[r * dim + k] -= m * A[c * dim + k];
-            b[r] -= m * b[c];
-        }
-    }
-    std::vector<double> x(dim);
-    for (size_t r = dim; r-- > 0;) {
-        double s = b[r];
-        for (size_t k = r + 1; k < dim; ++k)
-            s -= A[r * dim + k] * x[k];
-        x[r] = s / A[r * dim + r];
-    }
-    down.resize(n + 1);
-    up.resize(n + 1);
-    for (size_t i = 0; i <= n; ++i) {
-        up[i] = x[2 * i];
-        down[i] = x[2 * i + 1];
-    }
-}
 
 struct Stack {
     std::vector<double> rho, tau;
@@ -96,7 +42,7 @@ Stack random_stack(size_t n, uint64_t seed, double max_mu)
 
 }  // namespace
 
-TEST(TwoFlux, BlockThomasEqualsDenseSolve)
+TEST(TwoFlux, AddingMethodEqualsDenseSolve)
 {
     for (size_t n : {1u, 2u, 7u, 60u}) {
         for (const TwoFluxBoundary bc : {TwoFluxBoundary{1.0, 0.0, 0.8},
@@ -151,6 +97,30 @@ TEST(TwoFlux, BranchFreeExponentialIsAccurate)
         EXPECT_NEAR(sqrt_nonnegative(v) / std::sqrt(v), 1.0, 1e-15) << v;
     EXPECT_EQ(sqrt_nonnegative(0.0), 0.0);
     EXPECT_EQ(exp_nonpositive(1.0), 1.0);  // clamped: only y <= 0 is meant
+}
+
+TEST(TwoFlux, SinglePrecisionHelpersAreAccurate)
+{
+    // The float kernel's exp (degree-7 Taylor) and 1/sqrt (three Newton steps), against
+    // the library in double: within a few float roundings (2^-24 = 6e-8).
+    for (double y = -87.0; y <= 0.0; y += 0.0071) {
+        const float yf = static_cast<float>(y);
+        EXPECT_NEAR(exp_nonpositive(yf) / std::exp(static_cast<double>(yf)), 1.0, 3e-7) << y;
+    }
+    for (double v = 1e-20; v < 1e30; v *= 1.37) {
+        const float f = static_cast<float>(v);
+        EXPECT_NEAR(rsqrt_positive(f) * std::sqrt(static_cast<double>(f)), 1.0, 3e-7) << v;
+    }
+    // The float sublayer terms against the double ones over the kernels' range of x.
+    for (double K : {0.0, 1e2, 1e4, 1e5, 1e6, 1e7})
+        for (double S : {0.0, 1e3, 2e4, 1e5}) {
+            const double dz = 0.7e-6;
+            const SublayerTerms<double> d = sublayer_terms(K, S, dz);
+            const SublayerTerms<float> f = sublayer_terms(static_cast<float>(K),
+                                                          static_cast<float>(S), 0.7e-6f);
+            EXPECT_NEAR(f.a / f.d, d.a / d.d, 1e-6) << K << " " << S;
+            EXPECT_NEAR(f.t / f.d, d.t / d.d, 1e-6) << K << " " << S;
+        }
 }
 
 TEST(TwoFlux, TopReflectanceEqualsKmCompositingOfTheSublayers)
