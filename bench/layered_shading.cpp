@@ -34,7 +34,9 @@ bool g_reference = true; // argv[2] = "noref" skips the slow random-walk referen
 constexpr int kSize = 256;
 
 /// A 5-layer stack like the urban §5.1 strip: tarnish, cuprite, two patina stages, dirt.
-fs::path write_bench_stack(const fs::path& dir)
+/// `one_map`: the same thicknesses in one 5-channel map (one texture lookup per point)
+/// instead of one map per layer (what patina-texgen patina writes today).
+fs::path write_bench_stack(const fs::path& dir, bool one_map)
 {
     fs::create_directories(dir);
     std::mt19937 rng(5);
@@ -43,19 +45,38 @@ fs::path write_bench_stack(const fs::path& dir)
     const float max_um[5] = {0.4f, 0.8f, 4.0f, 3.0f, 1.4f};
     const float K[5] = {1.2f, 1.6f, 0.25f, 0.3f, 0.3f}, S[5] = {1.5f, 1.2f, 0.35f, 0.35f, 0.35f};
     std::ostringstream t;
+    std::vector<float> all(kSize * kSize * 5);
+    patina::TextureOptions options;
+    options.format = OIIO::TypeDesc::HALF;
     for (int l = 0; l < 5; ++l) {
         std::vector<float> texels(kSize * kSize);
         for (float& x : texels)
             x = uniform(rng) < 0.2f ? 0.0f : max_um[l] * uniform(rng);
-        patina::TextureOptions options;
-        options.format = OIIO::TypeDesc::HALF;
-        patina::make_texture_atomic(dir / (std::string(names[l]) + ".exr"), texels.data(), kSize,
-                                    kSize, 1, {"thickness"}, options);
-        t << "[maps." << names[l] << "]\nfile = '" << names[l] << ".exr'\n";
+        for (size_t p = 0; p < texels.size(); ++p)
+            all[p * 5 + l] = texels[p];
+        if (!one_map) {
+            patina::make_texture_atomic(dir / (std::string(names[l]) + ".exr"), texels.data(),
+                                        kSize, kSize, 1, {"thickness"}, options);
+            t << "[maps." << names[l] << "]\nfile = '" << names[l] << ".exr'\n";
+        }
+    }
+    if (one_map) {
+        // OpenEXR keeps channels sorted by name: the l<index> prefix keeps the layer order.
+        const std::vector<std::string> channels = {"l0_tarnish", "l1_cuprite", "l2_patina3",
+                                                   "l3_patina4", "l4_dirt"};
+        patina::make_texture_atomic(dir / "thickness.exr", all.data(), kSize, kSize, 5, channels,
+                                    options);
+        t << "[maps.thickness]\nfile = 'thickness.exr'\nchannels = ['l0_tarnish', "
+             "'l1_cuprite', 'l2_patina3', 'l3_patina4', 'l4_dirt']\n";
     }
     t << "[patina]\nbase = 'copper'\n";
-    for (int l = 0; l < 5; ++l)
-        t << "[[patina.layers]]\nmaterial = '" << names[l] << "'\nmap = '" << names[l] << "'\n";
+    for (int l = 0; l < 5; ++l) {
+        t << "[[patina.layers]]\nmaterial = '" << names[l] << "'\n";
+        if (one_map)
+            t << "map = 'thickness'\nchannel = " << l << "\n";
+        else
+            t << "map = '" << names[l] << "'\n";
+    }
     t << "[patina.materials.copper]\nmetal = true\nroughness = 0.15\n"
          "wavelengths_nm = [360, 550, 600, 830]\nn = [1.36, 1.02, 0.3, 0.26]\n"
          "k = [1.97, 2.58, 3.2, 5.2]\n";
@@ -101,7 +122,7 @@ volatile int g_config = 0;
 /// Best of 3 runs, ns per sample. `Config` only gives each configuration its own symbol (the
 /// store keeps the compiler from folding them into one), so callgrind's inclusive cost of
 /// time_per_sample<N, ...> / (3 x samples) is its instructions per sample (0: layered
-/// through the ABI, 1: linked in, 2: lambert + map, 3: lambert).
+/// through the ABI, 1: linked in, 2: lambert + map, 3: lambert, 4: layered, one 5-channel map).
 template <int Config, typename F> [[gnu::noinline]] double time_per_sample(F&& shade)
 {
     g_config = Config;
@@ -127,7 +148,8 @@ int main(int argc, char** argv)
     if (argc > 2 && std::string(argv[2]) == "noref")
         g_reference = false;
     const fs::path dir = fs::temp_directory_path() / "patina_bench_layered";
-    const fs::path stack = write_bench_stack(dir);
+    const fs::path stack = write_bench_stack(dir / "maps", false);
+    const fs::path stack_one_map = write_bench_stack(dir / "one_map", true);
     std::vector<float> scale(kSize * kSize, 0.8f);
     patina::make_texture_atomic(dir / "scale.exr", scale.data(), kSize, kSize, 1, {"Y"});
 
@@ -136,6 +158,8 @@ int main(int argc, char** argv)
     registry.load_directory(PATINA_TEST_PLUGIN_DIR);
     const auto layered = patina::create_shader_instance(
         registry, "layered_km", toml::table{{"stack", stack.string()}}, "bench");
+    const auto layered_one_map = patina::create_shader_instance(
+        registry, "layered_km", toml::table{{"stack", stack_one_map.string()}}, "bench");
     const auto lambert_map = patina::create_shader_instance(
         registry, "lambert",
         toml::table{{"reflectance", toml::array{0.5, 0.4, 0.3}},
@@ -207,17 +231,21 @@ int main(int argc, char** argv)
     const double t_direct = time_per_sample<1>(linked_in);
     const double t_lambert_map = time_per_sample<2>(through_abi(*lambert_map));
     const double t_lambert = time_per_sample<3>(through_abi(*lambert));
+    const double t_one_map = time_per_sample<4>(through_abi(*layered_one_map));
 
     std::printf("layered_km, 5 layers over copper, eval + sample + pdf, 4 wavelengths, "
                 "%d samples, best of 3:\n", g_samples);
     std::printf("  layered_km through the ABI      %8.1f ns/sample\n", t_layered);
     std::printf("  layered model linked in         %8.1f ns/sample\n", t_direct);
+    std::printf("  layered_km, one 5-channel map   %8.1f ns/sample\n", t_one_map);
     std::printf("  lambert + scale map (ABI)       %8.1f ns/sample\n", t_lambert_map);
     std::printf("  lambert (ABI)                   %8.1f ns/sample\n", t_lambert);
     std::printf("  random_walk reference, eval only %8.0f ns/sample (64 walks per wavelength)\n",
                 t_reference);
     std::printf("ratio layered / lambert with map  %6.2f  (target <= 3)\n",
                 t_layered / t_lambert_map);
+    std::printf("ratio layered / lambert with map  %6.2f  with one 5-channel thickness map\n",
+                t_one_map / t_lambert_map);
     std::printf("ratio layered / lambert plain     %6.2f\n", t_layered / t_lambert);
     std::printf("ratio ABI / linked in             %6.3f  (target <= 1.05)\n",
                 t_layered / t_direct);
