@@ -53,7 +53,8 @@ void write_stone_outputs(const fs::path& dir, const StoneState& st, const Triang
     check_state_finite(st);
     fs::create_directories(dir);
     const Metadata meta = job_metadata(o, st);
-    const WorldVolume world = resample_to_world(st, mesh, o.grid_resolution);
+    const Quarry quarry(o.quarry);
+    const WorldVolume world = resample_to_world(st, mesh, o.grid_resolution, &quarry);
     write_world_volume(dir / "volume.exr", world, meta);
     write_slab_volume(dir / "slabs.exr", st, meta);
     if (o.write_mesh)

@@ -44,7 +44,8 @@ void output_fractions(const StoneState& st, std::vector<float>& crust, std::vect
         st.lattice->fill_halo(f->data());
 }
 
-WorldVolume resample_to_world(const StoneState& st, const TriangleMesh& mesh, int resolution)
+WorldVolume resample_to_world(const StoneState& st, const TriangleMesh& mesh, int resolution,
+                              const Quarry* quarry)
 {
     if (resolution < 2)
         throw std::runtime_error(fmt::format("world grid: resolution must be >= 2 (got {})",
@@ -104,6 +105,10 @@ WorldVolume resample_to_world(const StoneState& st, const TriangleMesh& mesh, in
             const size_t before = size_t(std::count_if(crossings.begin(), crossings.end(),
                                                        [&](float c) { return c < x; }));
             vol.density[v] = before % 2 == 1 ? 1.0f : 0.0f;
+            if (quarry && vol.density[v] > 0.0f) // fresh stone: its minerals, no crust
+                vol.iron[v] = std::clamp(float(quarry->at(p).mineral[kIron] /
+                                               st.params.mineral_iron_scale),
+                                         0.0f, 1.0f);
         }
     });
     return vol;

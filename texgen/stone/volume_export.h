@@ -48,8 +48,11 @@ void output_fractions(const StoneState& st, std::vector<float>& crust, std::vect
 
 /// Resample the state onto a world grid of `resolution` voxels along the longest side of
 /// `mesh`'s bounds (padded by a voxel): inside a slab the trilinear sample of its voxels,
-/// elsewhere 1 inside the mesh (fresh stone below the shell) and 0 outside.
-WorldVolume resample_to_world(const StoneState& st, const TriangleMesh& mesh, int resolution);
+/// elsewhere 1 inside the mesh (fresh stone below the shell) and 0 outside. With `quarry`
+/// (the one the state was made from), the fresh stone below the shell carries the quarry's
+/// iron minerals too, so veins and bedding planes run on through the whole volume.
+WorldVolume resample_to_world(const StoneState& st, const TriangleMesh& mesh, int resolution,
+                              const Quarry* quarry = nullptr);
 
 void write_world_volume(const std::filesystem::path& path, const WorldVolume& volume,
                         const Metadata& metadata = {});

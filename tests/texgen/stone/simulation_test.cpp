@@ -252,6 +252,37 @@ TEST(StoneVolume, WorldVolumeFileRoundTrips)
     EXPECT_THROW(read_world_volume(path.string() + ".missing"), std::runtime_error);
 }
 
+TEST(StoneVolume, FreshStoneBelowTheShellCarriesTheQuarrysIron)
+{
+    auto s = sandstone_box(no_erosion());
+    QuarryOptions q;
+    q.kind = StoneKind::sandstone;
+    q.feature_size = 0.05;
+    const Quarry quarry(q);
+    const WorldVolume v = resample_to_world(s->st, s->mesh, 40, &quarry);
+    const WorldVolume bare = resample_to_world(s->st, s->mesh, 40);
+    // Below the shell, the iron of the quarry's bedding planes (0.01 to 0.06 over the scale
+    // 0.1); without the quarry, none.
+    float lo = 1.0f, hi = 0.0f;
+    int interior = 0;
+    for (int k = 0; k < v.nz; ++k)
+        for (int j = 0; j < v.ny; ++j)
+            for (int i = 0; i < v.nx; ++i) {
+                const size_t c = v.index(i, j, k);
+                if (v.density[c] != 1.0f || bare.iron[c] != 0.0f)
+                    continue; // air, or in the shell (the slabs' own values)
+                ++interior;
+                const float expected =
+                    std::min(1.0f, quarry.at(v.centre(i, j, k)).mineral[kIron] / 0.1f);
+                EXPECT_NEAR(v.iron[c], expected, 1e-6f);
+                lo = std::min(lo, v.iron[c]);
+                hi = std::max(hi, v.iron[c]);
+            }
+    std::printf("%d interior voxels, iron %.3f to %.3f\n", interior, lo, hi);
+    ASSERT_GT(interior, 100);
+    EXPECT_GT(hi - lo, 0.2f); // bands, not a constant
+}
+
 TEST(StoneVolume, ErodedSurfaceEnclosesTheStoneOutwardWound)
 {
     auto s = sandstone_box(no_erosion());
