@@ -71,6 +71,13 @@ struct SolveJob {
     V* work = nullptr;                // 4 (N + 1) kVecs
     V* acc = nullptr;                 // [i * n_rates + k]: lane sums of rate x fluence
     double* fluence = nullptr;        // optional: [i * lanes * vecs + w]
+    // The sublayer terms of the last solve, [((b * N + i) * 3 + term) * kVecs + v], reused
+    // for the rows whose fractions are bitwise those of the last solve (same inputs, same
+    // bits): row_same[i], valid for block b if block_fresh[b] (it was solved last time).
+    // nullptr: no cache (the double kernel).
+    V* terms_cache = nullptr;
+    const char* row_same = nullptr;
+    char* block_fresh = nullptr;
 };
 
 // The layer's R_top, T, R_bottom at every wavelength (spectra()).
@@ -129,9 +136,21 @@ template <class V, bool kBottom>
         if constexpr (kBottom)
             src_below[v] = src[N * kVecs + v] = job.bottom[v0 + v];
     }
+    const bool fresh = job.terms_cache && job.block_fresh[block] != 0;
     for (size_t i = N; i-- > 0;) {
         SublayerTerms<V> terms[kVecs];
-        row_terms(k, i, v0, terms);
+        V* cache = job.terms_cache ? job.terms_cache + (block * N + i) * 3 * kVecs : nullptr;
+        if (fresh && job.row_same[i]) {
+            for (size_t v = 0; v < kVecs; ++v)
+                terms[v] = {cache[v], cache[kVecs + v], cache[2 * kVecs + v]};
+        } else {
+            row_terms(k, i, v0, terms);
+            for (size_t v = 0; job.terms_cache && v < kVecs; ++v) {
+                cache[v] = terms[v].a;
+                cache[kVecs + v] = terms[v].t;
+                cache[2 * kVecs + v] = terms[v].d;
+            }
+        }
         for (size_t v = 0; v < kVecs; ++v) {
             const AddingStep<V> s = adding_step(terms[v], r_below[v]);
             r_below[v] = r[i * kVecs + v] = s.r;
@@ -184,20 +203,25 @@ template <class V>
 [[gnu::always_inline]] inline void solve_blocks(const KernelView<V>& k, const SolveJob<V>& job)
 {
     for (size_t b = 0; b < k.vecs / kVecs; ++b) {
-        if (job.block_has_rate && !job.block_has_rate[b])
+        if (job.block_has_rate && !job.block_has_rate[b]) {
+            job.block_fresh[b] = 0;
             continue;
+        }
         // Unlit blocks have zero fluence everywhere.
         bool lit = false;
         for (size_t v = 0; v < kVecs; ++v)
             for (size_t l = 0; l < kLanes<V>; ++l)
                 lit |= job.top[b * kVecs + v][l] != 0 ||
                        (job.bottom && job.bottom[b * kVecs + v][l] != 0);
-        if (!lit && !job.fluence)
+        if (!lit && !job.fluence) {
+            job.block_fresh[b] = 0;  // its cached terms are not updated
             continue;
+        }
         if (job.bottom)
             solve_block<V, true>(k, job, b);
         else
             solve_block<V, false>(k, job, b);
+        job.block_fresh[b] = 1;
     }
 }
 
@@ -277,6 +301,11 @@ void FadeSimulation::set_kernel(Kernel kernel)
 {
     if (!kernel_available(kernel))
         throw std::runtime_error("fade simulation: this CPU has no AVX2 + FMA");
+    if (kernel != kernel_) {
+        // Terms cached by the other build differ in rounding: recompute them all.
+        std::fill(lanes64_.block_fresh.begin(), lanes64_.block_fresh.end(), 0);
+        std::fill(lanes32_.block_fresh.begin(), lanes32_.block_fresh.end(), 0);
+    }
     kernel_ = kernel;
 }
 
@@ -375,6 +404,10 @@ void FadeSimulation::init_lanes(Lanes<V>& lanes) const
     lanes.acc.assign(N * rate_colorant_.size(), splat<V>(0));
     lanes.top.assign(lanes.vecs, splat<V>(0));
     lanes.bottom.assign(lanes.vecs, splat<V>(0));
+    lanes.terms_cache.assign(sizeof(E) == sizeof(float) ? 3 * N * lanes.vecs : 0, splat<V>(0));
+    lanes.row_same.assign(N, 0);
+    lanes.block_fresh.assign(lanes.vecs / kVecs, 0);
+    lanes.last_fractions.assign(fractions_.size(), 0);
 }
 
 void FadeSimulation::set_fractions(std::vector<double> fractions)
@@ -425,13 +458,14 @@ void FadeSimulation::solve(const Illumination& light, Lanes<V>& lanes, bool rate
     }
     const bool from_below =
         std::any_of(light.bottom.begin(), light.bottom.end(), [](double e) { return e != 0.0; });
-    const E* fractions = nullptr;
-    if constexpr (sizeof(E) == sizeof(double)) {
-        fractions = fractions_.data();
-    } else {
-        lanes.fractions.assign(fractions_.begin(), fractions_.end());
-        fractions = lanes.fractions.data();
-    }
+    // The fractions in the kernel's precision; rows equal to the last solve's (in that
+    // precision: float rows freeze sooner) keep their cached sublayer terms.
+    lanes.fractions.assign(fractions_.begin(), fractions_.end());
+    const E* fractions = lanes.fractions.data();
+    for (size_t i = 0; i < N; ++i)
+        lanes.row_same[i] = std::equal(&fractions[i * J], &fractions[(i + 1) * J],
+                                       &lanes.last_fractions[i * J]);
+    lanes.last_fractions = lanes.fractions;
     std::fill(lanes.acc.begin(), lanes.acc.end(), splat<V>(0));
     const KernelView<V> view{N,
                              J,
@@ -466,7 +500,11 @@ void FadeSimulation::solve(const Illumination& light, Lanes<V>& lanes, bool rate
                           block_has_rate,
                           lanes.work.data(),
                           lanes.acc.data(),
-                          fluence};
+                          fluence,
+                          // Double rows hardly ever freeze: the cache would cost more.
+                          sizeof(E) == sizeof(float) ? lanes.terms_cache.data() : nullptr,
+                          lanes.row_same.data(),
+                          lanes.block_fresh.data()};
     if (kernel_ == Kernel::avx2)
         solve_avx2(view, job);
     else

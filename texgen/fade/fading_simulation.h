@@ -105,7 +105,10 @@ private:
         size_t vecs = 0;  // vectors per spectrum
         Vector absorption, scattering, rates, substrate;  // [j * vecs + v], [v]
         Vector work, acc, top, bottom;
-        std::vector<typename LaneTraits<V>::Elem> fractions;  // float32: a copy
+        std::vector<typename LaneTraits<V>::Elem> fractions, last_fractions;  // this solve's
+        // Sublayer terms of the last solve per block and row, reused for unchanged rows.
+        Vector terms_cache;
+        std::vector<char> row_same, block_fresh;
     };
     template <class V>
     void init_lanes(Lanes<V>& lanes) const;
