@@ -436,12 +436,24 @@ void LayeredModel::setup_thickness(const float* thickness_um, const PatinaWavele
         lobe.material = &m;
         lobe.fade = std::min(1.0f, d / kInterfaceFadeUm);
         lobe.coupled = true;
+        const Interface* prev = s->interfaces > 1 ? &s->lobe[s->interfaces - 2] : nullptr;
+        bool same_f0 = prev != nullptr;
         for (int i = 0; i < count; ++i) {
             lobe.attenuation[i] = lobe.fade * t_above[i] * t_above[i];
             lobe.f0[i] = grid_eval(m.specular, gp[i]);
-            lobe.eta[i] = eta_of_f0(lobe.f0[i]);
+            same_f0 = same_f0 && lobe.f0[i] == prev->f0[i];
         }
-        locate_albedo_row(&lobe, count);
+        // Layers of one specular colour: the index and albedo rows of the lobe above.
+        if (same_f0) {
+            lobe.eta = prev->eta;
+            lobe.albedo_row = prev->albedo_row;
+            lobe.albedo_row_t = prev->albedo_row_t;
+            lobe.albedo_scale = prev->albedo_scale;
+        } else {
+            for (int i = 0; i < count; ++i)
+                lobe.eta[i] = eta_of_f0(lobe.f0[i]);
+            locate_albedo_row(&lobe, count);
+        }
         s->thickness_um[s->layers] = d;
         s->layer_material[s->layers++] = &m;
         km_composite_below(m, d, gp, count, &r_top, &r_bottom, &t_above);
