@@ -30,6 +30,9 @@ DoseTable DoseTable::build(const FadeMaterial& material, const Illuminant& illum
     t.du_ = std::log1p(options.max_dose_j_m2 / options.knee_dose_j_m2) / (options.entries - 1);
 
     FadeSimulation sim(material, grid, options.sublayers);
+    // The fluence in single precision: within 1e-6 of double (fade_kernel_test), far below
+    // the table's interpolation error, and 3-4x faster.
+    sim.set_precision(FadeSimulation::Precision::float32);
     // Unit band irradiance: a step of dt seconds is a dose step of dt J/m^2.
     const Illumination light = illuminant.illumination(grid, 1.0, options.both_sides);
     double dose = 0.0;
