@@ -90,7 +90,7 @@ forward_k = 0.2
 backward_k = -0.2
 forward_weight = 0.6
 crust_gain = 500.0
-iron_gain = 2000.0'
+iron_gain = 0.35'
 render_series column front "[0.0, 1.05, 5.6]" "[0.0, 1.0, 0.0]" 22 96 224 "$out/sky_column.exr" \
     "$sandstone" "eta = 1.55
 roughness_exponent = 3.0" 32
@@ -102,7 +102,7 @@ roughness_exponent = 3.0" 32
 "$texgen" mesh statue -o "$out/statue.obj"
 "$texgen" mesh statue --resolution 24 -o "$out/statue_slabs.obj"
 "$texgen" stone --mesh "$out/statue.obj" --slab-mesh "$out/statue_slabs.obj" --out "$out/marble" \
-    --stone marble --rain-dir 0.3 -1 -0.2 --deposit-value 0.1 \
+    --stone marble --rain-dir 0.3 -1 -0.2 --deposit-value 0.02 --chemistry-scale 30000 \
     --cycles "$cycles" --steps "$steps" --tangential-res 6 --depth-res 6 --depth 0.04 \
     --grid 96 --map-resolution 0 --seed 1 --quiet
 render_series marble backlit "[0.0, 1.75, 3.4]" "[0.0, 1.6, 0.0]" 21 100 125 \
@@ -113,8 +113,8 @@ crust_albedo = [0.3, 0.28, 0.25]
 forward_k = 0.5
 backward_k = -0.2
 forward_weight = 0.8
-crust_gain = 200.0
-iron_gain = 2000.0' "eta = 1.5
+crust_gain = 1.0
+iron_gain = 1.0' "eta = 1.5
 roughness_exponent = 2.0" 64
 
 # --- Contact strips: time runs left to right
