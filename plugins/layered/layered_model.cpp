@@ -151,29 +151,6 @@ namespace {
         return true;
     }
 
-    /// fresnel_conductor (shading/fresnel.h) in real double arithmetic: the same reflectance
-    /// to float rounding without complex division and square root. Born & Wolf §14.2 written
-    /// with a² + b² = |n² - sin²θ| (Lagarde 2013, "Memo on Fresnel equations"):
-    /// Rs = (t1 - t2) / (t1 + t2), Rp = Rs (t3 - t4) / (t3 + t4), R = (Rs + Rp) / 2.
-    float conductor_fresnel(float cos_theta, float eta, float k)
-    {
-        if (eta == 0.0f && k == 0.0f)
-            return 1.0f;  // infinite optical density mirrors everything
-        const double c = std::min(1.0, std::abs(static_cast<double>(cos_theta)));
-        const double n = eta, kk = k;
-        const double c2 = c * c, s2 = 1.0 - c2;
-        const double t0 = n * n - kk * kk - s2;
-        const double a2b2 = std::sqrt(t0 * t0 + 4.0 * n * n * kk * kk);
-        const double a = std::sqrt(std::max(0.0, 0.5 * (a2b2 + t0)));
-        const double t1 = a2b2 + c2, t2 = 2.0 * a * c;
-        const double rs = (t1 - t2) / (t1 + t2);
-        const double t3 = c2 * a2b2 + s2 * s2, t4 = t2 * s2;
-        const double r = 0.5 * (rs + rs * (t3 - t4) / (t3 + t4));
-        if (!std::isfinite(r))
-            return 1.0f;  // 0/0 at grazing incidence on a vacuum-like metal
-        return static_cast<float>(std::clamp(r, 0.0, 1.0));
-    }
-
     /// Two lobes with the same microfacet widths: D, G and the visible-normal density of one
     /// are those of the other.
     bool same_widths(const TrowbridgeReitz& a, const TrowbridgeReitz& b)
@@ -592,7 +569,7 @@ void LayeredModel::eval_km(const PointState& s, const Outgoing& o, Vec3 wo, Vec3
             for (int i = 0; i < count; ++i) {
                 float F;
                 if (lobe.material->metal) {
-                    F = conductor_fresnel(c, lobe.f0[i], lobe.kappa[i]);
+                    F = fresnel_conductor_real(c, lobe.f0[i], lobe.kappa[i]);
                 } else if (!(lobe.f0[i] > 0.0f)) {
                     F = 0.0f;  // index-matched
                 } else {

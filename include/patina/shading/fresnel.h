@@ -17,6 +17,10 @@
 //     with complex arithmetic, which stays accurate for n → 0 (a perfect reflector) and for
 //     large k.
 //
+// fresnel_conductor_real(cos_theta_i, eta, k)
+//     the same reflectance to float rounding in real double arithmetic (no complex
+//     division or square root; faster where it is called per wavelength and lobe).
+//
 // fresnel_dielectric_normal / fresnel_conductor_normal are the closed forms at normal
 // incidence, ((η−1)² + k²) / ((η+1)² + k²), for tests and albedo estimates.
 #pragma once
@@ -77,6 +81,28 @@ inline float fresnel_conductor(float cos_theta_i, float eta, float k)
     // r is in [0, 1] in exact arithmetic; 0/0 at grazing incidence on a vacuum-like metal
     if (!std::isfinite(r))
         return 1.0f;
+    return static_cast<float>(std::clamp(r, 0.0, 1.0));
+}
+
+/// fresnel_conductor in real arithmetic: Born & Wolf §14.2 written with a² + b² = |η² − sin²θ|
+/// (K. D. Möller, Optics, 1988; Lagarde 2013, "Memo on Fresnel equations"):
+/// Rs = (t1 − t2) / (t1 + t2), Rp = Rs (t3 − t4) / (t3 + t4), R = (Rs + Rp) / 2.
+inline float fresnel_conductor_real(float cos_theta_i, float eta, float k)
+{
+    if (eta == 0.0f && k == 0.0f)
+        return 1.0f; // infinite optical density mirrors everything
+    const double c = std::min(1.0, std::abs(static_cast<double>(cos_theta_i)));
+    const double n = eta, kk = k;
+    const double c2 = c * c, s2 = 1.0 - c2;
+    const double t0 = n * n - kk * kk - s2;
+    const double a2b2 = std::sqrt(t0 * t0 + 4.0 * n * n * kk * kk);
+    const double a = std::sqrt(std::max(0.0, 0.5 * (a2b2 + t0)));
+    const double t1 = a2b2 + c2, t2 = 2.0 * a * c;
+    const double rs = (t1 - t2) / (t1 + t2);
+    const double t3 = c2 * a2b2 + s2 * s2, t4 = t2 * s2;
+    const double r = 0.5 * (rs + rs * (t3 - t4) / (t3 + t4));
+    if (!std::isfinite(r))
+        return 1.0f; // 0/0 at grazing incidence on a vacuum-like metal
     return static_cast<float>(std::clamp(r, 0.0, 1.0));
 }
 

@@ -106,6 +106,7 @@ public:
                 break;
             case PATINA_PARAM_STRING:
             case PATINA_PARAM_TEXTURE:
+            case PATINA_PARAM_FILE:
                 v.s = d.default_string ? d.default_string : "";
                 break;
             }

@@ -29,6 +29,8 @@ namespace {
             return "string";
         case PATINA_PARAM_TEXTURE:
             return "texture";
+        case PATINA_PARAM_FILE:
+            return "file";
         }
         return "?";
     }
@@ -76,6 +78,7 @@ namespace {
             break;
         case PATINA_PARAM_STRING:
         case PATINA_PARAM_TEXTURE:
+        case PATINA_PARAM_FILE:
             std::snprintf(def, sizeof def, "%s", d.default_string ? d.default_string : "");
             break;
         }
