@@ -13,7 +13,7 @@
 // spacing |d| (1/|d|^2 ~ H_aa), as a moisture fraction theta in [0, 1] that makes x moist at
 // 1/2. In dry phases the surface dries at `evaporation_speed`, and the dry zone spreads
 // inwards down each column (water evaporates from the surface side); dissolved minerals in
-// a voxel that dries recrystallise in place.
+// a voxel that dries recrystallise in place (as crust in a surface voxel).
 #include "texgen/stone/stone_state.h"
 
 #include <tbb/parallel_for.h>
@@ -169,9 +169,12 @@ namespace {
                     }
                     th = std::clamp(th, 0.0f, 1.0f);
                     if (theta[c] >= 0.5f && th < 0.5f) {
-                        // The voxel dried: what the water held recrystallises in place.
+                        // The voxel dried: what the water held recrystallises in place, in
+                        // the pores below the surface, and as a crust (efflorescence,
+                        // iron oxide) where the water evaporated at the surface.
+                        auto& into = (f & kSurface) ? st.crust : st.solid;
                         for (int m = 0; m < kSpecies; ++m) {
-                            st.solid[m][c] += st.dissolved[m][c];
+                            into[m][c] += st.dissolved[m][c];
                             st.dissolved[m][c] = 0.0f;
                         }
                     }
