@@ -102,7 +102,8 @@ roughness_exponent = 3.0" 32
 "$texgen" mesh statue -o "$out/statue.obj"
 "$texgen" mesh statue --resolution 24 -o "$out/statue_slabs.obj"
 "$texgen" stone --mesh "$out/statue.obj" --slab-mesh "$out/statue_slabs.obj" --out "$out/marble" \
-    --stone marble --rain-dir 0.3 -1 -0.2 --deposit-value 0.02 --chemistry-scale 30000 \
+    --stone marble --rain-dir 0.3 -1 -0.2 --deposit-value 0.005 --chemistry-scale 30000 \
+    --erosion-events 0.01 \
     --cycles "$cycles" --steps "$steps" --tangential-res 6 --depth-res 6 --depth 0.04 \
     --grid 96 --map-resolution 0 --seed 1 --quiet
 render_series marble backlit "[0.0, 1.75, 3.4]" "[0.0, 1.6, 0.0]" 21 100 125 \
