@@ -36,6 +36,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace patina::texgen::stone {
@@ -45,6 +46,25 @@ namespace {
     inline bool moist(const StoneState& st, size_t c)
     {
         return st.density[c] >= 0.5f && st.moisture[c] >= 0.5f;
+    }
+
+    /// Depth step of each stencil direction in slab s (the sign of its w component).
+    std::array<int, 6> depth_steps(const SlabLattice& lat, int s)
+    {
+        const StencilSigns& sg = lat.signs(s);
+        return {0, 0, 1, 0, sg.s[1], sg.s[2]};
+    }
+
+    /// Whether y = c + offset, depth_step layers from c's layer k, exchanges solutes with c:
+    /// inside the shell's depth (the halo above and below it is a no-flux boundary, a copy of
+    /// the first and last layer), an interior voxel or a connected ghost, and moist.
+    inline bool solute_partner(const StoneState& st, size_t c, int k, long offset,
+                               int depth_step, size_t* y)
+    {
+        const int ky = k + depth_step;
+        *y = c + offset;
+        return ky >= 0 && ky < st.lattice->grid().n_d && st.lattice->flux_partner(*y) &&
+               moist(st, *y);
     }
 
     inline float axis_metric(const std::array<std::vector<float>, 6>& w, int a, size_t c)
@@ -77,8 +97,7 @@ void transport_step(StoneState& st, bool wet)
         if (k > st.active_depth[size_t(s)])
             return;
         const auto& o = lat.offsets(s);
-        const StencilSigns& sg = lat.signs(s);
-        const int dk[6] = {0, 0, 1, 0, sg.s[1], sg.s[2]};
+        const std::array<int, 6> dk = depth_steps(lat, s);
         for (int j = 0; j < g.n_t; ++j)
             for (int i = 0; i < g.n_t; ++i) {
                 const size_t c = g.index(s, i, j, k);
@@ -86,12 +105,10 @@ void transport_step(StoneState& st, bool wet)
                 for (int m = 0; m < kSpecies; ++m)
                     st.concentration[m][c] = water > 0.0f ? st.dissolved[m][c] / water : 0.0f;
                 bool full = moist(st, c);
+                size_t y = 0;
                 for (int d = 0; d < 6 && full; ++d)
-                    for (int sign = -1; sign <= 1 && full; sign += 2) {
-                        const int ky = k + sign * dk[d];
-                        const size_t y = c + sign * o[d];
-                        full = ky >= 0 && ky < g.n_d && lat.flux_partner(y) && moist(st, y);
-                    }
+                    for (int sign = -1; sign <= 1 && full; sign += 2)
+                        full = solute_partner(st, c, k, sign * o[d], sign * dk[d], &y);
                 st.full_stencil[c] = full;
             }
     });
@@ -110,10 +127,7 @@ void transport_step(StoneState& st, bool wet)
                       st.ghost_flux[m][g.index(s, i, j, k)] = 0.0f;
       for (int k = 0; k < st.active_depth[size_t(s)]; ++k) {
         const auto& o = lat.offsets(s);
-        // Depth step of each direction: the halo above and below the shell is a no-flux
-        // boundary (a copy of the first and last layer), never a partner of a flux.
-        const StencilSigns& sg = lat.signs(s);
-        const int dk[6] = {0, 0, 1, 0, sg.s[1], sg.s[2]};
+        const std::array<int, 6> dk = depth_steps(lat, s);
         for (int j = 0; j < g.n_t; ++j)
             for (int i = 0; i < g.n_t; ++i) {
                 const size_t c = g.index(s, i, j, k);
@@ -162,11 +176,8 @@ void transport_step(StoneState& st, bool wet)
                     };
                     for (int d = 0; d < 6; ++d)
                         for (int sign = -1; sign <= 1; sign += 2) {
-                            const int ky = k + sign * dk[d];
-                            if (ky < 0 || ky >= g.n_d)
-                                continue;
-                            const size_t y = c + sign * o[d];
-                            if (!lat.flux_partner(y) || !moist(st, y))
+                            size_t y = 0;
+                            if (!solute_partner(st, c, k, sign * o[d], sign * dk[d], &y))
                                 continue;
                             // Ghosts carry no weights, volume or stencil flag: use c's.
                             const bool ghost = vol[y] == 0.0f;
