@@ -1,5 +1,7 @@
 #include "layered_model.h"
 
+#include "lanes.h"
+
 #include <patina/shading/fresnel.h>
 #include <patina/shading/frame.h>
 #include <patina/shading/sampling.h>
@@ -25,6 +27,12 @@ namespace {
     constexpr float kGaussWeight[kGaussNodes] = {0.0506142681f, 0.1111905172f, 0.1568533229f,
                                                  0.1813418917f, 0.1813418917f, 0.1568533229f,
                                                  0.1111905172f, 0.0506142681f};
+    /// The quadrature's factor 2 μ w per node (ḡ = 2 ∫ g(μ) μ dμ).
+    constexpr float kGaussMeanWeight[kGaussNodes] = {
+        2.0f * kGaussMu[0] * kGaussWeight[0], 2.0f * kGaussMu[1] * kGaussWeight[1],
+        2.0f * kGaussMu[2] * kGaussWeight[2], 2.0f * kGaussMu[3] * kGaussWeight[3],
+        2.0f * kGaussMu[4] * kGaussWeight[4], 2.0f * kGaussMu[5] * kGaussWeight[5],
+        2.0f * kGaussMu[6] * kGaussWeight[6], 2.0f * kGaussMu[7] * kGaussWeight[7]};
 
     /// Where μ falls in an albedo table row: node n and weight t.
     struct MuPos {
@@ -132,14 +140,6 @@ namespace {
         return m;
     }
 
-    float mean(const SpectralArray& a, int count)
-    {
-        float s = 0.0f;
-        for (int i = 0; i < count; ++i)
-            s += a[i];
-        return count > 0 ? s / count : 0.0f;
-    }
-
     /// Both directions in the upper hemisphere (the stack reflects alike on both sides);
     /// false when they lie on different sides or in the tangent plane.
     bool to_upper(Vec3* wo, Vec3* wi)
@@ -158,28 +158,76 @@ namespace {
         return a.alpha_x() == b.alpha_x() && a.alpha_y() == b.alpha_y();
     }
 
-    /// Adds a layer of `m`, thickness d, under the composite of the layers above it (its
-    /// reflectance from above and below and its transmittance): KM R, T (§4.1) and
-    /// R = R1 + T1² R2 / (1 - R1 R2), T = T1 T2 / (1 - R1 R2) (§4.2).
-    void km_composite_below(const CompiledMaterial& m, float d,
-                            const std::array<GridPos, PATINA_MAX_WAVELENGTHS>& gp, int count,
-                            SpectralArray* r_top, SpectralArray* r_bottom, SpectralArray* t_above)
+    /// grid_eval at the grid positions of four lanes: the table values gathered, the
+    /// interpolation in one register.
+    V4 grid_eval4(const Grid& g, const GridPos* p)
     {
-        for (int i = 0; i < count; ++i) {
-            float R, T;
-            km_layer(grid_eval(m.absorption, gp[i]), grid_eval(m.scattering, gp[i]), d, &R, &T);
-            const float denom = 1.0f - (*r_bottom)[i] * R;
-            if (!(denom > 0.0f)) {
-                (*r_top)[i] = 1.0f;
-                (*r_bottom)[i] = 1.0f;
-                (*t_above)[i] = 0.0f;
-                continue;
-            }
-            const float t = (*t_above)[i];
-            (*r_top)[i] += t * t * R / denom;
-            (*r_bottom)[i] = R + T * T * (*r_bottom)[i] / denom;
-            (*t_above)[i] = t * T / denom;
+        const V4 a{g[p[0].i], g[p[1].i], g[p[2].i], g[p[3].i]};
+        const V4 b{g[p[0].i + 1], g[p[1].i + 1], g[p[2].i + 1], g[p[3].i + 1]};
+        const V4 t{p[0].t, p[1].t, p[2].t, p[3].t};
+        return a + t * (b - a);
+    }
+
+    /// km_layer for four lanes (the same operations per lane; see km_layer).
+    void km_layer4(V4 K, V4 S, float d, V4* R, V4* T)
+    {
+        const V4 zero = splat(0.0f);
+        K = K > zero ? K : zero;
+        S = S > zero ? S : zero;
+        if (!(d > 0.0f)) {
+            *R = zero;
+            *T = splat(1.0f);
+            return;
         }
+        const V4 beta = sqrt4(K * (K + 2.0f * S));
+        const V4 x = beta * d;
+        // The one transcendental per lane: e^-x above x = 0.25, expm1(-x) above 1e-4.
+        V4 t = zero;
+        for (int l = 0; l < kLanes; ++l)
+            t[l] = x[l] > 0.25f ? std::exp(-x[l]) : (x[l] > 1e-4f ? std::expm1(-x[l]) : 0.0f);
+        const I4 big = x > splat(0.25f), mid = x > splat(1e-4f);
+        const V4 e = big ? t : (mid ? 1.0f + t : 1.0f - x);
+        const V4 g = big ? (1.0f - e * e) / beta
+                         : (mid ? -t * (1.0f + e) / beta : 2.0f * d * (1.0f - x));
+        const V4 denom = (S + K) * g + 1.0f + e * e;
+        *R = S * g / denom;
+        *T = 2.0f * e / denom;
+    }
+
+    /// Adds a layer of `m`, thickness d, under the composite of the layers above it (its
+    /// reflectance from above and below and its transmittance), four lanes from `gp`: KM R,
+    /// T (§4.1) and R = R1 + T1² R2 / (1 - R1 R2), T = T1 T2 / (1 - R1 R2) (§4.2).
+    void km_composite_below(const CompiledMaterial& m, float d, const GridPos* gp, V4* r_top,
+                            V4* r_bottom, V4* t_above)
+    {
+        V4 R, T;
+        km_layer4(grid_eval4(m.absorption, gp), grid_eval4(m.scattering, gp), d, &R, &T);
+        const V4 rb = *r_bottom, t = *t_above;
+        const V4 denom = 1.0f - rb * R;
+        const I4 ok = denom > splat(0.0f);
+        *r_top = ok ? *r_top + t * t * R / denom : splat(1.0f);
+        *r_bottom = ok ? R + T * T * rb / denom : splat(1.0f);
+        *t_above = ok ? t * T / denom : splat(0.0f);
+    }
+
+    /// eta_of_f0 for four lanes.
+    V4 eta_of_f0_4(V4 f0)
+    {
+        const V4 s = sqrt4(clamp4(f0, 0.0f, 0.99f));
+        return (1.0f + s) / (1.0f - s);
+    }
+
+    /// fresnel_dielectric(c, eta) for four lanes, c in [0, 1] (light from above).
+    V4 fresnel_dielectric4(float c, V4 eta)
+    {
+        const float sin2_theta_i = 1.0f - c * c;
+        const V4 sin2_theta_t = sin2_theta_i / (eta * eta);
+        const V4 x = 1.0f - sin2_theta_t;
+        const V4 cos_theta_t = sqrt4(x < splat(0.0f) ? splat(0.0f) : x);
+        const V4 r_parl = (eta * c - cos_theta_t) / (eta * c + cos_theta_t);
+        const V4 r_perp = (c - eta * cos_theta_t) / (c + eta * cos_theta_t);
+        const V4 f = 0.5f * (r_parl * r_parl + r_perp * r_perp);
+        return sin2_theta_t >= splat(1.0f) ? splat(1.0f) : f;
     }
 
 }  // namespace
@@ -338,20 +386,91 @@ SpectralArray LayeredModel::interface_albedo(const Interface& lobe, float mu, in
 
 namespace {
 
-    /// The row of the albedo table F0 falls in (see albedo_table).
+    /// The row of the albedo table F0 falls in (see albedo_table), four lanes from `o`.
+    void locate_albedo_row4(Interface* lobe, int o)
+    {
+        const V4 f0 = load4(lobe->f0, o);
+        const V4 sqrt_f0 = f0 > splat(0.0f) ? sqrt4(splat(1.0f) < f0 ? splat(1.0f) : f0)
+                                            : splat(0.0f);
+        const V4 y =
+            clamp4((sqrt_f0 - kF0MinSqrt) / (kF0MaxSqrt - kF0MinSqrt), 0.0f, 1.0f) *
+            static_cast<float>(kF0Nodes - 1);
+        I4 q = __builtin_convertvector(y, I4);
+        const I4 last = I4{} + (kF0Nodes - 2);
+        q = last < q ? last : q;
+        store4(&lobe->albedo_row[o], q);
+        store4(&lobe->albedo_row_t[o], y - __builtin_convertvector(q, V4));
+        store4(&lobe->albedo_scale[o],
+               sqrt_f0 < splat(kF0MinSqrt) ? sqrt_f0 / kF0MinSqrt : splat(1.0f));
+    }
+
     void locate_albedo_row(Interface* lobe, int count)
     {
-        for (int i = 0; i < count; ++i) {
-            const float f0 = lobe->f0[i];
-            const float sqrt_f0 = f0 > 0.0f ? std::sqrt(std::min(f0, 1.0f)) : 0.0f;
-            const float y =
-                std::clamp((sqrt_f0 - kF0MinSqrt) / (kF0MaxSqrt - kF0MinSqrt), 0.0f, 1.0f) *
-                (kF0Nodes - 1);
-            const int q = std::min(static_cast<int>(y), kF0Nodes - 2);
-            lobe->albedo_row[i] = q;
-            lobe->albedo_row_t[i] = y - static_cast<float>(q);
-            lobe->albedo_scale[i] = sqrt_f0 < kF0MinSqrt ? sqrt_f0 / kF0MinSqrt : 1.0f;
+        for (int o = 0; o < count; o += kLanes)
+            locate_albedo_row4(lobe, o);
+    }
+
+    /// interface_albedo at four lanes from `o`: each lane's two neighbouring nodes of its two
+    /// F0 rows are read as pairs and sorted into registers by shuffles.
+    V4 interface_albedo4(const Interface& lobe, MuPos m, int o)
+    {
+        const float* table = lobe.material->albedo.data() + m.n;
+        const float* p[kLanes];
+        for (int l = 0; l < kLanes; ++l)
+            p[l] = table + lobe.albedo_row[o + l] * kAlbedoNodes;
+        // {row0[n], row0[n + 1]} of lanes 0, 1 and 2, 3; the same of row1.
+        const V4 a01 = load2x2(p[0], p[1]), a23 = load2x2(p[2], p[3]);
+        const V4 b01 = load2x2(p[0] + kAlbedoNodes, p[1] + kAlbedoNodes);
+        const V4 b23 = load2x2(p[2] + kAlbedoNodes, p[3] + kAlbedoNodes);
+        const I4 even{0, 2, 4, 6}, odd{1, 3, 5, 7};
+        const V4 r00 = __builtin_shuffle(a01, a23, even), r01 = __builtin_shuffle(a01, a23, odd);
+        const V4 r10 = __builtin_shuffle(b01, b23, even), r11 = __builtin_shuffle(b01, b23, odd);
+        const V4 e0 = r00 + m.t * (r01 - r00);
+        const V4 e1 = r10 + m.t * (r11 - r10);
+        return (e0 + load4(lobe.albedo_row_t, o) * (e1 - e0)) * load4(lobe.albedo_scale, o);
+    }
+
+    /// The conductor Fresnel of four lanes with the point's n and k: fresnel_conductor_real's
+    /// double arithmetic, two lanes per register, the c-independent terms computed once.
+    struct ConductorLanes {
+        D2 nk[2];       ///< n² - k²
+        D2 four_nk[2];  ///< 4 n² k²
+        bool mirror[kLanes];  ///< n = k = 0: reflects everything
+    };
+
+    ConductorLanes conductor_lanes(const Interface& lobe, int o)
+    {
+        ConductorLanes cl;
+        for (int l = 0; l < kLanes; ++l) {
+            const double n = lobe.f0[o + l], kk = lobe.kappa[o + l];
+            cl.nk[l / 2][l % 2] = n * n - kk * kk;
+            cl.four_nk[l / 2][l % 2] = 4.0 * n * n * kk * kk;
+            cl.mirror[l] = lobe.f0[o + l] == 0.0f && lobe.kappa[o + l] == 0.0f;
         }
+        return cl;
+    }
+
+    V4 fresnel_conductor4(float cos_theta_i, const ConductorLanes& cl)
+    {
+        const double c = std::min(1.0, std::abs(static_cast<double>(cos_theta_i)));
+        const double c2 = c * c, s2 = 1.0 - c2;
+        V4 f;
+        for (int half = 0; half < 2; ++half) {
+            const D2 t0 = cl.nk[half] - s2;
+            const D2 a2b2 = sqrt2(t0 * t0 + cl.four_nk[half]);
+            const D2 h = 0.5 * (a2b2 + t0);
+            const D2 zero{0.0, 0.0};
+            const D2 a = sqrt2(zero < h ? h : zero);  // std::max(0.0, h)
+            const D2 t1 = a2b2 + c2, t2 = 2.0 * a * c;
+            const D2 rs = (t1 - t2) / (t1 + t2);
+            const D2 t3 = c2 * a2b2 + s2 * s2, t4 = t2 * s2;
+            const D2 r = 0.5 * (rs + rs * (t3 - t4) / (t3 + t4));
+            for (int l = 0; l < 2; ++l)
+                f[2 * half + l] = cl.mirror[2 * half + l] || !std::isfinite(r[l])
+                                      ? 1.0f
+                                      : static_cast<float>(std::clamp(r[l], 0.0, 1.0));
+        }
+        return f;
     }
 
 }  // namespace
@@ -384,13 +503,20 @@ void LayeredModel::setup_thickness(const float* thickness_um, const PatinaWavele
 {
     s->wl = wl;
     const int count = wavelength_count(wl);
-    std::array<GridPos, PATINA_MAX_WAVELENGTHS> gp;
+    const int groups = lane_groups(count);
+    // Lanes past `count` sit at grid position 0 (their values are never read).
+    std::array<GridPos, PATINA_MAX_WAVELENGTHS> gp{};
     for (int i = 0; i < count; ++i)
         gp[i] = grid_pos(wl.lambda_nm[i]);
 
     // The layers above the current depth as one composite, folded from the top down: its
-    // reflectance from above and from below and its transmittance (§4.2).
-    SpectralArray r_top(0.0f), r_bottom(0.0f), t_above(1.0f);
+    // reflectance from above and from below and its transmittance (§4.2), per lane group.
+    constexpr int kGroups = PATINA_MAX_WAVELENGTHS / kLanes;
+    V4 r_top[kGroups], r_bottom[kGroups], t_above[kGroups];
+    for (int g = 0; g < kGroups; ++g) {
+        r_top[g] = r_bottom[g] = splat(0.0f);
+        t_above[g] = splat(1.0f);
+    }
     s->interfaces = 0;
     s->layers = 0;
     const CompiledMaterial* above = nullptr;
@@ -403,7 +529,8 @@ void LayeredModel::setup_thickness(const float* thickness_um, const PatinaWavele
         // Two adjacent layers of one material are one layer: no interface between them.
         if (&m == above) {
             s->thickness_um[s->layers - 1] += d;
-            km_composite_below(m, d, gp, count, &r_top, &r_bottom, &t_above);
+            for (int g = 0; g < groups; ++g)
+                km_composite_below(m, d, &gp[kLanes * g], &r_top[g], &r_bottom[g], &t_above[g]);
             continue;
         }
         above = &m;
@@ -413,13 +540,15 @@ void LayeredModel::setup_thickness(const float* thickness_um, const PatinaWavele
         lobe.material = &m;
         lobe.fade = std::min(1.0f, d / kInterfaceFadeUm);
         lobe.coupled = true;
+        for (int g = 0; g < groups; ++g) {
+            const int o = kLanes * g;
+            store4(&lobe.attenuation[o], lobe.fade * t_above[g] * t_above[g]);
+            store4(&lobe.f0[o], grid_eval4(m.specular, &gp[o]));
+        }
         const Interface* prev = s->interfaces > 1 ? &s->lobe[s->interfaces - 2] : nullptr;
         bool same_f0 = prev != nullptr;
-        for (int i = 0; i < count; ++i) {
-            lobe.attenuation[i] = lobe.fade * t_above[i] * t_above[i];
-            lobe.f0[i] = grid_eval(m.specular, gp[i]);
-            same_f0 = same_f0 && lobe.f0[i] == prev->f0[i];
-        }
+        for (int i = 0; i < count && same_f0; ++i)
+            same_f0 = lobe.f0[i] == prev->f0[i];
         // Layers of one specular colour: the index and albedo rows of the lobe above.
         if (same_f0) {
             lobe.eta = prev->eta;
@@ -427,13 +556,15 @@ void LayeredModel::setup_thickness(const float* thickness_um, const PatinaWavele
             lobe.albedo_row_t = prev->albedo_row_t;
             lobe.albedo_scale = prev->albedo_scale;
         } else {
-            for (int i = 0; i < count; ++i)
-                lobe.eta[i] = eta_of_f0(lobe.f0[i]);
-            locate_albedo_row(&lobe, count);
+            for (int o = 0; o < count; o += kLanes) {
+                store4(&lobe.eta[o], eta_of_f0_4(load4(lobe.f0, o)));
+                locate_albedo_row4(&lobe, o);
+            }
         }
         s->thickness_um[s->layers] = d;
         s->layer_material[s->layers++] = &m;
-        km_composite_below(m, d, gp, count, &r_top, &r_bottom, &t_above);
+        for (int g = 0; g < groups; ++g)
+            km_composite_below(m, d, &gp[kLanes * g], &r_top[g], &r_bottom[g], &t_above[g]);
     }
     // The base's own surface: a conductor (n, k) or a dielectric lobe (specular).
     const CompiledMaterial& b = *base_;
@@ -442,25 +573,28 @@ void LayeredModel::setup_thickness(const float* thickness_um, const PatinaWavele
     lobe.fade = 1.0f;
     lobe.coupled = !b.metal;
     s->base = &b;
-    for (int i = 0; i < count; ++i) {
-        lobe.attenuation[i] = t_above[i] * t_above[i];
-        const float r_base = grid_eval(b.base_reflectance, gp[i]);
+    for (int g = 0; g < groups; ++g) {
+        const int o = kLanes * g;
+        const V4 t = t_above[g];
+        store4(&lobe.attenuation[o], t * t);
+        const V4 r_base = grid_eval4(b.base_reflectance, &gp[o]);
         if (b.metal) {
-            lobe.f0[i] = grid_eval(b.eta, gp[i]);
-            lobe.kappa[i] = grid_eval(b.kappa, gp[i]);
-            lobe.hemispherical[i] = r_base;
+            store4(&lobe.f0[o], grid_eval4(b.eta, &gp[o]));
+            store4(&lobe.kappa[o], grid_eval4(b.kappa, &gp[o]));
+            store4(&lobe.hemispherical[o], r_base);
         } else {
-            lobe.f0[i] = grid_eval(b.specular, gp[i]);
-            lobe.eta[i] = eta_of_f0(lobe.f0[i]);
+            const V4 f0 = grid_eval4(b.specular, &gp[o]);
+            store4(&lobe.f0[o], f0);
+            store4(&lobe.eta[o], eta_of_f0_4(f0));
         }
         // The stack over the opaque base (§4.2, the base a layer with T = 0).
-        const float denom = 1.0f - r_bottom[i] * r_base;
-        float r = denom > 0.0f ? r_top[i] + t_above[i] * t_above[i] * r_base / denom : 1.0f;
+        const V4 denom = 1.0f - r_bottom[g] * r_base;
+        V4 r = denom > splat(0.0f) ? r_top[g] + t * t * r_base / denom : splat(1.0f);
         // A metal's direct reflection is its glossy lobe: the diffuse part keeps only the
         // light the layers scattered (zero for a bare metal).
         if (b.metal)
-            r -= t_above[i] * t_above[i] * r_base;
-        s->diffuse[i] = std::clamp(r, 0.0f, 1.0f);
+            r -= t * t * r_base;
+        store4(&s->diffuse[o], clamp4(r, 0.0f, 1.0f));
     }
     for (int i = count; i < PATINA_MAX_WAVELENGTHS; ++i)
         s->diffuse[i] = 0.0f;
@@ -473,13 +607,12 @@ void LayeredModel::setup_thickness(const float* thickness_um, const PatinaWavele
     // is (1 - g(μo)) (1 - g(μi)) R_d / (π (1 - R_d ḡ)): its albedo (1 - g(μo)) R_d (1 - ḡ) /
     // (1 - R_d ḡ) is 1 - g(μo) for a white stack (R_d = 1) and never more.
     // ḡ by 8-point Gauss-Legendre quadrature over μ in [0, 1]; E_j at the nodes comes from
-    // the material's albedo_gauss rows (the values interface_albedo would interpolate), all
-    // nodes of one wavelength at once.
+    // the material's albedo_gauss rows (the values interface_albedo would interpolate), the
+    // 8 nodes of one wavelength in two registers.
+    static_assert(kGaussNodes == 2 * kLanes);
     SpectralArray pass_mean(0.0f);
     for (int i = 0; i < count; ++i) {
-        float pass[kGaussNodes];
-        for (float& p : pass)
-            p = 1.0f;
+        V4 pass_lo = splat(1.0f), pass_hi = splat(1.0f);
         for (int j = 0; j < s->interfaces; ++j) {
             const Interface& l = s->lobe[j];
             if (!l.coupled)
@@ -488,17 +621,27 @@ void LayeredModel::setup_thickness(const float* thickness_um, const PatinaWavele
             const float* row1 = row0 + kGaussNodes;
             const float t = l.albedo_row_t[i], scale = l.albedo_scale[i];
             const float a = l.attenuation[i];
-            for (int q = 0; q < kGaussNodes; ++q)
-                pass[q] *= 1.0f - a * ((row0[q] + t * (row1[q] - row0[q])) * scale);
+            const V4 lo0 = load4(row0), lo1 = load4(row1);
+            const V4 hi0 = load4(row0 + kLanes), hi1 = load4(row1 + kLanes);
+            pass_lo *= 1.0f - a * ((lo0 + t * (lo1 - lo0)) * scale);
+            pass_hi *= 1.0f - a * ((hi0 + t * (hi1 - hi0)) * scale);
         }
-        for (int q = 0; q < kGaussNodes; ++q)
-            pass_mean[i] += pass[q] * (2.0f * kGaussMu[q] * kGaussWeight[q]);
+        const V4 lo = pass_lo * load4(kGaussMeanWeight);
+        const V4 hi = pass_hi * load4(kGaussMeanWeight + kLanes);
+        float sum = 0.0f;  // in node order, as a scalar loop adds them
+        for (int q = 0; q < kLanes; ++q)
+            sum += lo[q];
+        for (int q = 0; q < kLanes; ++q)
+            sum += hi[q];
+        pass_mean[i] = sum;
     }
-    for (int i = 0; i < PATINA_MAX_WAVELENGTHS; ++i) {
-        const float g_mean = std::clamp(1.0f - pass_mean[i], 0.0f, 1.0f);
-        const float denom = 1.0f - s->diffuse[i] * g_mean;
-        s->diffuse_lobe[i] = denom > 1e-6f ? s->diffuse[i] / denom : 0.0f;
-        s->diffuse_albedo[i] = s->diffuse_lobe[i] * (1.0f - g_mean);
+    for (int o = 0; o < PATINA_MAX_WAVELENGTHS; o += kLanes) {
+        const V4 g_mean = clamp4(1.0f - load4(pass_mean, o), 0.0f, 1.0f);
+        const V4 diffuse = load4(s->diffuse, o);
+        const V4 denom = 1.0f - diffuse * g_mean;
+        const V4 lobe_value = denom > splat(1e-6f) ? diffuse / denom : splat(0.0f);
+        store4(&s->diffuse_lobe[o], lobe_value);
+        store4(&s->diffuse_albedo[o], lobe_value * (1.0f - g_mean));
     }
 }
 
@@ -507,28 +650,45 @@ void LayeredModel::outgoing(const PointState& s, Vec3 wo, Outgoing* o)
     o->wo = Vec3(wo.x, wo.y, std::abs(wo.z));
     const float mu_o = o->wo.z;
     const int count = wavelength_count(s.wl);
+    const int groups = lane_groups(count);
+    const MuPos at_mu = mu_pos(mu_o);
     // Lobe selection probabilities at wo (glossy lobes, then the diffuse one), in proportion
     // to an estimate of each lobe's albedo, with E(μo) and Λ(wo) kept for eval.
-    SpectralArray coupling(1.0f);
+    constexpr int kGroups = PATINA_MAX_WAVELENGTHS / kLanes;
+    V4 coupling[kGroups] = {splat(1.0f), splat(1.0f)};
     float total = 0.0f;
     for (int j = 0; j < s.interfaces; ++j) {
         const Interface& lobe = s.lobe[j];
         SpectralArray& e = o->e[j];
-        if (lobe.material->metal)
-            e = lobe.hemispherical * albedo_table(lobe.material->albedo_one, mu_o);
-        else
-            e = interface_albedo(lobe, mu_o, count);
+        const float one = lobe.material->metal ? albedo_table(lobe.material->albedo_one, mu_o)
+                                               : 0.0f;
+        float sum = 0.0f;  // mean over the wavelengths, added in order
+        for (int g = 0; g < groups; ++g) {
+            const int k = kLanes * g;
+            const V4 eg = lobe.material->metal ? load4(lobe.hemispherical, k) * one
+                                               : interface_albedo4(lobe, at_mu, k);
+            store4(&e[k], eg);
+            const V4 a = load4(lobe.attenuation, k);
+            const V4 term = coupling[g] * a * eg;
+            for (int l = 0; l < kLanes && k + l < count; ++l)
+                sum += term[l];
+            if (lobe.coupled)
+                coupling[g] *= 1.0f - a * eg;
+        }
         const TrowbridgeReitz& dist = lobe.material->distribution;
         o->lambda[j] = j > 0 && same_widths(dist, s.lobe[j - 1].material->distribution)
                            ? o->lambda[j - 1]
                            : dist.lambda(o->wo);
-        o->p[j] = mean(coupling * lobe.attenuation * e, count);
+        o->p[j] = count > 0 ? sum / count : 0.0f;
         total += o->p[j];
-        if (lobe.coupled)
-            for (int i = 0; i < count; ++i)
-                coupling[i] *= 1.0f - lobe.attenuation[i] * e[i];
     }
-    o->p[s.interfaces] = mean(coupling * s.diffuse_albedo, count);
+    float sum = 0.0f;
+    for (int g = 0; g < groups; ++g) {
+        const V4 term = coupling[g] * load4(s.diffuse_albedo, kLanes * g);
+        for (int l = 0; l < kLanes && kLanes * g + l < count; ++l)
+            sum += term[l];
+    }
+    o->p[s.interfaces] = count > 0 ? sum / count : 0.0f;
     total += o->p[s.interfaces];
     o->sampleable = mu_o > 0.0f && total > 0.0f && is_finite(total);
     if (o->sampleable)
@@ -543,20 +703,22 @@ void LayeredModel::eval_km(const PointState& s, const Outgoing& o, Vec3 wo, Vec3
     if (!to_upper(&wo, &wi))
         return;
     const int count = wavelength_count(s.wl);
+    const int groups = lane_groups(count);
     const float mu_o = wo.z, mu_i = wi.z;
     const Vec3 h = wo + wi;
     if (length_squared(h) == 0.0f)
         return;
     const Vec3 wm = normalize(h);
     const float c = std::clamp(dot(wo, wm), 0.0f, 1.0f);
+    const MuPos at_mu_i = mu_pos(mu_i);
     // Sum of the glossy lobes from the top interface down; `coupling` is the part of the
     // light that passed the interfaces above, (1 - E(μo)) (1 - E(μi)) per interface.
-    SpectralArray coupling(1.0f);
+    constexpr int kGroups = PATINA_MAX_WAVELENGTHS / kLanes;
+    V4 sum[kGroups] = {splat(0.0f), splat(0.0f)};
+    V4 coupling[kGroups] = {splat(1.0f), splat(1.0f)};
     float dg = 0.0f;
-    // Dielectric Fresnel of the last index per wavelength: layers of one specular colour
-    // share it.
-    std::array<float, PATINA_MAX_WAVELENGTHS> last_eta, last_f;
-    last_eta.fill(-1.0f);
+    // Dielectric Fresnel of the last indices: layers of one specular colour share it.
+    V4 last_eta[kGroups] = {splat(-1.0f), splat(-1.0f)}, last_f[kGroups];
     for (int j = 0; j < s.interfaces; ++j) {
         const Interface& lobe = s.lobe[j];
         const TrowbridgeReitz& dist = lobe.material->distribution;
@@ -565,33 +727,39 @@ void LayeredModel::eval_km(const PointState& s, const Outgoing& o, Vec3 wo, Vec3
         if (j == 0 || !same_widths(dist, s.lobe[j - 1].material->distribution))
             dg = dist.d(wm) * (1.0f / (1.0f + o.lambda[j] + dist.lambda(wi))) /
                  (4.0f * mu_o * mu_i);
-        if (dg > 0.0f && is_finite(dg)) {
-            for (int i = 0; i < count; ++i) {
-                float F;
+        const bool lit = dg > 0.0f && is_finite(dg);
+        for (int g = 0; g < groups; ++g) {
+            const int k = kLanes * g;
+            const V4 a = load4(lobe.attenuation, k);
+            if (lit) {
+                V4 F;
                 if (lobe.material->metal) {
-                    F = fresnel_conductor_real(c, lobe.f0[i], lobe.kappa[i]);
-                } else if (!(lobe.f0[i] > 0.0f)) {
-                    F = 0.0f;  // index-matched
+                    F = fresnel_conductor4(c, conductor_lanes(lobe, k));
                 } else {
-                    if (lobe.eta[i] != last_eta[i]) {
-                        last_eta[i] = lobe.eta[i];
-                        last_f[i] = fresnel_dielectric(c, lobe.eta[i]);
+                    const V4 eta = load4(lobe.eta, k);
+                    if (!all_equal(eta, last_eta[g])) {
+                        last_eta[g] = eta;
+                        last_f[g] = fresnel_dielectric4(c, eta);
                     }
-                    F = last_f[i];
+                    // F0 = 0: index-matched, no reflection
+                    F = load4(lobe.f0, k) > splat(0.0f) ? last_f[g] : splat(0.0f);
                 }
-                (*f)[i] += coupling[i] * lobe.attenuation[i] * F * dg;
+                sum[g] += coupling[g] * a * F * dg;
+            }
+            if (lobe.coupled) {
+                const V4 eo = load4(o.e[j], k);
+                const V4 ei = interface_albedo4(lobe, at_mu_i, k);
+                coupling[g] *= (1.0f - a * eo) * (1.0f - a * ei);
             }
         }
-        if (lobe.coupled) {
-            const SpectralArray& eo = o.e[j];
-            const SpectralArray ei = interface_albedo(lobe, mu_i, count);
-            for (int i = 0; i < count; ++i)
-                coupling[i] *= (1.0f - lobe.attenuation[i] * eo[i]) *
-                               (1.0f - lobe.attenuation[i] * ei[i]);
-        }
     }
-    for (int i = 0; i < count; ++i)
-        (*f)[i] += coupling[i] * s.diffuse_lobe[i] * kInvPi;
+    for (int g = 0; g < groups; ++g) {
+        const int k = kLanes * g;
+        store4(&(*f)[k], sum[g] + coupling[g] * load4(s.diffuse_lobe, k) * kInvPi);
+    }
+    // Lanes past `count` stay 0, as the ABI's unused entries.
+    for (int i = count; i < kLanes * groups; ++i)
+        (*f)[i] = 0.0f;
 }
 
 void LayeredModel::eval(const PointState& s, const Outgoing& o, Vec3 wo, Vec3 wi,
