@@ -412,7 +412,7 @@ namespace {
 
     /// interface_albedo at four lanes from `o`: each lane's two neighbouring nodes of its two
     /// F0 rows are read as pairs and sorted into registers by shuffles.
-    V4 interface_albedo4(const Interface& lobe, MuPos m, int o)
+    [[gnu::always_inline]] inline V4 interface_albedo4(const Interface& lobe, MuPos m, int o)
     {
         const float* table = lobe.material->albedo.data() + m.n;
         const float* p[kLanes];
@@ -711,51 +711,48 @@ void LayeredModel::eval_km(const PointState& s, const Outgoing& o, Vec3 wo, Vec3
     const Vec3 wm = normalize(h);
     const float c = std::clamp(dot(wo, wm), 0.0f, 1.0f);
     const MuPos at_mu_i = mu_pos(mu_i);
-    // Sum of the glossy lobes from the top interface down; `coupling` is the part of the
-    // light that passed the interfaces above, (1 - E(μo)) (1 - E(μi)) per interface.
-    constexpr int kGroups = PATINA_MAX_WAVELENGTHS / kLanes;
-    V4 sum[kGroups] = {splat(0.0f), splat(0.0f)};
-    V4 coupling[kGroups] = {splat(1.0f), splat(1.0f)};
-    float dg = 0.0f;
-    // Dielectric Fresnel of the last indices: layers of one specular colour share it.
-    V4 last_eta[kGroups] = {splat(-1.0f), splat(-1.0f)}, last_f[kGroups];
+    // D·G of each lobe: Torrance-Sparrow with GGX and Smith G2, Walter et al. 2007 Eq. 20
+    // (the same value as the lobe above when the widths are the same).
+    std::array<float, kMaxLayers + 1> dg;
     for (int j = 0; j < s.interfaces; ++j) {
-        const Interface& lobe = s.lobe[j];
-        const TrowbridgeReitz& dist = lobe.material->distribution;
-        // Torrance-Sparrow with GGX and Smith G2: Walter et al. 2007 Eq. 20 (the same
-        // value as the lobe above when the widths are the same)
-        if (j == 0 || !same_widths(dist, s.lobe[j - 1].material->distribution))
-            dg = dist.d(wm) * (1.0f / (1.0f + o.lambda[j] + dist.lambda(wi))) /
-                 (4.0f * mu_o * mu_i);
-        const bool lit = dg > 0.0f && is_finite(dg);
-        for (int g = 0; g < groups; ++g) {
-            const int k = kLanes * g;
+        const TrowbridgeReitz& dist = s.lobe[j].material->distribution;
+        dg[j] = j > 0 && same_widths(dist, s.lobe[j - 1].material->distribution)
+                    ? dg[j - 1]
+                    : dist.d(wm) * (1.0f / (1.0f + o.lambda[j] + dist.lambda(wi))) /
+                          (4.0f * mu_o * mu_i);
+    }
+    for (int g = 0; g < groups; ++g) {
+        const int k = kLanes * g;
+        // Sum of the glossy lobes from the top interface down; `coupling` is the part of the
+        // light that passed the interfaces above, (1 - E(μo)) (1 - E(μi)) per interface.
+        V4 sum = splat(0.0f), coupling = splat(1.0f);
+        // Dielectric Fresnel of the last indices: layers of one specular colour share it.
+        V4 last_eta = splat(-1.0f), last_f = splat(0.0f);
+        for (int j = 0; j < s.interfaces; ++j) {
+            const Interface& lobe = s.lobe[j];
             const V4 a = load4(lobe.attenuation, k);
-            if (lit) {
+            if (dg[j] > 0.0f && is_finite(dg[j])) {
                 V4 F;
                 if (lobe.material->metal) {
                     F = fresnel_conductor4(c, conductor_lanes(lobe, k));
                 } else {
                     const V4 eta = load4(lobe.eta, k);
-                    if (!all_equal(eta, last_eta[g])) {
-                        last_eta[g] = eta;
-                        last_f[g] = fresnel_dielectric4(c, eta);
+                    if (!all_equal(eta, last_eta)) {
+                        last_eta = eta;
+                        last_f = fresnel_dielectric4(c, eta);
                     }
                     // F0 = 0: index-matched, no reflection
-                    F = load4(lobe.f0, k) > splat(0.0f) ? last_f[g] : splat(0.0f);
+                    F = load4(lobe.f0, k) > splat(0.0f) ? last_f : splat(0.0f);
                 }
-                sum[g] += coupling[g] * a * F * dg;
+                sum += coupling * a * F * dg[j];
             }
             if (lobe.coupled) {
                 const V4 eo = load4(o.e[j], k);
                 const V4 ei = interface_albedo4(lobe, at_mu_i, k);
-                coupling[g] *= (1.0f - a * eo) * (1.0f - a * ei);
+                coupling *= (1.0f - a * eo) * (1.0f - a * ei);
             }
         }
-    }
-    for (int g = 0; g < groups; ++g) {
-        const int k = kLanes * g;
-        store4(&(*f)[k], sum[g] + coupling[g] * load4(s.diffuse_lobe, k) * kInvPi);
+        store4(&(*f)[k], sum + coupling * load4(s.diffuse_lobe, k) * kInvPi);
     }
     // Lanes past `count` stay 0, as the ABI's unused entries.
     for (int i = count; i < kLanes * groups; ++i)
