@@ -39,20 +39,47 @@ namespace {
                       : w[2][c] + w[4][c] + w[5][c];
     }
 
+    /// Updates the first `layers` layers of slab s of `field` in place: `compute(k, out)`
+    /// writes layer k's new values (n_t x n_t, row-major) from the old ones. The stencils
+    /// reach one layer up and down, so layer k is written back only once layer k + 1 has been
+    /// computed: the same result as a double buffer, without a second array to stream.
+    template <class Compute>
+    void update_layers_in_place(float* field, const SlabGrid& g, int s, int layers,
+                                Compute&& compute)
+    {
+        const size_t n = size_t(g.n_t) * size_t(g.n_t);
+        thread_local std::vector<float> buffer;
+        buffer.resize(2 * n);
+        auto write_back = [&](int k) {
+            const float* from = buffer.data() + size_t(k & 1) * n;
+            for (int j = 0; j < g.n_t; ++j)
+                std::copy(from + size_t(j) * g.n_t, from + size_t(j + 1) * g.n_t,
+                          field + g.index(s, 0, j, k));
+        };
+        for (int k = 0; k < layers; ++k) {
+            compute(k, buffer.data() + size_t(k & 1) * n);
+            if (k > 0)
+                write_back(k - 1);
+        }
+        if (layers > 0)
+            write_back(layers - 1);
+    }
+
     void pressure_step(StoneState& st, bool wet)
     {
         const SlabLattice& lat = *st.lattice;
         const SlabGrid& g = lat.grid();
         float* p = st.pressure.data();
         // Dirichlet values: the surface and the air above it carry the surface pressure.
+        // Below the active layers the stone is dry and p = 0 is never read.
         tbb::parallel_for(0, g.slab_count, [&](int s) {
-            for (int j = 0; j < g.n_t; ++j)
-                for (int i = 0; i < g.n_t; ++i) {
-                    const float pb = boundary_pressure(st, column_index(g, s, i, j), wet);
-                    for (int k = 0; k < g.n_d; ++k) {
-                        const size_t c = g.index(s, i, j, k);
-                        if (!(st.flags[c] & kStone) || (st.flags[c] & kSurface))
-                            p[c] = pb;
+            for (int k = 0; k < st.active_depth[size_t(s)]; ++k)
+                for (int j = 0; j < g.n_t; ++j) {
+                    const size_t row = g.index(s, 0, j, k);
+                    for (int i = 0; i < g.n_t; ++i) {
+                        const uint8_t f = st.flags[row + size_t(i)];
+                        if (!(f & kStone) || (f & kSurface))
+                            p[row + size_t(i)] = boundary_pressure(st, column_index(g, s, i, j), wet);
                     }
                 }
         });
@@ -60,52 +87,51 @@ namespace {
 
         const float rate = float(st.dt * st.params.pressure_diffusivity);
         const auto& w = lat.weights();
-        float* out = st.scratch.data();
         const float* phi = st.porosity.data();
-        tbb::parallel_for(0, g.slab_count * g.n_d, [&](int sk) {
-            const int s = sk / g.n_d, k = sk % g.n_d;
-            if (k >= st.active_depth[size_t(s)])
-                return; // dry below the front: p stays 0
+        tbb::parallel_for(0, g.slab_count, [&](int s) {
             const auto& o = lat.offsets(s);
             const long ax0 = o[0], ax1 = o[1], ax2 = o[2];
-            for (int j = 0; j < g.n_t; ++j) {
-                const size_t row = g.index(s, 0, j, k);
-                for (size_t c = row; c < row + size_t(g.n_t); ++c) {
-                    const uint8_t f = st.flags[c];
-                    if (!(f & kStone) || (f & kSurface)) {
-                        out[c] = p[c];
-                        continue;
+            const StencilSigns& sg = lat.signs(s);
+            update_layers_in_place(p, g, s, st.active_depth[size_t(s)], [&](int k, float* out) {
+                for (int j = 0; j < g.n_t; ++j) {
+                    const size_t row = g.index(s, 0, j, k);
+                    float* out_row = out + size_t(j) * g.n_t;
+                    for (int i = 0; i < g.n_t; ++i) {
+                        const size_t c = row + size_t(i);
+                        const uint8_t f = st.flags[c];
+                        if (!(f & kStone) || (f & kSurface)) {
+                            out_row[i] = p[c];
+                            continue;
+                        }
+                        if (st.moisture[c] < 0.5f) { // dry: the front's Dirichlet p = 0
+                            out_row[i] = 0.0f;
+                            continue;
+                        }
+                        const float pc = p[c];
+                        float lap = 0.0f;
+                        for (int d = 0; d < 6; ++d)
+                            lap += w[d][c] * (p[c + o[d]] + p[c - o[d]] - 2.0f * pc);
+                        // Central differences along the axes, through H.
+                        const float dp0 = 0.5f * (p[c + ax0] - p[c - ax0]),
+                                    dp1 = 0.5f * (p[c + ax1] - p[c - ax1]),
+                                    dp2 = 0.5f * (p[c + ax2] - p[c - ax2]);
+                        const float df0 = 0.5f * (phi[c + ax0] - phi[c - ax0]),
+                                    df1 = 0.5f * (phi[c + ax1] - phi[c - ax1]),
+                                    df2 = 0.5f * (phi[c + ax2] - phi[c - ax2]);
+                        const float h00 = w[0][c] + w[3][c] + w[5][c],
+                                    h11 = w[1][c] + w[3][c] + w[4][c],
+                                    h22 = w[2][c] + w[4][c] + w[5][c];
+                        const float h01 = sg.s[0] * w[3][c], h12 = sg.s[1] * w[4][c],
+                                    h02 = sg.s[2] * w[5][c];
+                        const float cross = df0 * (h00 * dp0 + h01 * dp1 + h02 * dp2) +
+                                            df1 * (h01 * dp0 + h11 * dp1 + h12 * dp2) +
+                                            df2 * (h02 * dp0 + h12 * dp1 + h22 * dp2);
+                        out_row[i] = pc + rate * (phi[c] * lap + cross);
                     }
-                    if (st.moisture[c] < 0.5f) { // dry: the front's Dirichlet p = 0
-                        out[c] = 0.0f;
-                        continue;
-                    }
-                    const float pc = p[c];
-                    float lap = 0.0f;
-                    for (int d = 0; d < 6; ++d)
-                        lap += w[d][c] * (p[c + o[d]] + p[c - o[d]] - 2.0f * pc);
-                    // Central differences along the axes, through H.
-                    const float dp0 = 0.5f * (p[c + ax0] - p[c - ax0]),
-                                dp1 = 0.5f * (p[c + ax1] - p[c - ax1]),
-                                dp2 = 0.5f * (p[c + ax2] - p[c - ax2]);
-                    const float df0 = 0.5f * (phi[c + ax0] - phi[c - ax0]),
-                                df1 = 0.5f * (phi[c + ax1] - phi[c - ax1]),
-                                df2 = 0.5f * (phi[c + ax2] - phi[c - ax2]);
-                    const StencilSigns& sg = lat.signs(s);
-                    const float h00 = w[0][c] + w[3][c] + w[5][c],
-                                h11 = w[1][c] + w[3][c] + w[4][c],
-                                h22 = w[2][c] + w[4][c] + w[5][c];
-                    const float h01 = sg.s[0] * w[3][c], h12 = sg.s[1] * w[4][c],
-                                h02 = sg.s[2] * w[5][c];
-                    const float cross = df0 * (h00 * dp0 + h01 * dp1 + h02 * dp2) +
-                                        df1 * (h01 * dp0 + h11 * dp1 + h12 * dp2) +
-                                        df2 * (h02 * dp0 + h12 * dp1 + h22 * dp2);
-                    out[c] = pc + rate * (phi[c] * lap + cross);
                 }
-            }
+            });
         });
-        std::swap(st.pressure, st.scratch);
-        lat.fill_halo(st.pressure.data(), &st.active_depth);
+        lat.fill_halo(p, &st.active_depth);
     }
 
     void front_step(StoneState& st, bool wet)
@@ -117,28 +143,21 @@ namespace {
         const float* psi = st.head.data();
         const float* K = st.permeability.data();
         const float* rho = st.density.data();
-        const float* theta = st.moisture.data();
-        float* out = st.scratch.data();
+        float* theta = st.moisture.data();
         const float dt = float(st.dt);
         const float inv_eta = float(1.0 / st.params.viscosity);
         const float evap = float(st.params.evaporation_speed);
-        tbb::parallel_for(0, g.slab_count * g.n_d, [&](int sk) {
-            const int s = sk / g.n_d, k = sk % g.n_d;
-            if (k >= st.active_depth[size_t(s)]) {
-                // Dry and unreachable this step: carry the moisture over.
-                for (int j = 0; j < g.n_t; ++j) {
-                    const size_t row = g.index(s, 0, j, k);
-                    std::copy(theta + row, theta + row + g.n_t, out + row);
-                }
-                return;
-            }
+        // Below the active layers the stone is dry and unreachable this step: nothing moves.
+        tbb::parallel_for(0, g.slab_count, [&](int s) {
+          update_layers_in_place(theta, g, s, st.active_depth[size_t(s)], [&](int k, float* out) {
             for (int j = 0; j < g.n_t; ++j)
                 for (int i = 0; i < g.n_t; ++i) {
                     const size_t c = g.index(s, i, j, k);
+                    float& out_c = out[size_t(j) * g.n_t + size_t(i)];
                     const uint8_t f = st.flags[c];
                     float th = theta[c];
                     if (!(f & kStone)) {
-                        out[c] = 0.0f;
+                        out_c = 0.0f;
                         continue;
                     }
                     const size_t col = column_index(g, s, i, j);
@@ -180,11 +199,11 @@ namespace {
                     }
                     if (th >= 0.5f)
                         st.wet_time[c] += dt;
-                    out[c] = th;
+                    out_c = th;
                 }
+          });
         });
-        std::swap(st.moisture, st.scratch);
-        update_active_depth(st);
+        refresh_active_depth(st);
         lat.fill_halo(st.moisture.data(), &st.active_depth);
     }
 

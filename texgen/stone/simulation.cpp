@@ -72,13 +72,14 @@ void initialise_state(StoneState& st, const SlabLattice& lattice, const Triangle
     st.column_deposit = std::move(deposit);
 
     for (std::vector<float>* f : {&st.porosity, &st.permeability, &st.head, &st.moisture,
-                                  &st.pressure, &st.scratch, &st.black, &st.decay, &st.wet_time})
+                                  &st.pressure, &st.black, &st.decay, &st.wet_time})
         f->assign(cells, 0.0f);
     for (int i = 0; i < kSpecies; ++i)
         for (auto* f : {&st.solid[i], &st.dissolved[i], &st.crust[i], &st.concentration[i]})
             f->assign(cells, 0.0f);
     st.colour.assign(cells, Imath::V3f(0.0f));
     st.flags.assign(cells, 0);
+    st.seams = SeamSchedule(lattice);
 
     // The quarry at every voxel centre; the head rho g (up . x) for Darcy's gravity term.
     const V3d up = params.up.normalized();
@@ -160,24 +161,43 @@ void update_flags(StoneState& st)
     update_active_depth(st);
 }
 
+namespace {
+
+    /// active_depth of every slab, scanning each from layer `from(s)` - 1 up to its surface.
+    template <class From>
+    void scan_active_depth(StoneState& st, From&& from)
+    {
+        const SlabGrid& g = st.lattice->grid();
+        tbb::parallel_for(0, g.slab_count, [&](int s) {
+            int deepest = st.surface_depth.empty() ? g.n_d : st.surface_depth[size_t(s)];
+            for (int k = from(s) - 1; k >= deepest; --k) {
+                bool moist = false;
+                for (int j = 0; j < g.n_t && !moist; ++j)
+                    for (int i = 0; i < g.n_t && !moist; ++i)
+                        moist = st.moisture[g.index(s, i, j, k)] >= 0.5f;
+                if (moist) {
+                    deepest = k + 1;
+                    break;
+                }
+            }
+            st.active_depth[size_t(s)] = std::min(g.n_d, deepest + 2);
+        });
+    }
+
+} // namespace
+
 void update_active_depth(StoneState& st)
 {
     const SlabGrid& g = st.lattice->grid();
     st.active_depth.resize(size_t(g.slab_count));
-    tbb::parallel_for(0, g.slab_count, [&](int s) {
-        int deepest = st.surface_depth.empty() ? g.n_d : st.surface_depth[size_t(s)];
-        for (int k = g.n_d - 1; k >= deepest; --k) {
-            bool moist = false;
-            for (int j = 0; j < g.n_t && !moist; ++j)
-                for (int i = 0; i < g.n_t && !moist; ++i)
-                    moist = st.moisture[g.index(s, i, j, k)] >= 0.5f;
-            if (moist) {
-                deepest = k + 1;
-                break;
-            }
-        }
-        st.active_depth[size_t(s)] = std::min(g.n_d, deepest + 2);
-    });
+    scan_active_depth(st, [&](int) { return g.n_d; });
+}
+
+void refresh_active_depth(StoneState& st)
+{
+    // No moist voxel lies at or below the old active depth (the deepest moist layer + 3
+    // before the step, and the front moved at most one layer).
+    scan_active_depth(st, [&](int s) { return st.active_depth[size_t(s)]; });
 }
 
 double species_mass(const StoneState& st, int m)

@@ -5,6 +5,7 @@
 #pragma once
 
 #include "texgen/stone/quarry.h"
+#include "texgen/stone/seam_schedule.h"
 #include "texgen/stone/slab_lattice.h"
 #include "texgen/stone/voxelizer.h"
 
@@ -62,10 +63,14 @@ struct StoneState {
     double time = 0.0;
     int cycles_done = 0;
 
+    // Pressure and moisture are updated in place, one layer behind (moisture.cpp): no
+    // double buffers.
     std::vector<float> density, porosity, permeability, head, moisture, pressure;
-    std::vector<float> scratch;  ///< double buffer
     std::array<std::vector<float>, kSpecies> solid, dissolved, crust, concentration;
     std::array<std::vector<float>, kSpecies> ghost_flux;  ///< seam fluxes (transport.cpp)
+    /// Per slab: ghost_flux may be non-zero in layers <= this (zero below).
+    std::vector<int> ghost_flux_depth;
+    SeamSchedule seams;                 ///< the seam voxels a transport step visits
     std::vector<uint8_t> full_stencil;  ///< moist with all 12 stencil partners moist
     std::vector<float> black, decay, wet_time;
     std::vector<uint8_t> flags;
@@ -89,8 +94,12 @@ void initialise_state(StoneState& st, const SlabLattice& lattice, const Triangle
 
 /// Stone and surface flags from the density (refills the density halo), surface depths.
 void update_flags(StoneState& st);
-/// active_depth from the moisture and the surface depths.
+/// active_depth from the moisture and the surface depths (every layer scanned).
 void update_active_depth(StoneState& st);
+/// The same after a moisture step, which changes the moisture only in the active layers and
+/// moves the front by at most one layer: only the layers above the old active_depth are
+/// scanned.
+void refresh_active_depth(StoneState& st);
 
 /// Total of species i (solid + dissolved + crust, and black crust for the binder), volume
 /// weighted over the interior voxels.

@@ -119,12 +119,18 @@ void transport_step(StoneState& st, bool wet)
     for (int m = 0; m < kSpecies; ++m)
         if (st.ghost_flux[m].size() != g.cell_count())
             st.ghost_flux[m].assign(g.cell_count(), 0.0f);
+    if (st.ghost_flux_depth.size() != size_t(g.slab_count))
+        st.ghost_flux_depth.assign(size_t(g.slab_count), g.n_d - 1);
     tbb::parallel_for(0, g.slab_count, [&](int s) {
-      for (int k = 0; k < g.n_d; ++k)
+      // Ghosts receive from the active layers and one below; clear what the last step wrote.
+      int& written = st.ghost_flux_depth[size_t(s)];
+      const int active = st.active_depth[size_t(s)];
+      for (int k = 0; k <= std::min(g.n_d - 1, std::max(active, written)); ++k)
           for (int j = -1; j <= g.n_t; ++j)
               for (int i = -1; i <= g.n_t; i += (j < 0 || j == g.n_t) ? 1 : g.n_t + 1)
                   for (int m = 0; m < kSpecies; ++m)
                       st.ghost_flux[m][g.index(s, i, j, k)] = 0.0f;
+      written = active;
       for (int k = 0; k < st.active_depth[size_t(s)]; ++k) {
         const auto& o = lat.offsets(s);
         const std::array<int, 6> dk = depth_steps(lat, s);
@@ -242,17 +248,22 @@ void transport_step(StoneState& st, bool wet)
       }
     });
 
-    // Seams: each voxel gives up what the ghosts it feeds received, by its weight in them.
+    // Seams: each voxel gives up what the ghosts it feeds received, by its weight in them;
+    // only the groups whose ghosts lie in their slab's active layers can have received.
     const auto& begin = lat.feed_begin();
     const auto& feeds = lat.feeds();
     const auto& feeding = lat.feeding_cells();
-    tbb::parallel_for(size_t(0), feeding.size(), [&](size_t e0) {
-        const size_t c = feeding[e0];
-        for (int m = 0; m < kSpecies; ++m) {
-            float out = 0.0f;
-            for (uint32_t e = begin[c]; e < begin[c + 1]; ++e)
-                out += feeds[e].weight * st.ghost_flux[m][feeds[e].ghost];
-            st.dissolved[m][c] -= dt * out / vol[c];
+    tbb::parallel_for(size_t(0), st.seams.group_count(), [&](size_t q) {
+        if (!st.seams.may_receive(q, st.active_depth))
+            return;
+        for (uint32_t e0 = st.seams.first(q); e0 < st.seams.last(q); ++e0) {
+            const size_t c = feeding[e0];
+            for (int m = 0; m < kSpecies; ++m) {
+                float out = 0.0f;
+                for (uint32_t e = begin[c]; e < begin[c + 1]; ++e)
+                    out += feeds[e].weight * st.ghost_flux[m][feeds[e].ghost];
+                st.dissolved[m][c] -= dt * out / vol[c];
+            }
         }
     });
 }
