@@ -41,6 +41,10 @@ namespace {
         const PatinaHost* host = nullptr;
         const PatinaTexture* scale_map = nullptr;  // may be null
         float map_gain = 1.0f;
+        // A grey reflectance without a map is one number for every wavelength and point:
+        // R / π, computed once here (the same bits as evaluating it per call).
+        bool constant = false;
+        float constant_f = 0.0f;
     };
 
     // clang-format off
@@ -92,7 +96,14 @@ namespace {
                          lo, hi);
             return nullptr;
         }
-        return make_instance<Lambert>(host, kName, s, host, values[1].texture, values[2].f);
+        Lambert* lambert =
+            make_instance<Lambert>(host, kName, s, host, values[1].texture, values[2].f);
+        if (lambert && !lambert->scale_map && s.c0 == 0.0f && s.c1 == 0.0f) {
+            lambert->constant = true;
+            // eval's value for a grey: eval_rgb (the constant c2 path) times (1 * 1/π).
+            lambert->constant_f = patina_rgb_spectrum_eval(&s, 0.0f) * (1.0f * kInvPi);
+        }
+        return lambert;
     }
 
     void destroy(void* instance)
@@ -119,6 +130,10 @@ namespace {
         const auto* lambert = static_cast<const Lambert*>(instance);
         if (!same_hemisphere(wo, wi)) {
             fill(0.0f, *wl, f);
+            return;
+        }
+        if (lambert->constant) {
+            fill(lambert->constant_f, *wl, f);
             return;
         }
         // Lambertian BRDF f = R / π: pbrt-v4 §9.2

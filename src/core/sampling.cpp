@@ -192,15 +192,6 @@ float Distribution2D::pdf(float u, float v) const
     return marginal_.pdf(v) * conditional_[row].pdf(u);
 }
 
-float power_heuristic(int nf, float f_pdf, int ng, float g_pdf)
-{
-    const float f = static_cast<float>(nf) * f_pdf, g = static_cast<float>(ng) * g_pdf;
-    if (std::isinf(f * f))
-        return 1.0f;
-    const float denom = f * f + g * g;
-    return denom > 0.0f ? f * f / denom : 0.0f;
-}
-
 float balance_heuristic(int nf, float f_pdf, int ng, float g_pdf)
 {
     const float f = static_cast<float>(nf) * f_pdf, g = static_cast<float>(ng) * g_pdf;

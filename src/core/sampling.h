@@ -4,6 +4,7 @@
 // heuristic. Direction warps live in <patina/shading/sampling.h>.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -152,7 +153,15 @@ private:
 
 /// Veach's power heuristic with beta = 2: the MIS weight of a sample from strategy f
 /// (nf samples, density f_pdf) against g. An infinite f_pdf (a delta) gets weight 1.
-float power_heuristic(int nf, float f_pdf, int ng, float g_pdf);
+/// Inline: the renderer takes it twice per bounce.
+inline float power_heuristic(int nf, float f_pdf, int ng, float g_pdf)
+{
+    const float f = static_cast<float>(nf) * f_pdf, g = static_cast<float>(ng) * g_pdf;
+    if (std::isinf(f * f))
+        return 1.0f;
+    const float denom = f * f + g * g;
+    return denom > 0.0f ? f * f / denom : 0.0f;
+}
 /// Veach's balance heuristic.
 float balance_heuristic(int nf, float f_pdf, int ng, float g_pdf);
 

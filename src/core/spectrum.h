@@ -108,6 +108,16 @@ struct SampledSpectrum {
             s.v[i] = values[i];
         return s;
     }
+    /// The first n values of a whole PATINA_MAX_WAVELENGTHS array (a plugin's output array),
+    /// lanes past n 0: a fixed-length copy, cheaper than from_array's (a call to memcpy).
+    static SampledSpectrum from_lanes(int n, const float (&values)[kLanes])
+    {
+        SampledSpectrum s;
+        s.count = n;
+        for (int i = 0; i < kLanes; ++i)
+            s.v[i] = i < n ? values[i] : 0.0f;
+        return s;
+    }
     /// Evaluate fn at each wavelength.
     template <class Fn> static SampledSpectrum from_function(const PatinaWavelengths& wl, Fn&& fn)
     {

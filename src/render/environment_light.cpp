@@ -256,6 +256,13 @@ void EnvironmentLight::build(const Host& host, const ImageData& image, std::stri
         }
     });
     distribution_ = Distribution2D(cells, nu, nv);
+
+    // A grey uniform sky is D65 times one number: take it once here, not per path.
+    const PatinaRgbSpectrum& s0 = texels_[0];
+    constant_grey_ = is_constant() && RgbToSpectrum::is_grey(s0) && s0.illuminant;
+    if (constant_grey_)
+        constant_grey_scale_ = intensity_ * patina_rgb_spectrum_eval(&s0, 0.0f) *
+                               RgbToSpectrum::d65_to_unit_luminance();
 }
 
 Imath::V3f EnvironmentLight::sample_uniform_sphere(Imath::V2f u)
@@ -314,12 +321,10 @@ SampledSpectrum EnvironmentLight::radiance_of(const PatinaRgbSpectrum& s,
 SampledSpectrum EnvironmentLight::constant_radiance(const PatinaWavelengths& wl,
                                                     const SampledSpectrum& d65_at_wl) const
 {
-    const PatinaRgbSpectrum& s = texels_[0];
-    if (!RgbToSpectrum::is_grey(s) || !s.illuminant)
-        return radiance_of(s, wl);
+    if (!constant_grey_)
+        return radiance_of(texels_[0], wl);
     // radiance_of's grey emission: grey * d65 * (1 / Y of D65), with d65 given.
-    return d65_at_wl * (intensity_ * patina_rgb_spectrum_eval(&s, 0.0f) *
-                        RgbToSpectrum::d65_to_unit_luminance());
+    return d65_at_wl * constant_grey_scale_;
 }
 
 std::optional<LightSample> EnvironmentLight::sample(const Imath::V3f&, Imath::V2f u,

@@ -131,6 +131,9 @@ private:
     static constexpr float kPi = 3.14159265358979f;
     std::vector<PatinaRgbSpectrum> texels_; ///< row-major, row 0 = the top (zenith) row
     Distribution2D distribution_;           ///< over (u, v), density ∝ luminance * sin theta
+    /// A constant grey map: its radiance is D65 at the wavelengths times this scale.
+    bool constant_grey_ = false;
+    float constant_grey_scale_ = 0.0f;
 };
 
 } // namespace patina::render

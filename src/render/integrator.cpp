@@ -51,13 +51,13 @@ namespace {
             if (frame) {
                 const PatinaVec3 wl_i = to_abi(frame->to_local(wi));
                 shader->bsdf()->eval(shader->get(), ctx, wo, wl_i, &wl, v);
-                f = SampledSpectrum::from_array(wl.count, v) * std::abs(wl_i.z);
+                f = SampledSpectrum::from_lanes(wl.count, v) * std::abs(wl_i.z);
                 if (f.is_black())
                     return 0.0f;
                 return shader->bsdf()->pdf(shader->get(), ctx, wo, wl_i, &wl);
             }
             const float pdf = shader->medium()->phase_eval(shader->get(), ctx, wo, to_abi(wi), &wl, v);
-            f = SampledSpectrum::from_array(wl.count, v);
+            f = SampledSpectrum::from_lanes(wl.count, v);
             return pdf;
         }
     };
@@ -68,6 +68,7 @@ namespace {
         const EnvironmentLight* light = nullptr;
         SampledSpectrum L;
         float pmf = 0.0f;
+        bool black = true;  // L is 0 at every wavelength (or there is no uniform sky)
 
         UniformSky(const Scene& scene, const PatinaWavelengths& wl, const SampledSpectrum& d65)
             : light(scene.lights.uniform_sky())
@@ -75,17 +76,8 @@ namespace {
             if (light) {
                 L = light->constant_radiance(wl, d65);
                 pmf = scene.lights.pmf(light);
+                black = L.is_black();
             }
-        }
-        // EnvironmentLight::sample for a constant map, with the radiance from above.
-        std::optional<LightSample> sample(Imath::V2f u) const
-        {
-            LightSample ls;
-            ls.wi = EnvironmentLight::sample_uniform_sphere(u);
-            ls.distance = kInf;
-            ls.L = L;
-            ls.pdf = EnvironmentLight::kUniformSpherePdf;
-            return ls;
         }
     };
 
@@ -98,38 +90,62 @@ namespace {
                                   const Imath::V3f& incoming, const ShaderInstance* medium,
                                   const PatinaWavelengths& wl, const UniformSky& sky, Pcg32& rng)
     {
-        SampledSpectrum none(wl.count, 0.0f);
         const float u_light = rng.uniform_float();
         const Imath::V2f u{rng.uniform_float(), rng.uniform_float()};
         const auto chosen = scene.lights.sample(u_light);
         if (!chosen)
-            return none;
-        const auto ls =
-            chosen->light == sky.light ? sky.sample(u) : chosen->light->sample(P, u, wl);
-        if (!ls || !(ls->pdf > 0.0f) || ls->L.is_black())
-            return none;
+            return SampledSpectrum(wl.count, 0.0f);
+        // The uniform sky's sample refers to its radiance, taken once per path; other lights
+        // sample into `other`.
+        std::optional<LightSample> other;
+        Imath::V3f wi;
+        float distance = kInf, pdf = EnvironmentLight::kUniformSpherePdf;
+        const SampledSpectrum* Le = &sky.L;
+        bool is_delta = false;
+        if (chosen->light == sky.light) {
+            if (sky.black)
+                return SampledSpectrum(wl.count, 0.0f);
+            wi = EnvironmentLight::sample_uniform_sphere(u);
+        } else {
+            other = chosen->light->sample(P, u, wl);
+            if (!other || !(other->pdf > 0.0f) || other->L.is_black())
+                return SampledSpectrum(wl.count, 0.0f);
+            wi = other->wi;
+            distance = other->distance;
+            pdf = other->pdf;
+            Le = &other->L;
+            is_delta = other->is_delta;
+        }
         SampledSpectrum f;
-        const float scatter_pdf = at.eval(ls->wi, wl, f);
+        const float scatter_pdf = at.eval(wi, wl, f);
         if (f.is_black())
-            return none;
+            return SampledSpectrum(wl.count, 0.0f);
         // Leaving a surface, the shadow ray starts on the side it goes to, in the medium of
         // that side (the interior when it passes through); from a medium point it starts
         // where it is.
         Imath::V3f origin = P;
         const ShaderInstance* start_medium = medium;
         if (sp) {
-            origin = offset_ray_origin(*sp, ls->wi);
-            if (ls->wi.dot(sp->Ng) * incoming.dot(sp->Ng) > 0.0f)
-                start_medium = medium_after_crossing(*obj, sp->Ng, ls->wi, medium);
+            origin = offset_ray_origin(*sp, wi);
+            if (wi.dot(sp->Ng) * incoming.dot(sp->Ng) > 0.0f)
+                start_medium = medium_after_crossing(*obj, sp->Ng, wi, medium);
         }
-        const float distance = std::isinf(ls->distance) ? kInf : ls->distance * (1.0f - 1e-4f);
+        if (!std::isinf(distance))
+            distance *= 1.0f - 1e-4f;
+        const float light_pdf = chosen->pmf * pdf;
+        const float weight = is_delta ? 1.0f : power_heuristic(1, light_pdf, 1, scatter_pdf);
+        if (!scene.has_media) {
+            // Without media the transmittance is 1 or 0: one occlusion query (what
+            // transmittance_along does then), and no multiplication by ones.
+            if (scene.geometry->occluded(origin, wi, 0.0f, distance))
+                return SampledSpectrum(wl.count, 0.0f);
+            return f * *Le * (weight / light_pdf);
+        }
         const SampledSpectrum tr =
-            transmittance_along(scene, origin, ls->wi, distance, start_medium, wl, rng);
+            transmittance_along(scene, origin, wi, distance, start_medium, wl, rng);
         if (tr.is_black())
-            return none;
-        const float light_pdf = chosen->pmf * ls->pdf;
-        const float weight = ls->is_delta ? 1.0f : power_heuristic(1, light_pdf, 1, scatter_pdf);
-        return f * tr * ls->L * (weight / light_pdf);
+            return SampledSpectrum(wl.count, 0.0f);
+        return f * tr * *Le * (weight / light_pdf);
     }
 
     SampledSpectrum escaped(const Scene& scene, const Ray& ray, const PrevVertex& prev,
@@ -138,7 +154,7 @@ namespace {
         SampledSpectrum L(wl.count, 0.0f);
         for (const Light* light : scene.lights.infinite_lights()) {
             if (light == sky.light) {
-                if (!sky.L.is_black())
+                if (!sky.black)
                     L += sky.L * emission_mis_weight(scene, prev,
                                                      sky.pmf * EnvironmentLight::kUniformSpherePdf);
                 continue;
@@ -200,7 +216,7 @@ SampledSpectrum trace_path(const Scene& scene, Ray ray, const std::optional<Hit>
             const int scattered = medium->medium()->sample_distance(
                 medium->get(), &mctx, mctx.P, to_abi(ray.dir), hit ? hit->t : kInf,
                 rng.uniform_float(), &wl, &t, weight);
-            beta *= SampledSpectrum::from_array(wl.count, weight);
+            beta *= SampledSpectrum::from_lanes(wl.count, weight);
             if (beta.is_black())
                 break;
             if (scattered) {
@@ -220,7 +236,7 @@ SampledSpectrum trace_path(const Scene& scene, Ray ray, const std::optional<Hit>
                     medium->get(), &mctx, wo, {u.x, u.y}, &wl, &wi, p);
                 if (!(phase_pdf > 0.0f))
                     break;
-                beta *= SampledSpectrum::from_array(wl.count, p) / phase_pdf;
+                beta *= SampledSpectrum::from_lanes(wl.count, p) / phase_pdf;
                 prev = {P, phase_pdf, false};
                 ++depth;
                 if (beta.is_black() || !survive_roulette(depth, beta, rng))
@@ -258,7 +274,7 @@ SampledSpectrum trace_path(const Scene& scene, Ray ray, const std::optional<Hit>
             if (obj.bsdf && obj.bsdf->bsdf()->albedo) {
                 float a[PATINA_MAX_WAVELENGTHS] = {};
                 obj.bsdf->bsdf()->albedo(obj.bsdf->get(), &frame.ctx, wo, &wl, a);
-                aovs->albedo = SampledSpectrum::from_array(wl.count, a);
+                aovs->albedo = SampledSpectrum::from_lanes(wl.count, a);
             }
         }
 
@@ -266,7 +282,7 @@ SampledSpectrum trace_path(const Scene& scene, Ray ray, const std::optional<Hit>
         if (obj.emitter) {
             float le[PATINA_MAX_WAVELENGTHS] = {};
             obj.emitter->emitter()->emit(obj.emitter->get(), &frame.ctx, wo, &wl, le);
-            const SampledSpectrum Le = SampledSpectrum::from_array(wl.count, le);
+            const SampledSpectrum Le = SampledSpectrum::from_lanes(wl.count, le);
             if (!Le.is_black()) {
                 float light_pdf = 0.0f;
                 if (const AreaLight* area = scene.lights.area_light_for_mesh(hit->mesh_id)) {
@@ -294,7 +310,7 @@ SampledSpectrum trace_path(const Scene& scene, Ray ray, const std::optional<Hit>
         if (!obj.bsdf->bsdf()->sample(obj.bsdf->get(), &frame.ctx, wo, u_lobe, u, &wl, &bs) ||
             !(bs.pdf > 0.0f))
             break;
-        beta *= SampledSpectrum::from_array(wl.count, bs.f) * (std::abs(bs.wi.z) / bs.pdf);
+        beta *= SampledSpectrum::from_lanes(wl.count, bs.f) * (std::abs(bs.wi.z) / bs.pdf);
         if ((bs.lobe & PATINA_LOBE_WAVELENGTH_DEPENDENT) && !secondaries_terminated &&
             wl.count > 1) {
             // Only the hero wavelength follows a dispersed direction.

@@ -31,7 +31,7 @@ SampledSpectrum transmittance_along(const Scene& scene, Imath::V3f origin, const
             const float seg = std::isinf(segment) ? std::numeric_limits<float>::max() : segment;
             medium->medium()->transmittance(medium->get(), &ctx, ctx.P, {dir.x, dir.y, dir.z}, seg,
                                             rng.uniform_float(), &wl, t);
-            tr *= SampledSpectrum::from_array(wl.count, t);
+            tr *= SampledSpectrum::from_lanes(wl.count, t);
             if (tr.is_black())
                 return tr;
         }
