@@ -10,6 +10,7 @@
 
 #include <cctype>
 #include <cmath>
+#include <map>
 #include <stdexcept>
 
 namespace patina::texgen {
@@ -26,14 +27,15 @@ namespace {
         return s;
     }
 
-    /// The "thickness" channel of one tile's map, resampled to width x height if needed.
-    std::vector<float> read_thickness(const fs::path& file, int width, int height)
+    /// Channel `channel` of one tile's map (`image`, read from `file`), resampled to width x
+    /// height if needed.
+    std::vector<float> read_thickness(const ImageData& image, const fs::path& file,
+                                      const std::string& channel, int width, int height)
     {
-        const ImageData image = read_image(file);
-        const int c = image.channel("thickness");
+        const int c = image.channel(channel);
         if (c < 0)
-            throw std::runtime_error(fmt::format("thickness map '{}': no channel 'thickness'",
-                                                 file.string()));
+            throw std::runtime_error(fmt::format("thickness map '{}': no channel '{}'",
+                                                 file.string(), channel));
         std::vector<float> t(static_cast<size_t>(image.width) * image.height);
         size_t bad = 0, first = 0;
         for (size_t i = 0; i < t.size(); ++i) {
@@ -183,9 +185,17 @@ FlattenedStack flatten_stack(const PatinaStackFiles& stack,
     for (FlatMap& map : flat.maps)
         map.tiles.resize(stack.udims.size());
     for (size_t tile = 0; tile < stack.udims.size(); ++tile) {
+        // Layers reading channels of one file (thickness.exr) read it once.
         std::vector<std::vector<float>> thickness(n);
-        for (size_t l = 0; l < n; ++l)
-            thickness[l] = read_thickness(stack.layers[l].files[tile], flat.width, flat.height);
+        std::map<fs::path, ImageData> images;
+        for (size_t l = 0; l < n; ++l) {
+            const fs::path& file = stack.layers[l].files[tile];
+            auto it = images.find(file);
+            if (it == images.end())
+                it = images.emplace(file, read_image(file)).first;
+            thickness[l] = read_thickness(it->second, file, stack.layers[l].channel, flat.width,
+                                          flat.height);
+        }
         for (FlatMap& map : flat.maps)
             map.tiles[tile].assign(texels * map.channels.size(), 0.0f);
 

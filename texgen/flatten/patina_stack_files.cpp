@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 #include <toml++/toml.h>
 
+#include <optional>
 #include <stdexcept>
 
 namespace patina::texgen {
@@ -102,7 +103,22 @@ PatinaStackFiles read_patina_stack(const fs::path& stack)
             if (!material || !map)
                 fail(manifest, fmt::format("[[patina.layers]] entry {} needs material and map",
                                            i + 1));
-            StackLayerFiles files{*material, *map, {}};
+            StackLayerFiles files{*material, *map, {}, "thickness"};
+            // A layer reading a channel of a multi-channel map: by name, or by index into the
+            // map's `channels` (as plugins/layered reads it).
+            if (const toml::node* c = layer->get("channel")) {
+                const toml::node* name = c;
+                if (const auto index = c->value<int64_t>())
+                    name = *index >= 0
+                               ? root["maps"][*map]["channels"][static_cast<size_t>(*index)].node()
+                               : nullptr;
+                const auto channel = name ? name->value<std::string>() : std::nullopt;
+                if (!channel || channel->empty())
+                    fail(manifest, fmt::format("[[patina.layers]] entry {}: 'channel' must name a "
+                                               "channel of map '{}' or index its 'channels'",
+                                               i + 1, *map));
+                files.channel = *channel;
+            }
             map_files(manifest, root, *map, udims, files.files, out.width, out.height,
                       out.strip_size_m);
             if (i == 0)

@@ -9,12 +9,14 @@
 
 namespace patina::texgen {
 
-/// One layer of a stack on disk: its material's name and its thickness map's files (one
-/// per tile, in PatinaStackFiles::udims order).
+/// One layer of a stack on disk: its material's name, its thickness map's files (one per
+/// tile, in PatinaStackFiles::udims order) and the channel holding its thickness (the
+/// layer's `channel`, "thickness" when it has none).
 struct StackLayerFiles {
     std::string material;
     std::string map;
     std::vector<std::filesystem::path> files;
+    std::string channel = "thickness";
 };
 
 struct PatinaStackFiles {
@@ -31,7 +33,8 @@ struct PatinaStackFiles {
 /// Read the stack at `stack` (a folder holding stack.toml, or the stack.toml itself).
 /// Throws std::runtime_error naming the file for: no such file or folder, a TOML syntax
 /// error (with its line), no `[patina]` table (not a patina stack), a layer without
-/// material or map, a map missing from `[maps]`, layers on different tiles, and a map file
+/// material or map, a `channel` that is neither a name nor an index into its map's
+/// `channels`, a map missing from `[maps]`, layers on different tiles, and a map file
 /// that does not exist. A folder holding series.toml but no stack.toml is a time series:
 /// the message names its step folders.
 PatinaStackFiles read_patina_stack(const std::filesystem::path& stack);

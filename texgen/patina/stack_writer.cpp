@@ -19,6 +19,8 @@ namespace fs = std::filesystem;
 namespace {
 
     constexpr const char* kBaker = "patina";
+    /// The stack's multi-channel thickness map: one channel per layer.
+    constexpr const char* kThicknessMap = "thickness";
     /// Largest side of preview.png (texels).
     constexpr int kPreviewSize = 1024;
 
@@ -65,6 +67,7 @@ namespace {
     void record_patina_table(const fs::path& out_dir, const PatinaStep& step,
                              const PatinaDomain& domain, const PatinaOutputOptions& options,
                              const std::vector<std::string>& layer_maps,
+                             const std::vector<std::string>& channels,
                              const ColorManager& colors)
     {
         const fs::path path = manifest_path(out_dir);
@@ -83,7 +86,9 @@ namespace {
             const LayerStats s = stats_of(layer.thickness_um, domain.area_weight);
             toml::table entry;
             entry.insert_or_assign("material", layer.material->name);
-            entry.insert_or_assign("map", layer_maps[l]);
+            entry.insert_or_assign("map", kThicknessMap);
+            entry.insert_or_assign("channel", channels[l]);
+            entry.insert_or_assign("layer_map", layer_maps[l]);
             entry.insert_or_assign("made_by", layer.made_by);
             entry.insert_or_assign("mean_um", s.mean);
             entry.insert_or_assign("max_um", s.max);
@@ -120,6 +125,12 @@ std::string layer_map_name(size_t index, const PatinaMaterial& material)
     return fmt::format("layer{:02}_{}", index, slug(material.name));
 }
 
+std::string layer_channel_name(size_t index, size_t layer_count, const PatinaMaterial& material)
+{
+    const int width = std::max(2, static_cast<int>(std::to_string(layer_count).size()));
+    return fmt::format("layer{:0{}}_{}", index, width, slug(material.name));
+}
+
 std::vector<fs::path> write_patina_step(const fs::path& out_dir, const PatinaStep& step,
                                         const PatinaDomain& domain,
                                         const PatinaOutputOptions& options,
@@ -131,35 +142,58 @@ std::vector<fs::path> write_patina_step(const fs::path& out_dir, const PatinaSte
     Metadata parameters = options.parameters;
     parameters.emplace_back("patina:time_years", static_cast<float>(step.time_years));
 
-    auto write_map = [&](const std::string& name, const std::string& description,
-                         const std::vector<float>& values) {
+    auto write_map = [&](const std::string& name, const std::vector<std::string>& channels,
+                         const std::string& description,
+                         const std::vector<std::vector<float>>& tiles) {
         MapDescription map;
         map.name = name;
-        map.channels = {"thickness"};
+        map.channels = channels;
         map.units = "um";
         map.description = description;
         map.baker = kBaker;
         map.parameters = parameters;
-        const auto files = write_texel_map(out_dir, map, domain.grids, domain.per_tile(values),
-                                           options.maps);
+        const auto files = write_texel_map(out_dir, map, domain.grids, tiles, options.maps);
         record_in_manifest(out_dir, map, files, domain.grids);
         written.insert(written.end(), files.begin(), files.end());
     };
 
-    std::vector<std::string> layer_maps;
-    for (size_t l = 0; l < step.layers.size(); ++l) {
+    const size_t n = step.layers.size();
+    std::vector<std::string> layer_maps, channels;
+    for (size_t l = 0; l < n; ++l) {
         const ResultLayer& layer = step.layers[l];
         layer_maps.push_back(layer_map_name(l + 1, *layer.material));
-        write_map(layer_maps.back(),
+        channels.push_back(layer_channel_name(l + 1, n, *layer.material));
+        write_map(layer_maps.back(), {"thickness"},
                   fmt::format("thickness of layer {} ({}, {}) in micrometres", l + 1,
                               layer.material->name, layer.made_by),
-                  layer.thickness_um);
+                  domain.per_tile(layer.thickness_um));
     }
-    write_map("total_thickness",
+    // The same thicknesses in one map, a channel per layer, so that a renderer reads the
+    // whole stack with one texture lookup (plugins/layered). OpenEXR keeps channels sorted
+    // by name; the zero-padded layer numbers make that the layer order, the order of the
+    // `channels` list in stack.toml.
+    if (n > 0) {
+        std::vector<std::vector<float>> tiles;
+        for (size_t l = 0; l < n; ++l) {
+            const std::vector<std::vector<float>> layer_tiles =
+                domain.per_tile(step.layers[l].thickness_um);
+            tiles.resize(layer_tiles.size());
+            for (size_t t = 0; t < layer_tiles.size(); ++t) {
+                tiles[t].resize(layer_tiles[t].size() * n);
+                for (size_t g = 0; g < layer_tiles[t].size(); ++g)
+                    tiles[t][g * n + l] = layer_tiles[t][g];
+            }
+        }
+        write_map(kThicknessMap, channels,
+                  "thickness of every layer in micrometres, one channel per layer, bottom to "
+                  "top (the layers' maps in one file)",
+                  tiles);
+    }
+    write_map("total_thickness", {"thickness"},
               "total thickness of the layers over the base in micrometres (for displacement or "
               "bump, D&H 1996 §4.3)",
-              step.total_um);
-    record_patina_table(out_dir, step, domain, options, layer_maps, colors);
+              domain.per_tile(step.total_um));
+    record_patina_table(out_dir, step, domain, options, layer_maps, channels, colors);
     written.push_back(manifest_path(out_dir));
 
     if (options.preview) {

@@ -206,4 +206,41 @@ TEST(LayeredKm, OneMultiChannelMapEqualsOneMapPerLayer)
     EXPECT_GT(std::abs(swapped.f(wo, wi)[0] - one.f(wo, wi)[0]), 1e-4f * one.f(wo, wi)[0]);
 }
 
+TEST(LayeredKm, EachWavelengthIsIndependentOfTheOthers)
+{
+    // The model runs four wavelengths per register (plugins/layered/lanes.h): f and the
+    // albedo at a wavelength must be exactly what the shader gives for that wavelength alone,
+    // for a metal and a dielectric base and for 8, 5 and 3 wavelengths (a partial register).
+    const TestStack metal{"copper",
+                          {{"green", 0.7f}, {"brown", 0.03f}, {"green", 1.9f}, {"dirt", 0.45f}},
+                          {kCopper, kGreen, kBrown, kDirt}};
+    const TestStack dielectric{"dirt", {{"brown", 0.2f}, {"green", 3.0f}},
+                               {kGreen, kBrown, kDirt}};
+    const std::pair<std::string, TestStack> stacks[] = {{"lanes_metal", metal},
+                                                        {"lanes_dielectric", dielectric}};
+    for (const auto& [name, stack] : stacks) {
+        Layered all(write_stack(name, stack));
+        Layered one(write_stack(name + "_one", stack));
+        ASSERT_TRUE(all && one) << all.errors() << one.errors();
+        for (int count : {8, 5, 3}) {
+            PatinaWavelengths wl = test_wavelengths();
+            wl.count = count;
+            all.set_wavelengths(wl);
+            for (const auto& [wo, wi] : direction_pairs()) {
+                const Spectrum f = all.f(wo, wi), a = all.albedo(wo);
+                for (int i = 0; i < count; ++i) {
+                    PatinaWavelengths single{};
+                    single.count = 1;
+                    single.lambda_nm[0] = wl.lambda_nm[i];
+                    one.set_wavelengths(single);
+                    EXPECT_EQ(f[i], one.f(wo, wi)[0]) << name << " λ#" << i << " of " << count;
+                    EXPECT_EQ(a[i], one.albedo(wo)[0]) << name << " λ#" << i << " of " << count;
+                }
+                for (int i = count; i < 8; ++i)
+                    EXPECT_EQ(f[i], 0.0f) << "unused entry " << i;
+            }
+        }
+    }
+}
+
 }  // namespace patina::test
