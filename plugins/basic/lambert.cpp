@@ -133,7 +133,10 @@ namespace {
             return;
         }
         if (lambert->constant) {
-            fill(lambert->constant_f, *wl, f);
+            // Every lane of the output array (abi.h: it holds PATINA_MAX_WAVELENGTHS
+            // floats): two vector stores instead of a loop over the count.
+            for (int i = 0; i < PATINA_MAX_WAVELENGTHS; ++i)
+                f[i] = lambert->constant_f;
             return;
         }
         // Lambertian BRDF f = R / π: pbrt-v4 §9.2
