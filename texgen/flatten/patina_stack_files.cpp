@@ -121,6 +121,15 @@ PatinaStackFiles read_patina_stack(const fs::path& stack)
             }
             map_files(manifest, root, *map, udims, files.files, out.width, out.height,
                       out.strip_size_m);
+            // The layer's single-channel copy (stack_writer writes both) must be there too:
+            // a stack with a listed file missing is broken, whichever file we read.
+            if (const auto single = (*layer)["layer_map"].value<std::string>()) {
+                std::vector<int> single_udims;
+                std::vector<fs::path> single_files;
+                int w = 0, h = 0;
+                double size = 0.0;
+                map_files(manifest, root, *single, single_udims, single_files, w, h, size);
+            }
             if (i == 0)
                 out.udims = udims;
             else if (udims != out.udims)

@@ -34,9 +34,9 @@ struct PatinaStackFiles {
 /// Throws std::runtime_error naming the file for: no such file or folder, a TOML syntax
 /// error (with its line), no `[patina]` table (not a patina stack), a layer without
 /// material or map, a `channel` that is neither a name nor an index into its map's
-/// `channels`, a map missing from `[maps]`, layers on different tiles, and a map file
-/// that does not exist. A folder holding series.toml but no stack.toml is a time series:
-/// the message names its step folders.
+/// `channels`, a map missing from `[maps]` (the layer's `map` or its `layer_map`), layers on
+/// different tiles, and a map file that does not exist. A folder holding series.toml but no
+/// stack.toml is a time series: the message names its step folders.
 PatinaStackFiles read_patina_stack(const std::filesystem::path& stack);
 
 }  // namespace patina::texgen
