@@ -73,6 +73,16 @@ static void print_activity(const StoneState& st, const char* when)
         sum += a;
         top = std::max(top, a);
     }
+    // Slabs per active depth: a few slabs with a deep surface (eroded, or cut at a slant)
+    // carry most of the active layers.
+    std::vector<int> slabs_at(size_t(g.n_d) + 1);
+    for (int a : st.active_depth)
+        ++slabs_at[size_t(a)];
+    std::printf("  slabs per active depth:");
+    for (int k = 0; k <= g.n_d; ++k)
+        if (slabs_at[size_t(k)])
+            std::printf(" %d:%d", k, slabs_at[size_t(k)]);
+    std::printf("\n");
     size_t moist = 0;
     for (size_t c = 0; c < st.moisture.size(); ++c)
         moist += (st.flags[c] & kStone) && st.moisture[c] >= 0.5f;

@@ -19,6 +19,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 
 namespace patina::texgen::stone {
@@ -72,18 +73,28 @@ namespace {
         float* p = st.pressure.data();
         // Dirichlet values: the surface and the air above it carry the surface pressure.
         // Below the active layers the stone is dry and p = 0 is never read.
+        std::vector<char> changed(size_t(g.slab_count), 0);
         tbb::parallel_for(0, g.slab_count, [&](int s) {
             for (int k = 0; k < st.active_depth[size_t(s)]; ++k)
                 for (int j = 0; j < g.n_t; ++j) {
                     const size_t row = g.index(s, 0, j, k);
                     for (int i = 0; i < g.n_t; ++i) {
                         const uint8_t f = st.flags[row + size_t(i)];
-                        if (!(f & kStone) || (f & kSurface))
-                            p[row + size_t(i)] = boundary_pressure(st, column_index(g, s, i, j), wet);
+                        if (!(f & kStone) || (f & kSurface)) {
+                            const float pb = boundary_pressure(st, column_index(g, s, i, j), wet);
+                            float& pc = p[row + size_t(i)];
+                            if (std::bit_cast<uint32_t>(pc) != std::bit_cast<uint32_t>(pb)) {
+                                pc = pb;
+                                changed[size_t(s)] = 1;
+                            }
+                        }
                     }
                 }
         });
-        lat.fill_halo(p, &st.active_depth);
+        // The halo holds the last step's pressure (filled at its end); unless a boundary
+        // value changed (a new phase, erosion), it is still the halo of these values.
+        if (std::find(changed.begin(), changed.end(), 1) != changed.end())
+            lat.fill_halo(p, &st.active_depth);
 
         const float rate = float(st.dt * st.params.pressure_diffusivity);
         const auto& w = lat.weights();

@@ -102,8 +102,12 @@ void transport_step(StoneState& st, bool wet)
             for (int i = 0; i < g.n_t; ++i) {
                 const size_t c = g.index(s, i, j, k);
                 const float water = st.porosity[c] * st.density[c];
-                for (int m = 0; m < kSpecies; ++m)
-                    st.concentration[m][c] = water > 0.0f ? st.dissolved[m][c] / water : 0.0f;
+                for (int m = 0; m < kSpecies; ++m) {
+                    // Most voxels hold nothing: 0 / water is the amount itself (sign kept).
+                    const float amount = st.dissolved[m][c];
+                    st.concentration[m][c] =
+                        water > 0.0f ? (amount != 0.0f ? amount / water : amount) : 0.0f;
+                }
                 bool full = moist(st, c);
                 size_t y = 0;
                 for (int d = 0; d < 6 && full; ++d)
@@ -163,6 +167,57 @@ void transport_step(StoneState& st, bool wet)
                         const size_t y = c + sign * lat.axis_offset(a);
                         front = st.density[y] >= 0.5f && st.moisture[y] < 0.5f;
                     }
+                // The pairs this voxel exchanges with, and what of each exchange does not
+                // depend on the species: worked out once, then used for all three.
+                struct Diffusive {
+                    size_t y;
+                    bool ghost, negative_allowed;
+                    float pair_weight, porosity, water;
+                };
+                struct Advective {
+                    size_t y;
+                    bool ghost;
+                    float q;
+                };
+                std::array<Diffusive, 12> diffusive;
+                std::array<Advective, 6> advective;
+                int n_diffusive = 0, n_advective = 0;
+                for (int d = 0; d < 6; ++d)
+                    for (int sign = -1; sign <= 1; sign += 2) {
+                        size_t y = 0;
+                        if (!solute_partner(st, c, k, sign * o[d], sign * dk[d], &y))
+                            continue;
+                        // Ghosts carry no weights, volume or stencil flag: use c's.
+                        const bool ghost = vol[y] == 0.0f;
+                        const float wy = ghost ? w[d][c] : w[d][y];
+                        const float vy = ghost ? vol[c] : vol[y];
+                        const float vw_y = st.porosity[y] * st.density[y] * vy;
+                        diffusive[size_t(n_diffusive++)] = {
+                            y, ghost, full_c && (ghost || st.full_stencil[y]),
+                            w[d][c] + wy, std::min(st.porosity[c], st.porosity[y]),
+                            std::min(vw_c, vw_y)};
+                    }
+                for (int a = 0; a < 3; ++a)
+                    for (int sign = -1; sign <= 1; sign += 2) {
+                        const size_t y = c + sign * lat.axis_offset(a);
+                        if (!lat.flux_partner(y) || !moist(st, y))
+                            continue;
+                        // Darcy flow rate (volume per time) from c into y, symmetric in the
+                        // pair up to its sign; limited so a step moves at most a tenth of the
+                        // smaller voxel's water.
+                        const float kf = 0.5f * (st.permeability[c] + st.permeability[y]);
+                        const float vd = -kf * inv_eta *
+                                         ((st.pressure[y] - st.pressure[c]) +
+                                          (st.head[y] - st.head[c]));
+                        const float vy = vol[y] != 0.0f ? vol[y] : vol[c];
+                        const float hc = axis_metric(w, a, c);
+                        const float hy = vol[y] != 0.0f ? axis_metric(w, a, y) : hc;
+                        float q = vd * 0.25f * (vol[c] + vy) * (hc + hy);
+                        const float cap = 0.1f / dt *
+                                          std::min(vw_c, st.porosity[y] * st.density[y] * vy);
+                        q = std::clamp(q, -cap, cap);
+                        advective[size_t(n_advective++)] = {y, vol[y] == 0.0f, q};
+                    }
                 float dissolved_now = 0.0f;
                 for (int m = 0; m < kSpecies; ++m) {
                     const float* C = st.concentration[m].data();
@@ -172,52 +227,26 @@ void transport_step(StoneState& st, bool wet)
                     float flux = 0.0f; // amount x volume per unit time into c
                     // A flux F from y into c: whole inside the slab; half across a seam, the
                     // other half taken from the ghost's sources (see the top of the file).
-                    auto exchange = [&](size_t y, float F) {
-                        if (vol[y] != 0.0f) {
+                    auto exchange = [&](size_t y, bool ghost, float F) {
+                        if (!ghost) {
                             flux += F;
                         } else {
                             flux += 0.5f * F;
                             ledger[y] += 0.5f * F;
                         }
                     };
-                    for (int d = 0; d < 6; ++d)
-                        for (int sign = -1; sign <= 1; sign += 2) {
-                            size_t y = 0;
-                            if (!solute_partner(st, c, k, sign * o[d], sign * dk[d], &y))
-                                continue;
-                            // Ghosts carry no weights, volume or stencil flag: use c's.
-                            const bool ghost = vol[y] == 0.0f;
-                            const float wy = ghost ? w[d][c] : w[d][y];
-                            const float vy = ghost ? vol[c] : vol[y];
-                            const float vw_y = st.porosity[y] * st.density[y] * vy;
-                            float kappa = dm * 0.5f * (w[d][c] + wy) *
-                                          std::min(st.porosity[c], st.porosity[y]) *
-                                          std::min(vw_c, vw_y);
-                            if (kappa < 0.0f && !(full_c && (ghost || st.full_stencil[y])))
-                                kappa = 0.0f;
-                            exchange(y, kappa * (C[y] - cc));
-                        }
-                    for (int a = 0; a < 3; ++a)
-                        for (int sign = -1; sign <= 1; sign += 2) {
-                            const size_t y = c + sign * lat.axis_offset(a);
-                            if (!lat.flux_partner(y) || !moist(st, y))
-                                continue;
-                            // Darcy flow rate (volume per time) from c into y, symmetric in
-                            // the pair up to its sign; limited so a step moves at most a
-                            // tenth of the smaller voxel's water.
-                            const float kf = 0.5f * (st.permeability[c] + st.permeability[y]);
-                            const float vd = -kf * inv_eta *
-                                             ((st.pressure[y] - st.pressure[c]) +
-                                              (st.head[y] - st.head[c]));
-                            const float vy = vol[y] != 0.0f ? vol[y] : vol[c];
-                            const float hc = axis_metric(w, a, c);
-                            const float hy = vol[y] != 0.0f ? axis_metric(w, a, y) : hc;
-                            float q = vd * 0.25f * (vol[c] + vy) * (hc + hy);
-                            const float cap = 0.1f / dt *
-                                              std::min(vw_c, st.porosity[y] * st.density[y] * vy);
-                            q = std::clamp(q, -cap, cap);
-                            exchange(y, std::max(0.0f, -q) * C[y] - std::max(0.0f, q) * cc);
-                        }
+                    for (int e = 0; e < n_diffusive; ++e) {
+                        const Diffusive& x = diffusive[size_t(e)];
+                        float kappa = dm * 0.5f * x.pair_weight * x.porosity * x.water;
+                        if (kappa < 0.0f && !x.negative_allowed)
+                            kappa = 0.0f;
+                        exchange(x.y, x.ghost, kappa * (C[x.y] - cc));
+                    }
+                    for (int e = 0; e < n_advective; ++e) {
+                        const Advective& x = advective[size_t(e)];
+                        exchange(x.y, x.ghost,
+                                 std::max(0.0f, -x.q) * C[x.y] - std::max(0.0f, x.q) * cc);
+                    }
                     float amount = st.dissolved[m][c] + dt * flux / vol[c];
                     if (front) {
                         // Dissolution up to saturation, from the solid mineral.
@@ -258,12 +287,12 @@ void transport_step(StoneState& st, bool wet)
             return;
         for (uint32_t e0 = st.seams.first(q); e0 < st.seams.last(q); ++e0) {
             const size_t c = feeding[e0];
-            for (int m = 0; m < kSpecies; ++m) {
-                float out = 0.0f;
-                for (uint32_t e = begin[c]; e < begin[c + 1]; ++e)
-                    out += feeds[e].weight * st.ghost_flux[m][feeds[e].ghost];
-                st.dissolved[m][c] -= dt * out / vol[c];
-            }
+            std::array<float, kSpecies> out{};
+            for (uint32_t e = begin[c]; e < begin[c + 1]; ++e)
+                for (int m = 0; m < kSpecies; ++m)
+                    out[m] += feeds[e].weight * st.ghost_flux[m][feeds[e].ghost];
+            for (int m = 0; m < kSpecies; ++m)
+                st.dissolved[m][c] -= dt * out[m] / vol[c];
         }
     });
 }
