@@ -155,11 +155,14 @@ StoneSample Quarry::sandstone(const V3d& world) const
     const SolidNoise& noise = noise_for(noise_seed_);
     const V3d p = world / options_.feature_size;
     // Bedding planes: the height along `up`, distorted by turbulence, in beds of one
-    // feature size; the planes are the top fifth of each bed.
+    // feature size; the planes are the top part of each bed, full over 0.14 of the bed and
+    // fading out over 0.08 more on each side (a plateau, not a peak: thin peaks alias into
+    // dashes on a voxel grid of a few voxels per bed).
     const double turb = noise.turbulence(p.x * 0.25, p.y * 0.25, p.z * 0.25, 4);
     const double h = p.dot(up_) + 1.5 * turb;
     const double phase = h - std::floor(h);
-    const double plane = std::clamp(1.0 - std::abs(phase - 0.85) / 0.12, 0.0, 1.0);
+    const double edge = std::clamp((0.15 - std::abs(phase - 0.8)) / 0.08, 0.0, 1.0);
+    const double plane = edge * edge * (3.0 - 2.0 * edge);
     StoneSample s;
     s.porosity = float(0.12 + 0.16 * plane);
     s.mineral[kSoluble] = float(0.20 + 0.05 * plane); // carbonate and clay cement

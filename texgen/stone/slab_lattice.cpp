@@ -11,6 +11,16 @@ namespace patina::texgen::stone {
 
 using Imath::V3d;
 
+namespace {
+
+    /// How far inside [0, 1]^3 a slab coordinate lies (distance to the nearest face).
+    double inside_depth(const V3d& uvw)
+    {
+        return std::min({uvw.x, uvw.y, uvw.z, 1.0 - uvw.x, 1.0 - uvw.y, 1.0 - uvw.z});
+    }
+
+} // namespace
+
 SlabGrid::SlabGrid(int tangential, int depth, int slabs)
     : n_t(tangential), n_d(depth), slab_count(slabs), sx(tangential + 2), sy(tangential + 2),
       sz(depth + 2), slab_size(size_t(sx) * sy * sz)
@@ -101,7 +111,18 @@ SlabLattice::SlabLattice(const SlabShell& shell, int n_t, int n_d)
         const int i = int(local % grid_.sx) - 1, j = int((local / grid_.sx) % grid_.sy) - 1,
                   k = int(local / (size_t(grid_.sx) * grid_.sy)) - 1;
         const V3d p = slab_to_world(shell_.slabs[size_t(s)], grid_.uvw(i, j, k));
-        std::optional<SlabPoint> at = locator_.locate(p, 1e-6);
+        // A side ghost lies half a voxel inside the slab across that side: try it first and
+        // search the grid only for corner ghosts or where the neighbour does not hold it.
+        std::optional<SlabPoint> at;
+        const int side = j < 0 ? 0 : i >= n_t ? 1 : j >= n_t ? 2 : 3;
+        const bool corner = (i < 0 || i >= n_t) && (j < 0 || j >= n_t);
+        const int across = corner ? -1 : shell_.neighbours[size_t(s)][size_t(side)];
+        V3d uvw;
+        if (across >= 0 && world_to_slab(shell_.slabs[size_t(across)], p, uvw) &&
+            inside_depth(uvw) >= 0.25 / std::max(n_t, n_d))
+            at = SlabPoint{across, uvw};
+        else
+            at = locator_.locate(p, 1e-6);
         if (at && at->slab == s)
             at.reset();
         if (!at) {

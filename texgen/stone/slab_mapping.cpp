@@ -7,6 +7,12 @@ namespace patina::texgen::stone {
 
 using Imath::V3d;
 
+namespace {
+    /// Candidates whose first Newton step lands this far outside are not refined (see
+    /// world_to_slab).
+    constexpr double kQuickReject = 1.0;
+} // namespace
+
 V3d slab_to_world(const SlabCorners& c, const V3d& t)
 {
     const V3d a = c[0] + t.x * (c[1] - c[0]), b = c[2] + t.x * (c[3] - c[2]);
@@ -27,7 +33,7 @@ void slab_derivatives(const SlabCorners& c, const V3d& t, V3d& du, V3d& dv, V3d&
          (1 - u) * v * (c[6] - c[2]) + u * v * (c[7] - c[3]);
 }
 
-bool world_to_slab(const SlabCorners& c, const V3d& p, V3d& uvw)
+bool world_to_slab(const SlabCorners& c, const V3d& p, V3d& uvw, double reject_beyond)
 {
     double size = 0.0;
     for (int i = 1; i < 8; ++i)
@@ -35,7 +41,7 @@ bool world_to_slab(const SlabCorners& c, const V3d& p, V3d& uvw)
     const double tol = 1e-9 * size;
     // Damped Newton: halve a step that does not reduce the residual (the trilinear map of a
     // skewed slab is far from linear), from the centre and, failing that, from the corners.
-    auto solve = [&](const V3d& start) {
+    auto solve = [&](const V3d& start, double reject) {
         uvw = start;
         V3d r = slab_to_world(c, uvw) - p;
         for (int it = 0; it < 30; ++it) {
@@ -49,6 +55,8 @@ bool world_to_slab(const SlabCorners& c, const V3d& p, V3d& uvw)
                 return false;
             const V3d delta(r.cross(dv).dot(dw) / det, du.cross(r).dot(dw) / det,
                             du.cross(dv).dot(r) / det);
+            if (it == 0 && outside_distance(uvw - delta) > reject)
+                return false;
             double step = 1.0;
             for (int half = 0; half < 8; ++half, step *= 0.5) {
                 V3d next = uvw - step * delta;
@@ -64,13 +72,14 @@ bool world_to_slab(const SlabCorners& c, const V3d& p, V3d& uvw)
         }
         return r.length() <= tol * 1e3;
     };
-    if (solve(V3d(0.5)))
+    if (solve(V3d(0.5), reject_beyond))
         return true;
     // Clearly outside (the usual case for a candidate slab that does not hold p): no retries.
     if (outside_distance(uvw) > 0.25)
         return false;
     for (int corner = 0; corner < 8; ++corner)
-        if (solve(V3d(corner & 1 ? 0.9 : 0.1, corner & 2 ? 0.9 : 0.1, corner & 4 ? 0.9 : 0.1)))
+        if (solve(V3d(corner & 1 ? 0.9 : 0.1, corner & 2 ? 0.9 : 0.1, corner & 4 ? 0.9 : 0.1),
+                  std::numeric_limits<double>::infinity()))
             return true;
     return false;
 }
@@ -157,7 +166,7 @@ std::optional<SlabPoint> SlabLocator::locate(const V3d& p, double tolerance) con
     double best_depth = -1.0;
     for_candidates(p, [&](int s) {
         V3d uvw;
-        if (!world_to_slab(slabs_[s], p, uvw))
+        if (!world_to_slab(slabs_[s], p, uvw, kQuickReject))
             return;
         const double out = outside_distance(uvw);
         if (out > tolerance)
@@ -181,7 +190,7 @@ std::vector<SlabPoint> SlabLocator::locate_all(const V3d& p, double tolerance) c
     std::vector<SlabPoint> all;
     for_candidates(p, [&](int s) {
         V3d uvw;
-        if (world_to_slab(slabs_[s], p, uvw) && outside_distance(uvw) <= tolerance)
+        if (world_to_slab(slabs_[s], p, uvw, kQuickReject) && outside_distance(uvw) <= tolerance)
             all.push_back(SlabPoint{s, uvw});
     });
     return all;
