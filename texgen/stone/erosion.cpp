@@ -21,21 +21,28 @@ void erosion_events(StoneState& st)
     const SlabLattice& lat = *st.lattice;
     const SlabGrid& g = lat.grid();
 
-    // Surface voxels and the running sum of their decay (serial: deterministic).
+    // Surface voxels and the running sum of their decay (serial: deterministic), in cell
+    // order; surface voxels lie above each slab's surface depth (the halo has no flags).
     std::vector<uint32_t> cells;
     std::vector<double> cdf;
     double total = 0.0;
-    for (size_t c = 0; c < g.cell_count(); ++c)
-        if ((st.flags[c] & kSurface) && st.decay[c] > 0.0f) {
-            total += st.decay[c];
-            cells.push_back(uint32_t(c));
-            cdf.push_back(total);
-        }
+    size_t n_surface = 0;
+    for (int s = 0; s < g.slab_count; ++s)
+        for (int k = 0; k < st.surface_depth[size_t(s)]; ++k)
+            for (int j = 0; j < g.n_t; ++j)
+                for (int i = 0; i < g.n_t; ++i) {
+                    const size_t c = g.index(s, i, j, k);
+                    if (!(st.flags[c] & kSurface))
+                        continue;
+                    ++n_surface;
+                    if (st.decay[c] > 0.0f) {
+                        total += st.decay[c];
+                        cells.push_back(uint32_t(c));
+                        cdf.push_back(total);
+                    }
+                }
     if (cells.empty() || !(total > 0.0))
         return;
-    size_t n_surface = 0;
-    for (uint8_t f : st.flags)
-        n_surface += (f & kSurface) ? 1 : 0;
     Pcg32 rng(hash_values(prm.seed, 0xe705, uint64_t(st.cycles_done)));
     // A fractional expected count becomes one more event with that probability.
     const double expected = prm.erosion_events * double(n_surface);
