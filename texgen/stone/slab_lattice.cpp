@@ -98,10 +98,8 @@ SlabLattice::SlabLattice(const SlabShell& shell, int n_t, int n_d)
         for (int k = 0; k < n_d; ++k)
             for (int j = -1; j <= n_t; ++j)
                 for (int i = -1; i <= n_t; ++i)
-                    if (i < 0 || j < 0 || i >= n_t || j >= n_t) {
+                    if (i < 0 || j < 0 || i >= n_t || j >= n_t)
                         ghost_cell_.push_back(uint32_t(grid_.index(s, i, j, k)));
-                        ghost_k_.push_back(uint16_t(k));
-                    }
     ghost_sources_.resize(ghost_cell_.size());
     std::vector<char> connected(ghost_cell_.size(), 1);
     const int per_slab = int(ghost_cell_.size()) / grid_.slab_count;
@@ -162,15 +160,21 @@ SlabLattice::SlabLattice(const SlabShell& shell, int n_t, int n_d)
 
 void SlabLattice::fill_halo(float* field, const std::vector<int>* active) const
 {
+    // Ghosts are stored by slab, then layer: with `active`, only the ghosts of the layers
+    // read this step (k <= active depth) are visited at all.
     const size_t per_slab = ghost_cell_.size() / size_t(grid_.slab_count);
-    tbb::parallel_for(size_t(0), ghost_cell_.size(), [&](size_t g) {
-        if (active && ghost_k_[g] > (*active)[g / per_slab]) // not read this step
-            return;
-        const auto& src = ghost_sources_[g];
-        float v = 0.0f;
-        for (const GhostSource& s : src)
-            v += s.weight * field[s.cell];
-        field[ghost_cell_[g]] = v;
+    const size_t per_layer = per_slab / size_t(grid_.n_d);
+    tbb::parallel_for(0, grid_.slab_count, [&](int slab) {
+        const int layers =
+            active ? std::clamp((*active)[size_t(slab)] + 1, 0, grid_.n_d) : grid_.n_d;
+        const size_t begin = size_t(slab) * per_slab;
+        const size_t end = begin + size_t(layers) * per_layer;
+        for (size_t g = begin; g < end; ++g) {
+            float v = 0.0f;
+            for (const GhostSource& s : ghost_sources_[g])
+                v += s.weight * field[s.cell];
+            field[ghost_cell_[g]] = v;
+        }
     });
     const SlabGrid& g = grid_;
     tbb::parallel_for(0, g.slab_count, [&](int s) {

@@ -106,7 +106,6 @@ private:
     std::vector<StencilSigns> signs_;
     std::vector<std::array<long, 6>> offsets_;
     std::vector<uint32_t> ghost_cell_;
-    std::vector<uint16_t> ghost_k_;  ///< depth layer of each ghost
     std::vector<std::array<GhostSource, 8>> ghost_sources_;
     size_t unconnected_ = 0;
     std::vector<uint8_t> flux_partner_;

@@ -58,17 +58,26 @@ bool world_to_slab(const SlabCorners& c, const V3d& p, V3d& uvw, double reject_b
             if (it == 0 && outside_distance(uvw - delta) > reject)
                 return false;
             double step = 1.0;
+            double moved = 0.0;
             for (int half = 0; half < 8; ++half, step *= 0.5) {
                 V3d next = uvw - step * delta;
                 for (int k = 0; k < 3; ++k)
                     next[k] = std::clamp(next[k], -2.0, 3.0);
                 const V3d rn = slab_to_world(c, next) - p;
                 if (rn.length() < norm || half == 7) {
+                    const V3d d = next - uvw;
+                    moved = std::max({std::abs(d.x), std::abs(d.y), std::abs(d.z)});
                     uvw = next;
                     r = rn;
                     break;
                 }
             }
+            // Converging outside: a full Newton step that has become small against the
+            // distance still left to the slab (quadratic convergence) leaves the answer
+            // outside too.
+            if (reject < std::numeric_limits<double>::infinity() && step == 1.0 &&
+                outside_distance(uvw) > 0.05 + 4.0 * moved)
+                return false;
         }
         return r.length() <= tol * 1e3;
     };

@@ -30,10 +30,11 @@ struct SlabPoint {
 /// Newton iteration for the (u, v, w) of `p` in slab `c`, from the centre; true when it
 /// converged (|slab_to_world(uvw) - p| below 1e-9 of the slab's size). `uvw` may lie outside
 /// [0, 1]^3 (p outside the slab).
-/// With `reject_beyond`, gives up (false) as soon as the first Newton step from the centre
-/// lands farther than that outside [0, 1]^3: the locator's quick rejection of candidate slabs
-/// whose box holds p but which are far from holding it (a linearisation at the centre of a
-/// valid slab is off by well under one slab for points inside it).
+/// With a finite `reject_beyond` (the locator's quick rejection of candidate slabs whose box
+/// holds p but which do not hold it), gives up (false) as soon as the first Newton step from
+/// the centre lands farther than that outside [0, 1]^3 (a linearisation at the centre of a
+/// valid slab is off by well under one slab for points inside it), or when a full Newton
+/// step is small against the distance still left outside (more than 0.05 + 4 steps).
 bool world_to_slab(const SlabCorners& c, const Imath::V3d& p, Imath::V3d& uvw,
                    double reject_beyond = std::numeric_limits<double>::infinity());
 
