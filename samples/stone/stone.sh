@@ -75,13 +75,15 @@ render_series() {
 }
 
 # --- Sandstone column: rain from the front (+z) and above wets the front; deposits make
-# black crusts where it stays dry. Slabs on a coarse copy of the column.
+# black crusts where it stays dry. Slabs on a coarse copy of the column. Beds of 15 cm on a
+# 1.7 cm volume grid, so the iron-rich planes (a quarter of each bed) span two voxels and read
+# as ochre bands.
 awk -f "$here/column.awk" > "$out/column.obj"
 awk -f "$here/column.awk" -v segments=16 -v step=0.2 -v flutes=0 -v solid=1 > "$out/column_slabs.obj"
 "$texgen" stone --mesh "$out/column.obj" --slab-mesh "$out/column_slabs.obj" --out "$out/column" \
-    --stone sandstone --feature-size 0.08 --rain-dir 0 -0.5 -1 --deposit-value 0.3 \
+    --stone sandstone --feature-size 0.15 --rain-dir 0 -0.5 -1 --deposit-value 0.3 \
     --cycles "$cycles" --steps "$steps" --tangential-res 6 --depth-res 6 --depth 0.03 \
-    --grid 96 --map-resolution 0 --seed 1 --quiet
+    --grid 128 --map-resolution 0 --seed 1 --quiet
 sandstone='sigma_t = 150.0
 stone_albedo = [0.99, 0.96, 0.90]
 iron_albedo = [0.90, 0.62, 0.35]
