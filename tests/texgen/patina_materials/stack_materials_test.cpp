@@ -4,6 +4,7 @@
 #include "texgen/patina/patina_domain.h"
 #include "texgen/patina/stack_materials.h"
 #include "texgen/patina/stack_writer.h"
+#include "shipped_materials.h"
 
 #include "core/kubelka_munk.h"
 #include "core/rgb_spectrum.h"
@@ -21,21 +22,8 @@ using namespace patina::texgen;
 
 namespace {
 
-const ColorManager& colors()
-{
-    static ColorManager cm(fs::path(PATINA_SOURCE_DIR) / "ocio" / "config.ocio");
-    return cm;
-}
-
-const MaterialLibrary& shipped()
-{
-    static const MaterialLibrary lib = [] {
-        MaterialLibrary l;
-        l.load(fs::path(PATINA_SOURCE_DIR) / "shaders/patina/copper.toml", colors());
-        return l;
-    }();
-    return lib;
-}
+const ColorManager& colors() { return test::repository_colors(); }
+const MaterialLibrary& shipped() { return test::shipped_copper_library(); }
 
 fs::path write_library(const std::string& name, const std::string& text)
 {

@@ -5,6 +5,7 @@
 #include "texgen/patina/material_library.h"
 #include "texgen/patina/patina_domain.h"
 #include "texgen/patina/stack_writer.h"
+#include "shipped_materials.h"
 
 #include "core/image_io.h"
 
@@ -21,21 +22,8 @@ using namespace patina::texgen;
 
 namespace {
 
-const ColorManager& colors()
-{
-    static ColorManager cm(fs::path(PATINA_SOURCE_DIR) / "ocio" / "config.ocio");
-    return cm;
-}
-
-const MaterialLibrary& shipped()
-{
-    static const MaterialLibrary lib = [] {
-        MaterialLibrary l;
-        l.load(fs::path(PATINA_SOURCE_DIR) / "shaders/patina/copper.toml", colors());
-        return l;
-    }();
-    return lib;
-}
+const ColorManager& colors() { return test::repository_colors(); }
+const MaterialLibrary& shipped() { return test::shipped_copper_library(); }
 
 /// Three layers whose thickness differs per texel and per layer (layer l, texel t:
 /// 0.25 (l + 1) + t / 64 µm, exact in float).
