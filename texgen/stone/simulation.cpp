@@ -127,6 +127,15 @@ void initialise_state(StoneState& st, const SlabLattice& lattice, const Triangle
     for (double d : params.diffusivity)
         d_max = std::max(d_max, d);
     st.dt = 0.4 * 2.0 / (params.pressure_diffusivity * d_max * phi_max * g_max);
+    // The solutes' own limit: their Gershgorin bound is at most 2 alpha D_max phi_max g_max,
+    // so a transport step of span <= 0.8 / (alpha D_max phi_max g_max) keeps it below 2 / rho
+    // with a margin of 0.8, that is floor(d_max / D_max) moisture steps (2 for the default
+    // D_i = 0.5: the transport, most of a step's cost, runs every other step).
+    double solute_max = 0.0;
+    for (double d : params.diffusivity)
+        solute_max = std::max(solute_max, d);
+    st.transport_interval =
+        solute_max > 0.0 ? std::max(1, int(std::floor(d_max / solute_max))) : 1;
 }
 
 void update_flags(StoneState& st)
@@ -281,16 +290,19 @@ double moist_depth(const StoneState& st, const std::vector<char>* selector)
 
 void run_cycle(StoneState& st)
 {
-    for (int i = 0; i < st.params.wet_steps; ++i) {
-        moisture_step(st, true);
-        transport_step(st, true);
-        st.time += st.dt;
-    }
-    for (int i = 0; i < st.params.dry_steps; ++i) {
-        moisture_step(st, false);
-        transport_step(st, false);
-        st.time += st.dt;
-    }
+    auto phase = [&](int steps, bool wet) {
+        int pending = 0;
+        for (int i = 0; i < steps; ++i) {
+            moisture_step(st, wet);
+            st.time += st.dt;
+            if (++pending == st.transport_interval || i + 1 == steps) {
+                transport_step(st, wet, pending);
+                pending = 0;
+            }
+        }
+    };
+    phase(st.params.wet_steps, true);
+    phase(st.params.dry_steps, false);
     erosion_events(st);
     ++st.cycles_done;
 }

@@ -60,6 +60,9 @@ struct StoneState {
     const SlabLattice* lattice = nullptr;
     StoneParameters params;
     double dt = 0.0;      ///< explicit step (stability limit of the pressure diffusion)
+    /// Moisture steps per transport step: the solutes diffuse slower than the pressure, so
+    /// one transport step spans this many dt (its own stability limit, simulation.cpp).
+    int transport_interval = 1;
     double time = 0.0;
     int cycles_done = 0;
 
@@ -118,10 +121,12 @@ double moist_depth(const StoneState& st, const std::vector<char>* column_selecto
 
 // The steps; `wet` selects the phase.
 void moisture_step(StoneState& st, bool wet);   // moisture.cpp: pressure and front
-void transport_step(StoneState& st, bool wet);  // transport.cpp: dissolution, transport, crusts
+/// transport.cpp: dissolution, transport and crusts over `steps` x dt.
+void transport_step(StoneState& st, bool wet, int steps = 1);
 void erosion_events(StoneState& st);            // erosion.cpp: events from the decay index
 
-/// One wet/dry cycle: wet_steps wet steps, dry_steps dry ones, then erosion events.
+/// One wet/dry cycle: wet_steps wet steps, dry_steps dry ones (a transport step after every
+/// transport_interval of them and at the end of each phase), then erosion events.
 void run_cycle(StoneState& st);
 
 } // namespace patina::texgen::stone

@@ -67,6 +67,33 @@ namespace {
                moist(st, *y);
     }
 
+    /// The species in the lanes of one vector (the fourth lane is unused).
+    using F4 = float __attribute__((vector_size(16)));
+    using Fields = std::array<float*, kSpecies>;
+    static_assert(kSpecies <= 4);
+
+    inline F4 gather(const Fields& f, size_t c)
+    {
+        F4 v{};
+        for (int m = 0; m < kSpecies; ++m)
+            v[m] = f[size_t(m)][c];
+        return v;
+    }
+
+    inline void scatter(const Fields& f, size_t c, F4 v)
+    {
+        for (int m = 0; m < kSpecies; ++m)
+            f[size_t(m)][c] = v[m];
+    }
+
+    inline F4 per_species(const std::array<double, kSpecies>& a, float scale = 1.0f)
+    {
+        F4 v{};
+        for (int m = 0; m < kSpecies; ++m)
+            v[m] = scale * float(a[size_t(m)]);
+        return v;
+    }
+
     inline float axis_metric(const std::array<std::vector<float>, 6>& w, int a, size_t c)
     {
         return a == 0 ? w[0][c] + w[3][c] + w[5][c]
@@ -76,14 +103,14 @@ namespace {
 
 } // namespace
 
-void transport_step(StoneState& st, bool wet)
+void transport_step(StoneState& st, bool wet, int steps)
 {
     const SlabLattice& lat = *st.lattice;
     const SlabGrid& g = lat.grid();
     const auto& w = lat.weights();
     const auto& vol = lat.volume();
     const StoneParameters& prm = st.params;
-    const float dt = float(st.dt);
+    const float dt = float(st.dt * steps);
     const float alpha = float(prm.pressure_diffusivity);
     const float inv_eta = float(1.0 / prm.viscosity);
 
@@ -125,6 +152,28 @@ void transport_step(StoneState& st, bool wet)
             st.ghost_flux[m].assign(g.cell_count(), 0.0f);
     if (st.ghost_flux_depth.size() != size_t(g.slab_count))
         st.ghost_flux_depth.assign(size_t(g.slab_count), g.n_d - 1);
+    Fields C, dissolved, solid_of, crust_of, ledger;
+    for (int m = 0; m < kSpecies; ++m) {
+        C[size_t(m)] = st.concentration[m].data();
+        dissolved[size_t(m)] = st.dissolved[m].data();
+        solid_of[size_t(m)] = st.solid[m].data();
+        crust_of[size_t(m)] = st.crust[m].data();
+        ledger[size_t(m)] = st.ghost_flux[m].data();
+    }
+    const F4 dm = per_species(prm.diffusivity, alpha);
+    const F4 saturation = per_species(prm.saturation);
+    F4 rate_cap{};
+    for (int m = 0; m < kSpecies; ++m)
+        rate_cap[m] = std::min(1.0f, dt * float(prm.solubility[m]));
+    const float crystallise = std::min(1.0f, dt * float(prm.crystallisation_rate));
+    auto exchange = [&](size_t y, bool ghost, F4 F, F4& flux) {
+        if (!ghost) {
+            flux += F;
+        } else {
+            flux += 0.5f * F;
+            scatter(ledger, y, gather(ledger, y) + 0.5f * F);
+        }
+    };
     tbb::parallel_for(0, g.slab_count, [&](int s) {
       // Ghosts receive from the active layers and one below; clear what the last step wrote.
       int& written = st.ghost_flux_depth[size_t(s)];
@@ -218,58 +267,46 @@ void transport_step(StoneState& st, bool wet)
                         q = std::clamp(q, -cap, cap);
                         advective[size_t(n_advective++)] = {y, vol[y] == 0.0f, q};
                     }
-                float dissolved_now = 0.0f;
-                for (int m = 0; m < kSpecies; ++m) {
-                    const float* C = st.concentration[m].data();
-                    float* ledger = st.ghost_flux[m].data();
-                    const float cc = C[c];
-                    const float dm = alpha * float(prm.diffusivity[m]);
-                    float flux = 0.0f; // amount x volume per unit time into c
-                    // A flux F from y into c: whole inside the slab; half across a seam, the
-                    // other half taken from the ghost's sources (see the top of the file).
-                    auto exchange = [&](size_t y, bool ghost, float F) {
-                        if (!ghost) {
-                            flux += F;
-                        } else {
-                            flux += 0.5f * F;
-                            ledger[y] += 0.5f * F;
-                        }
-                    };
-                    for (int e = 0; e < n_diffusive; ++e) {
-                        const Diffusive& x = diffusive[size_t(e)];
-                        float kappa = dm * 0.5f * x.pair_weight * x.porosity * x.water;
-                        if (kappa < 0.0f && !x.negative_allowed)
-                            kappa = 0.0f;
-                        exchange(x.y, x.ghost, kappa * (C[x.y] - cc));
-                    }
-                    for (int e = 0; e < n_advective; ++e) {
-                        const Advective& x = advective[size_t(e)];
-                        exchange(x.y, x.ghost,
-                                 std::max(0.0f, -x.q) * C[x.y] - std::max(0.0f, x.q) * cc);
-                    }
-                    float amount = st.dissolved[m][c] + dt * flux / vol[c];
-                    if (front) {
-                        // Dissolution up to saturation, from the solid mineral.
-                        // At most up to saturation in one step, however fast the rate.
-                        const float take = std::min(
-                            st.solid[m][c],
-                            std::min(1.0f, dt * float(prm.solubility[m])) *
-                                std::max(0.0f, float(prm.saturation[m]) - cc) * water_c);
-                        st.solid[m][c] -= take;
-                        amount += take;
-                        if (m == kSoluble)
-                            dissolved_now += take;
-                    }
-                    if (!wet && (f & kSurface)) {
-                        // Evaporation at the surface: the load crystallises as crust.
-                        const float cryst = std::min(1.0f, dt * float(prm.crystallisation_rate)) *
-                                            amount;
-                        st.crust[m][c] += cryst;
-                        amount -= cryst;
-                    }
-                    // In place: neighbours read only the concentrations computed above.
-                    st.dissolved[m][c] = amount;
+                // The three species in the lanes of one vector: each lane does the scalar
+                // operations in the same order, so the bits are those of a loop over species.
+                const F4 cc = gather(C, c);
+                F4 flux{}; // amount x volume per unit time into c
+                // A flux F from y into c: whole inside the slab; half across a seam, the
+                // other half taken from the ghost's sources (see the top of the file).
+                for (int e = 0; e < n_diffusive; ++e) {
+                    const Diffusive& x = diffusive[size_t(e)];
+                    F4 kappa = dm * 0.5f * x.pair_weight * x.porosity * x.water;
+                    if (!x.negative_allowed)
+                        kappa = kappa < 0.0f ? F4{} : kappa;
+                    exchange(x.y, x.ghost, kappa * (gather(C, x.y) - cc), flux);
                 }
+                for (int e = 0; e < n_advective; ++e) {
+                    const Advective& x = advective[size_t(e)];
+                    exchange(x.y, x.ghost,
+                             std::max(0.0f, -x.q) * gather(C, x.y) - std::max(0.0f, x.q) * cc,
+                             flux);
+                }
+                F4 amount = gather(dissolved, c) + dt * flux / vol[c];
+                F4 take{};
+                if (front) {
+                    // Dissolution up to saturation, from the solid mineral; at most up to
+                    // saturation in one step, however fast the rate.
+                    const F4 room = saturation - cc;
+                    take = rate_cap * (room > 0.0f ? room : F4{}) * water_c;
+                    const F4 solid = gather(solid_of, c);
+                    take = solid < take ? solid : take;
+                    scatter(solid_of, c, solid - take);
+                    amount += take;
+                }
+                if (!wet && (f & kSurface)) {
+                    // Evaporation at the surface: the load crystallises as crust.
+                    const F4 cryst = crystallise * amount;
+                    scatter(crust_of, c, gather(crust_of, c) + cryst);
+                    amount -= cryst;
+                }
+                // In place: neighbours read only the concentrations computed above.
+                scatter(dissolved, c, amount);
+                const float dissolved_now = take[kSoluble];
                 // Decay index (§4.3.4): time moist plus binder dissolved.
                 st.decay[c] += float(prm.decay_water) * dt +
                                float(prm.decay_dissolution) * dissolved_now;
