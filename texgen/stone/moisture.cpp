@@ -14,6 +14,7 @@
 // 1/2. In dry phases the surface dries at `evaporation_speed`, and the dry zone spreads
 // inwards down each column (water evaporates from the surface side); dissolved minerals in
 // a voxel that dries recrystallise in place (as crust in a surface voxel).
+#include "texgen/stone/live_rows.h"
 #include "texgen/stone/stone_state.h"
 
 #include <tbb/parallel_for.h>
@@ -38,6 +39,22 @@ namespace {
         return a == 0 ? w[0][c] + w[3][c] + w[5][c]
              : a == 1 ? w[1][c] + w[3][c] + w[4][c]
                       : w[2][c] + w[4][c] + w[5][c];
+    }
+
+    /// Whether the pressure step changes any of the n voxels from `row`: a moist stone voxel
+    /// below the surface, or a dry one whose pressure is not yet the front's +0 (it dried in
+    /// the last step; compared as bits, as the step writes +0). Air and surface voxels keep their Dirichlet values. Branch-free, so
+    /// that it vectorises: most rows of the active layers are air or dry stone.
+    inline bool pressure_changes(const StoneState& st, size_t row, int n)
+    {
+        const uint8_t* f = st.flags.data() + row;
+        const float* theta = st.moisture.data() + row;
+        const float* p = st.pressure.data() + row;
+        int any = 0;
+        for (int i = 0; i < n; ++i)
+            any |= int((f[i] & (kStone | kSurface)) == kStone) &
+                   (int(theta[i] >= 0.5f) | int(std::bit_cast<uint32_t>(p[i]) != 0u));
+        return any != 0;
     }
 
     /// Updates the first `layers` layers of slab s of `field` in place: `compute(k, out)`
@@ -107,6 +124,10 @@ namespace {
                 for (int j = 0; j < g.n_t; ++j) {
                     const size_t row = g.index(s, 0, j, k);
                     float* out_row = out + size_t(j) * g.n_t;
+                    if (!pressure_changes(st, row, g.n_t)) {
+                        std::copy(p + row, p + row + g.n_t, out_row);
+                        continue;
+                    }
                     for (int i = 0; i < g.n_t; ++i) {
                         const size_t c = row + size_t(i);
                         const uint8_t f = st.flags[c];
@@ -159,12 +180,24 @@ namespace {
         const float inv_eta = float(1.0 / st.params.viscosity);
         const float evap = float(st.params.evaporation_speed);
         // Below the active layers the stone is dry and unreachable this step: nothing moves.
+        // Nor in a row without a moist or surface voxel in it or across its faces: air stays
+        // at 0 (erosion dries what it turns to air) and dry stone without a moist face
+        // neighbour keeps its moisture.
         tbb::parallel_for(0, g.slab_count, [&](int s) {
-          update_layers_in_place(theta, g, s, st.active_depth[size_t(s)], [&](int k, float* out) {
-            for (int j = 0; j < g.n_t; ++j)
+          const int layers = st.active_depth[size_t(s)];
+          thread_local LiveRows live;
+          live.scan(st, s, std::min(layers, g.n_d));
+          update_layers_in_place(theta, g, s, layers, [&](int k, float* out) {
+            for (int j = 0; j < g.n_t; ++j) {
+                const size_t row = g.index(s, 0, j, k);
+                float* out_row = out + size_t(j) * g.n_t;
+                if (!live.live_around(j, k)) {
+                    std::copy(theta + row, theta + row + g.n_t, out_row);
+                    continue;
+                }
                 for (int i = 0; i < g.n_t; ++i) {
-                    const size_t c = g.index(s, i, j, k);
-                    float& out_c = out[size_t(j) * g.n_t + size_t(i)];
+                    const size_t c = row + size_t(i);
+                    float& out_c = out_row[i];
                     const uint8_t f = st.flags[c];
                     float th = theta[c];
                     if (!(f & kStone)) {
@@ -212,6 +245,7 @@ namespace {
                         st.wet_time[c] += dt;
                     out_c = th;
                 }
+            }
           });
         });
         refresh_active_depth(st);

@@ -31,6 +31,7 @@
 // crust (efflorescence for salts, yellowing for iron, case hardening for the binder); in wet
 // phases deposits (the deposit map: soot, sulphur) turn the binder at the surface into a
 // black crust, and salt may be brought in from the atmosphere.
+#include "texgen/stone/live_rows.h"
 #include "texgen/stone/stone_state.h"
 
 #include <tbb/parallel_for.h>
@@ -125,16 +126,25 @@ void transport_step(StoneState& st, bool wet, int steps)
             return;
         const auto& o = lat.offsets(s);
         const std::array<int, 6> dk = depth_steps(lat, s);
-        for (int j = 0; j < g.n_t; ++j)
-            for (int i = 0; i < g.n_t; ++i) {
-                const size_t c = g.index(s, i, j, k);
-                const float water = st.porosity[c] * st.density[c];
-                for (int m = 0; m < kSpecies; ++m) {
+        for (int j = 0; j < g.n_t; ++j) {
+            const size_t row = g.index(s, 0, j, k);
+            // Branch-free, so that it vectorises: every voxel, as the ghosts interpolate
+            // dry voxels' concentrations too.
+            const float* phi = st.porosity.data() + row;
+            const float* rho = st.density.data() + row;
+            for (int m = 0; m < kSpecies; ++m) {
+                const float* amount = st.dissolved[m].data() + row;
+                float* conc = st.concentration[m].data() + row;
+                for (int i = 0; i < g.n_t; ++i) {
                     // Most voxels hold nothing: 0 / water is the amount itself (sign kept).
-                    const float amount = st.dissolved[m][c];
-                    st.concentration[m][c] =
-                        water > 0.0f ? (amount != 0.0f ? amount / water : amount) : 0.0f;
+                    const float water = phi[i] * rho[i];
+                    const float a = amount[i];
+                    conc[i] = water > 0.0f ? (a != 0.0f ? a / water : a) : 0.0f;
                 }
+            }
+            // Whether each moist voxel has its whole stencil (read only for moist voxels).
+            for (int i = 0; i < g.n_t; ++i) {
+                const size_t c = row + size_t(i);
                 bool full = moist(st, c);
                 size_t y = 0;
                 for (int d = 0; d < 6 && full; ++d)
@@ -142,6 +152,7 @@ void transport_step(StoneState& st, bool wet, int steps)
                         full = solute_partner(st, c, k, sign * o[d], sign * dk[d], &y);
                 st.full_stencil[c] = full;
             }
+        }
     });
     for (int m = 0; m < kSpecies; ++m)
         lat.fill_halo(st.concentration[m].data(), &st.active_depth);
@@ -184,10 +195,15 @@ void transport_step(StoneState& st, bool wet, int steps)
                   for (int m = 0; m < kSpecies; ++m)
                       st.ghost_flux[m][g.index(s, i, j, k)] = 0.0f;
       written = active;
-      for (int k = 0; k < st.active_depth[size_t(s)]; ++k) {
+      // Only moist voxels and (wet) surface voxels change: rows without either are skipped.
+      thread_local LiveRows live;
+      live.scan(st, s, std::min(active, g.n_d));
+      for (int k = 0; k < active; ++k) {
         const auto& o = lat.offsets(s);
         const std::array<int, 6> dk = depth_steps(lat, s);
-        for (int j = 0; j < g.n_t; ++j)
+        for (int j = 0; j < g.n_t; ++j) {
+            if (!live.live(j, k))
+                continue;
             for (int i = 0; i < g.n_t; ++i) {
                 const size_t c = g.index(s, i, j, k);
                 const uint8_t f = st.flags[c];
@@ -311,6 +327,7 @@ void transport_step(StoneState& st, bool wet, int steps)
                 st.decay[c] += float(prm.decay_water) * dt +
                                float(prm.decay_dissolution) * dissolved_now;
             }
+        }
       }
     });
 
