@@ -25,6 +25,7 @@
  */
 #include "basic.h"
 
+#include <patina/shading/fast_trig.h>
 #include <patina/shading/frame.h>
 #include <patina/shading/sampling.h>
 #include <patina/shading/spectral.h>
@@ -157,8 +158,9 @@ namespace {
     {
         if (wo.z == 0.0f)
             return 0;
-        // Cosine-weighted hemisphere on the side of wo
-        Vec3 wi = sample_cosine_hemisphere(u);
+        // Cosine-weighted hemisphere on the side of wo (the concentric disc's cos and sin by
+        // polynomial: fast_trig.h)
+        Vec3 wi = sample_cosine_hemisphere_poly(u);
         if (wo.z < 0.0f)
             wi.z = -wi.z;
         const float p = cosine_hemisphere_pdf(abs_cos_theta(wi));

@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cassert>
 #include <cfloat>
 #include <cmath>
 #include <cstring>
@@ -351,6 +352,56 @@ SurfacePoint EmbreeScene::interpolate(const Hit& hit, const Imath::V3f& origin,
     if (!frame_ok)
         tangent_frame(sp.N, sp.dPdu, sp.dPdv);
     return sp;
+}
+
+bool EmbreeScene::interpolate_shading(const Hit& hit, const Imath::V3f& dir,
+                                      SurfacePoint& sp) const
+{
+    assert(hit.mesh_id >= 0 && hit.mesh_id < mesh_count());
+    const TriangleMesh& m = meshes_[static_cast<size_t>(hit.mesh_id)];
+    const size_t t = static_cast<size_t>(hit.prim_id) * 3;
+    const uint32_t i0 = m.indices[t], i1 = m.indices[t + 1], i2 = m.indices[t + 2];
+    const Imath::V3f &p0 = m.positions[i0], &p1 = m.positions[i1], &p2 = m.positions[i2];
+    const float b1 = hit.u, b2 = hit.v, b0 = 1.0f - b1 - b2;
+
+    // As interpolate(), step for step (the same bits), without wo.
+    sp.mesh_id = hit.mesh_id;
+    sp.prim_id = hit.prim_id;
+    const Imath::V3f w0 = b0 * p0, w1 = b1 * p1, w2 = b2 * p2;
+    sp.P = w0 + w1 + w2;
+    sp.p_error = kPositionErrorScale * (abs(w0) + abs(w1) + abs(w2));
+    sp.Ng = unit_normals_[static_cast<size_t>(hit.mesh_id)][static_cast<size_t>(hit.prim_id)];
+    if (sp.Ng.x == 0.0f && sp.Ng.y == 0.0f && sp.Ng.z == 0.0f)
+        sp.Ng = -dir.normalized();  // degenerate (never hit in practice)
+    sp.N = sp.Ng;
+    if (m.has_normals()) {
+        const Imath::V3f n = b0 * m.normals[i0] + b1 * m.normals[i1] + b2 * m.normals[i2];
+        const float n_length2 = n.length2();
+        if (n_length2 > 1e-20f && n_length2 < std::numeric_limits<float>::infinity()) {
+            sp.N = n * (1.0f / std::sqrt(n_length2));
+            if (sp.N.dot(sp.Ng) < 0.0f)
+                sp.Ng = -sp.Ng;
+        }
+    }
+    if (!m.has_uvs()) {
+        sp.uv = Imath::V2f(hit.u, hit.v);
+        tangent_frame(sp.N, sp.dPdu, sp.dPdv);
+        return true;
+    }
+    const Imath::V2f &uv0 = m.uvs[i0], &uv1 = m.uvs[i1], &uv2 = m.uvs[i2];
+    sp.uv = b0 * uv0 + b1 * uv1 + b2 * uv2;
+    const Imath::V2f duv02 = uv0 - uv2, duv12 = uv1 - uv2;
+    const Imath::V3f dp02 = p0 - p2, dp12 = p1 - p2;
+    const float det = duv02.x * duv12.y - duv02.y * duv12.x;
+    if (std::abs(det) > 1e-12f) {
+        const float inv = 1.0f / det;
+        sp.dPdu = (duv12.y * dp02 - duv02.y * dp12) * inv;
+        sp.dPdv = (duv02.x * dp12 - duv12.x * dp02) * inv;
+        if (sp.dPdu.cross(sp.dPdv).length2() > 0.0f)
+            return false;
+    }
+    tangent_frame(sp.N, sp.dPdu, sp.dPdv);
+    return true;
 }
 
 const TriangleMesh& EmbreeScene::mesh(int mesh_id) const

@@ -132,6 +132,13 @@ public:
     /// is outside); N is the interpolated normal, or Ng without normals.
     SurfacePoint interpolate(const Hit& hit, const Imath::V3f& origin, const Imath::V3f& dir) const;
 
+    /// interpolate() for a renderer's shading point, leaner: the same P, p_error, Ng, N, uv,
+    /// dPdu and dPdv, but wo is not computed (the renderer has the ray) and the hit is not
+    /// range-checked (it must come from this scene's intersect). Returns true when
+    /// (dPdu, dPdv, N) is already an orthonormal right-handed frame, as for a mesh without
+    /// uvs (Duff et al.'s frame about N), so that a shading frame can be taken as it is.
+    bool interpolate_shading(const Hit& hit, const Imath::V3f& dir, SurfacePoint& sp) const;
+
     const TriangleMesh& mesh(int mesh_id) const;
     int mesh_count() const { return static_cast<int>(meshes_.size()); }
     /// World bounds of everything added (valid after commit).

@@ -268,6 +268,106 @@ PatinaWavelengths sample_wavelengths_visible(float u, int count, SampledSpectrum
     return wl;
 }
 
+namespace {
+
+    // One step j of the tabulated inverse CDF: λ from lambda to lambda + width as u goes
+    // over [j/N, (j+1)/N), with density pdf = 1 / (N width) there. 16 bytes: one load.
+    struct WavelengthStep {
+        float lambda, width, pdf, unused;
+    };
+
+    // Nodes at u = j/N of the analytic inverse CDF (pbrt-v4's, above), in double.
+    std::array<WavelengthStep, kWavelengthTableSize> make_wavelength_table()
+    {
+        constexpr int n = kWavelengthTableSize;
+        std::array<double, n + 1> node{};
+        for (int j = 0; j <= n; ++j) {
+            const double t = kVisT0 + (static_cast<double>(j) / n) * kVisT1MinusT0;
+            node[static_cast<size_t>(j)] = 538.0 + std::atanh(t) / kVisK;
+        }
+        node[0] = kLambdaMinNm;  // atanh rounding at the ends
+        node[n] = kLambdaMaxNm;
+        std::array<WavelengthStep, n> table{};
+        for (int j = 0; j < n; ++j) {
+            WavelengthStep& step = table[static_cast<size_t>(j)];
+            step.lambda = static_cast<float>(node[static_cast<size_t>(j)]);
+            const float end = static_cast<float>(node[static_cast<size_t>(j) + 1]);
+            step.width = end - step.lambda;
+            step.pdf = static_cast<float>(1.0 / (n * static_cast<double>(step.width)));
+        }
+        return table;
+    }
+    // Built at load time (no guard per call).
+    const std::array<WavelengthStep, kWavelengthTableSize> kWavelengthTable = make_wavelength_table();
+
+} // namespace
+
+namespace {
+
+    // Four lanes of sample_wavelengths_tabulated: s = N frac(u + i/count) for lanes
+    // i = first .. first + 3, the step is the integer part of s, the place in it the rest.
+    [[gnu::always_inline]] inline void tabulated_block(float u, int first, float stride,
+                                                       Float4& lambda, Float4& density)
+    {
+        constexpr float n = static_cast<float>(kWavelengthTableSize);
+        const Float4 lane = {0.0f, 1.0f, 2.0f, 3.0f};
+        Float4 s = u * n + (lane + static_cast<float>(first)) * stride;
+        s = s >= n ? s - n : s;
+        s = s < 0.0f ? 0.0f : s;
+        Int4 j = __builtin_convertvector(s, Int4);
+        j = j < kWavelengthTableSize - 1 ? j : kWavelengthTableSize - 1;
+        const Float4 f = s - __builtin_convertvector(j, Float4);
+        Float4 rows[4];
+        for (int i = 0; i < 4; ++i)
+            std::memcpy(&rows[i], &kWavelengthTable[static_cast<size_t>(j[i])], sizeof rows[i]);
+        // Transpose the four steps into lambda, width and pdf lanes.
+        const Float4 t0 = __builtin_shufflevector(rows[0], rows[1], 0, 4, 1, 5);  // l0 l1 w0 w1
+        const Float4 t1 = __builtin_shufflevector(rows[2], rows[3], 0, 4, 1, 5);  // l2 l3 w2 w3
+        const Float4 t2 = __builtin_shufflevector(rows[0], rows[1], 2, 6, 2, 6);  // p0 p1
+        const Float4 t3 = __builtin_shufflevector(rows[2], rows[3], 2, 6, 2, 6);  // p2 p3
+        const Float4 start = __builtin_shufflevector(t0, t1, 0, 1, 4, 5);
+        const Float4 width = __builtin_shufflevector(t0, t1, 2, 3, 6, 7);
+        density = __builtin_shufflevector(t2, t3, 0, 1, 4, 5);
+        lambda = start + f * width;
+        lambda = lambda > kLambdaMaxNm ? kLambdaMaxNm : lambda;
+    }
+
+} // namespace
+
+PatinaWavelengths sample_wavelengths_tabulated(float u, int count, SampledSpectrum& pdf)
+{
+    assert(count >= 1 && count <= PATINA_MAX_WAVELENGTHS);
+    PatinaWavelengths wl{};
+    wl.count = count;
+    pdf = SampledSpectrum(count, 0.0f);
+    const float stride = static_cast<float>(kWavelengthTableSize) / static_cast<float>(count);
+    for (int first = 0; first < count; first += 4) {
+        Float4 l, density;
+        tabulated_block(u, first, stride, l, density);
+        if (first + 4 <= count) {
+            std::memcpy(wl.lambda_nm + first, &l, sizeof l);
+            std::memcpy(pdf.v + first, &density, sizeof density);
+        } else {
+            for (int i = 0; first + i < count; ++i) {
+                wl.lambda_nm[first + i] = l[i];
+                pdf.v[first + i] = density[i];
+            }
+        }
+    }
+    return wl;
+}
+
+float tabulated_wavelength_pdf(float lambda_nm)
+{
+    if (!(lambda_nm >= kLambdaMinNm && lambda_nm <= kLambdaMaxNm))
+        return 0.0f;
+    // The last step starting at or below λ.
+    const auto after = std::upper_bound(
+        kWavelengthTable.begin() + 1, kWavelengthTable.end(), lambda_nm,
+        [](float l, const WavelengthStep& step) { return l < step.lambda; });
+    return (after - 1)->pdf;
+}
+
 float uniform_wavelength_pdf(float lambda_nm)
 {
     if (!(lambda_nm >= kLambdaMinNm && lambda_nm <= kLambdaMaxNm))
@@ -353,20 +453,14 @@ Xyz xyz_from_samples(const SampledSpectrum& L, const PatinaWavelengths& wl,
     return {x * norm, y * norm, z * norm};
 }
 
-CieAtWavelengths cie_at_wavelengths(const PatinaWavelengths& wl)
-{
-    static_assert(PATINA_MAX_WAVELENGTHS % 4 == 0, "whole blocks of four lanes");
-    CieAtWavelengths cie;  // all entries 0
-    cie.x.count = cie.y.count = cie.z.count = cie.d65.count = wl.count;
-    // Four wavelengths at a time: lerp_table's position of each (the same float operations,
-    // in SIMD lanes), one SIMD lerp of the two (x̄, ȳ, z̄, D65) nodes per wavelength, then a
-    // 4x4 transpose into the four spectra. Lanes past the count or outside the tables stay 0.
-    for (int first = 0; first < wl.count; first += 4) {
-        const Float4 lane = {0.0f, 1.0f, 2.0f, 3.0f};
-        Float4 lambda;
-        std::memcpy(&lambda, wl.lambda_nm + first, sizeof lambda);
-        const Int4 valid = (lambda >= kLambdaMinNm) & (lambda <= kLambdaMaxNm) &
-                           (lane + static_cast<float>(first) < static_cast<float>(wl.count));
+namespace {
+
+    // x̄, ȳ, z̄ and D65 at four wavelengths: lerp_table's position of each (the same float
+    // operations, in SIMD lanes), one SIMD lerp of the two (x̄, ȳ, z̄, D65) nodes per
+    // wavelength, then a 4x4 transpose. Lanes not `valid` come out 0.
+    [[gnu::always_inline]] inline void cie_block(Float4 lambda, Int4 valid, Float4& x, Float4& y,
+                                                 Float4& z, Float4& d)
+    {
         const Float4 p = (lambda - kLambdaMinNm) / kCieStepNm;
         Int4 k = __builtin_convertvector(p, Int4);
         k = k < kCieSamples - 2 ? k : kCieSamples - 2;
@@ -384,10 +478,38 @@ CieAtWavelengths cie_at_wavelengths(const PatinaWavelengths& wl)
         const Float4 t2 = __builtin_shufflevector(rows[0], rows[1], 2, 6, 3, 7);  // z0 z1 d0 d1
         const Float4 t3 = __builtin_shufflevector(rows[2], rows[3], 2, 6, 3, 7);  // z2 z3 d2 d3
         const Float4 zero = {};
-        const Float4 x = valid ? __builtin_shufflevector(t0, t1, 0, 1, 4, 5) : zero;
-        const Float4 y = valid ? __builtin_shufflevector(t0, t1, 2, 3, 6, 7) : zero;
-        const Float4 z = valid ? __builtin_shufflevector(t2, t3, 0, 1, 4, 5) : zero;
-        const Float4 d = valid ? __builtin_shufflevector(t2, t3, 2, 3, 6, 7) : zero;
+        x = valid ? __builtin_shufflevector(t0, t1, 0, 1, 4, 5) : zero;
+        y = valid ? __builtin_shufflevector(t0, t1, 2, 3, 6, 7) : zero;
+        z = valid ? __builtin_shufflevector(t2, t3, 0, 1, 4, 5) : zero;
+        d = valid ? __builtin_shufflevector(t2, t3, 2, 3, 6, 7) : zero;
+    }
+
+    // Store four lanes of a spectrum of `count` lanes whose other lanes are 0.
+    void store_first_block(SampledSpectrum& s, int count, Float4 block)
+    {
+        const Float4 zero = {};
+        s.count = count;
+        std::memcpy(s.v, &block, sizeof block);
+        for (int b = 4; b < SampledSpectrum::kLanes; b += 4)
+            std::memcpy(s.v + b, &zero, sizeof zero);
+    }
+
+} // namespace
+
+CieAtWavelengths cie_at_wavelengths(const PatinaWavelengths& wl)
+{
+    static_assert(PATINA_MAX_WAVELENGTHS % 4 == 0, "whole blocks of four lanes");
+    CieAtWavelengths cie;  // all entries 0
+    cie.x.count = cie.y.count = cie.z.count = cie.d65.count = wl.count;
+    // Four wavelengths at a time; lanes past the count or outside the tables stay 0.
+    for (int first = 0; first < wl.count; first += 4) {
+        const Float4 lane = {0.0f, 1.0f, 2.0f, 3.0f};
+        Float4 lambda;
+        std::memcpy(&lambda, wl.lambda_nm + first, sizeof lambda);
+        const Int4 valid = (lambda >= kLambdaMinNm) & (lambda <= kLambdaMaxNm) &
+                           (lane + static_cast<float>(first) < static_cast<float>(wl.count));
+        Float4 x, y, z, d;
+        cie_block(lambda, valid, x, y, z, d);
         std::memcpy(cie.x.v + first, &x, sizeof x);
         std::memcpy(cie.y.v + first, &y, sizeof y);
         std::memcpy(cie.z.v + first, &z, sizeof z);
@@ -396,21 +518,58 @@ CieAtWavelengths cie_at_wavelengths(const PatinaWavelengths& wl)
     return cie;
 }
 
+PatinaWavelengths sample_wavelengths_tabulated(float u, int count, SampledSpectrum& pdf,
+                                               CieAtWavelengths& cie)
+{
+    if (count != 4) {
+        const PatinaWavelengths wl = sample_wavelengths_tabulated(u, count, pdf);
+        cie = cie_at_wavelengths(wl);
+        return wl;
+    }
+    // Four wavelengths, the renderer's usual count: one block, straight through, every
+    // lane inside the tables (the table's λ stay in 360-830 nm).
+    Float4 l, density;
+    tabulated_block(u, 0, static_cast<float>(kWavelengthTableSize) / 4.0f, l, density);
+    PatinaWavelengths wl;
+    wl.count = 4;
+    const Float4 zero = {};
+    std::memcpy(wl.lambda_nm, &l, sizeof l);
+    for (int b = 4; b < PATINA_MAX_WAVELENGTHS; b += 4)
+        std::memcpy(wl.lambda_nm + b, &zero, sizeof zero);
+    store_first_block(pdf, 4, density);
+    Float4 x, y, z, d;
+    cie_block(l, l >= kLambdaMinNm, x, y, z, d);
+    store_first_block(cie.x, 4, x);
+    store_first_block(cie.y, 4, y);
+    store_first_block(cie.z, 4, z);
+    store_first_block(cie.d65, 4, d);
+    return wl;
+}
+
 Xyz xyz_from_samples(const SampledSpectrum& L, const CieAtWavelengths& cie,
                      const SampledSpectrum& pdf)
 {
     // As above: terminated wavelengths (pdf 0) count as 0, the average is over L.count.
     if (L.count == 0)
         return {0.0, 0.0, 0.0};
-    const SampledSpectrum w = L / pdf;
-    float x = 0.0f, y = 0.0f, z = 0.0f;
-    for (int i = 0; i < L.count; ++i) {
-        x += w.v[i] * cie.x.v[i];
-        y += w.v[i] * cie.y.v[i];
-        z += w.v[i] * cie.z.v[i];
+    // Over every lane in blocks of four, without a loop over the count: the lanes past it
+    // hold 0 in L, pdf and the tables, so they add 0 (L / pdf gives 0 for a zero pdf).
+    Float4 x = {}, y = {}, z = {};
+    for (int b = 0; b < SampledSpectrum::kLanes; b += 4) {
+        Float4 l, p, cx, cy, cz;
+        std::memcpy(&l, L.v + b, sizeof l);
+        std::memcpy(&p, pdf.v + b, sizeof p);
+        std::memcpy(&cx, cie.x.v + b, sizeof cx);
+        std::memcpy(&cy, cie.y.v + b, sizeof cy);
+        std::memcpy(&cz, cie.z.v + b, sizeof cz);
+        const Float4 w = p != 0.0f ? l / p : Float4{};
+        x += w * cx;
+        y += w * cy;
+        z += w * cz;
     }
     const double norm = 1.0 / (static_cast<double>(L.count) * kCieYIntegral);
-    return {x * norm, y * norm, z * norm};
+    return {((x[0] + x[1]) + (x[2] + x[3])) * norm, ((y[0] + y[1]) + (y[2] + y[3])) * norm,
+            ((z[0] + z[1]) + (z[2] + z[3])) * norm};
 }
 
 Xyz xyz_from_samples(const SampledSpectrum& L, const PatinaWavelengths& wl)

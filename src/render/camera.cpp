@@ -29,6 +29,17 @@ Camera::Camera(const Imath::V3f& from, const Imath::V3f& to, const Imath::V3f& u
     focus_ = focus_distance > 0.0f ? focus_distance : target_distance;
 }
 
+Camera::Raster Camera::raster(int width, int height) const
+{
+    // generate()'s forward + sx right + sy up with sx, sy linear in the pixel position.
+    Raster r;
+    r.origin = origin_;
+    r.base = forward_ - tan_half_x_ * right_ + tan_half_y_ * up_;
+    r.dx = (2.0f * tan_half_x_ / static_cast<float>(width)) * right_;
+    r.dy = (-2.0f * tan_half_y_ / static_cast<float>(height)) * up_;
+    return r;
+}
+
 Ray Camera::generate(float x, float y, Imath::V2f lens) const
 {
     const float sx = (2.0f * x - 1.0f) * tan_half_x_;

@@ -3,6 +3,8 @@
 
 #include <Imath/ImathVec.h>
 
+#include <cmath>
+
 namespace patina::render {
 
 struct Ray {
@@ -24,6 +26,22 @@ public:
     Ray generate(float x, float y, Imath::V2f lens = {0.5f, 0.5f}) const;
 
     void set_aspect(float aspect) { tan_half_x_ = tan_half_y_ * aspect; }
+
+    /// True for a pinhole (aperture 0): generate() ignores `lens`.
+    bool is_pinhole() const { return aperture_ <= 0.0f; }
+    /// A pinhole's rays through the pixel positions of a width x height film, set up once:
+    /// the unnormalised direction through pixel position (px, py) (pixels from the top-left
+    /// corner, fractions included) is base + px dx + py dy, generate()'s direction through
+    /// (px / width, py / height) up to rounding.
+    struct Raster {
+        Imath::V3f origin, base, dx, dy;
+        Ray ray(float px, float py) const
+        {
+            const Imath::V3f d = base + px * dx + py * dy;
+            return {origin, d * (1.0f / std::sqrt(d.dot(d)))};
+        }
+    };
+    Raster raster(int width, int height) const;
 
 private:
     Imath::V3f origin_{0, 0, 0};

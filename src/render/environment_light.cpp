@@ -1,5 +1,7 @@
 #include "render/environment_light.h"
 
+#include <patina/shading/fast_trig.h>
+
 #include "core/color_management.h"
 #include "core/host.h"
 #include "core/image_io.h"
@@ -270,8 +272,10 @@ Imath::V3f EnvironmentLight::sample_uniform_sphere(Imath::V2f u)
     // pbrt-v4 SampleUniformSphere, with +y as the polar axis.
     const float z = 1.0f - 2.0f * u.x;
     const float r = std::sqrt(std::max(0.0f, 1.0f - z * z));
-    const float phi = 2.0f * kPiF * u.y;
-    return {r * std::cos(phi), z, r * std::sin(phi)};
+    // cos and sin of φ = 2π u.y by polynomial (patina/shading/fast_trig.h), not libm.
+    float cos_phi, sin_phi;
+    shading::sincos_turn(u.y, cos_phi, sin_phi);
+    return {r * cos_phi, z, r * sin_phi};
 }
 
 Imath::V2f EnvironmentLight::direction_to_uv(const Imath::V3f& dir) const
@@ -316,15 +320,6 @@ SampledSpectrum EnvironmentLight::radiance_of(const PatinaRgbSpectrum& s,
     }
     return SampledSpectrum::from_function(
         wl, [&](float lambda) { return intensity_ * RgbToSpectrum::eval(s, lambda); });
-}
-
-SampledSpectrum EnvironmentLight::constant_radiance(const PatinaWavelengths& wl,
-                                                    const SampledSpectrum& d65_at_wl) const
-{
-    if (!constant_grey_)
-        return radiance_of(texels_[0], wl);
-    // radiance_of's grey emission: grey * d65 * (1 / Y of D65), with d65 given.
-    return d65_at_wl * constant_grey_scale_;
 }
 
 std::optional<LightSample> EnvironmentLight::sample(const Imath::V3f&, Imath::V2f u,

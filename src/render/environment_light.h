@@ -100,8 +100,15 @@ public:
     }
     /// The same, given D65 (core/spectrum.h d65) at wl, as cie_at_wavelengths looks it up
     /// for the film: a grey sky then needs no table look-up of its own.
+    /// Inline: the integrator asks once per path.
     SampledSpectrum constant_radiance(const PatinaWavelengths& wl,
-                                      const SampledSpectrum& d65_at_wl) const;
+                                      const SampledSpectrum& d65_at_wl) const
+    {
+        if (!constant_grey_)
+            return radiance_of(texels_[0], wl);
+        // radiance_of's grey emission: grey * d65 * (1 / Y of D65), with d65 given.
+        return d65_at_wl * constant_grey_scale_;
+    }
     /// The direction sample() draws for a constant map from `u`: uniform over the sphere
     /// (pbrt-v4 SampleUniformSphere), with the density kUniformSpherePdf.
     static Imath::V3f sample_uniform_sphere(Imath::V2f u);

@@ -20,6 +20,9 @@ namespace {
 
     PatinaVec3 to_abi(const Imath::V3f& v) { return {v.x, v.y, v.z}; }
     Imath::V3f from_abi(const PatinaVec3& v) { return {v.x, v.y, v.z}; }
+    // v / |v| with one square root and one division (Imath's normalized() divides thrice and
+    // checks for tiny vectors); v must not be 0.
+    Imath::V3f unit(const Imath::V3f& v) { return v * (1.0f / std::sqrt(v.dot(v))); }
 
     // What the previous scattering vertex knows, for MIS weights of emission found by BSDF
     // or phase sampling (pbrt-v4 §13.4 and §14.2, VolPathIntegrator).
@@ -75,7 +78,7 @@ namespace {
         {
             if (light) {
                 L = light->constant_radiance(wl, d65);
-                pmf = scene.lights.pmf(light);
+                pmf = scene.lights.uniform_sky_pmf();
                 black = L.is_black();
             }
         }
@@ -257,7 +260,8 @@ SampledSpectrum trace_path(const Scene& scene, Ray ray, const std::optional<Hit>
             L += beta * escaped(scene, ray, prev, wl, sky);
             break;
         }
-        const SurfacePoint sp = scene.geometry->interpolate(*hit, ray.origin, ray.dir);
+        SurfacePoint sp;
+        const bool orthonormal = scene.geometry->interpolate_shading(*hit, ray.dir, sp);
         const SceneObject& obj =
             scene.objects[static_cast<size_t>(scene.mesh_object[static_cast<size_t>(hit->mesh_id)])];
 
@@ -270,7 +274,7 @@ SampledSpectrum trace_path(const Scene& scene, Ray ray, const std::optional<Hit>
             continue;
         }
 
-        const ShadingFrame frame = make_shading_frame(sp);
+        const ShadingFrame frame = make_shading_frame(sp, orthonormal);
         const PatinaVec3 wo = to_abi(frame.to_local(-ray.dir));
         if (depth == 0 && aovs) {
             aovs->hit = true;
@@ -330,7 +334,7 @@ SampledSpectrum trace_path(const Scene& scene, Ray ray, const std::optional<Hit>
         if (beta.is_black() || !survive_roulette(depth, beta, rng))
             break;
 
-        const Imath::V3f wi_world = frame.to_world(from_abi(bs.wi)).normalized();
+        const Imath::V3f wi_world = unit(frame.to_world(from_abi(bs.wi)));
         // Transmission through the surface moves the path into or out of the interior.
         if (wi_world.dot(sp.Ng) * ray.dir.dot(sp.Ng) > 0.0f)
             medium = medium_after_crossing(obj, sp.Ng, wi_world, medium);

@@ -51,15 +51,13 @@ LightSampler::LightSampler(std::vector<std::unique_ptr<Light>> lights) : lights_
     // PowerLightSampler does the same).
     if (!lights_.empty())
         distribution_ = Distribution1D(power);
+    uniform_sky_pmf_ = uniform_sky_ ? pmf(uniform_sky_) : 0.0f;
 }
 
-std::optional<SampledLight> LightSampler::sample(float u) const
+std::optional<SampledLight> LightSampler::sample_distribution(float u) const
 {
     if (lights_.empty())
         return std::nullopt;
-    // One light is chosen with probability 1 (what the distribution gives, without its search).
-    if (lights_.size() == 1)
-        return SampledLight{lights_[0].get(), 1.0f};
     float pmf = 0.0f;
     const int i = distribution_.sample_discrete(u, &pmf);
     if (!(pmf > 0.0f))

@@ -37,7 +37,14 @@ public:
 
     /// A light with probability proportional to its power() (uniform when every power is 0);
     /// nothing when there are no lights.
-    std::optional<SampledLight> sample(float u) const;
+    std::optional<SampledLight> sample(float u) const
+    {
+        // One light is chosen with probability 1 (what the distribution gives, without its
+        // search); inline for that common case.
+        if (lights_.size() == 1)
+            return SampledLight{lights_[0].get(), 1.0f};
+        return sample_distribution(u);
+    }
     /// Probability with which sample() chooses `light` (0 for a light not held here).
     float pmf(const Light* light) const;
 
@@ -49,13 +56,18 @@ public:
     /// A constant environment among the lights (the first), or nullptr: its radiance is the
     /// same for every direction, so the integrator evaluates it once per path.
     const EnvironmentLight* uniform_sky() const { return uniform_sky_; }
+    /// pmf(uniform_sky()), looked up once at construction (0 without a uniform sky).
+    float uniform_sky_pmf() const { return uniform_sky_pmf_; }
 
 private:
+    std::optional<SampledLight> sample_distribution(float u) const;
+
     std::vector<std::unique_ptr<Light>> lights_;
     std::vector<const Light*> infinite_;
     std::unordered_map<const Light*, int> index_;
     std::unordered_map<int, const AreaLight*> by_mesh_;
     const EnvironmentLight* uniform_sky_ = nullptr;
+    float uniform_sky_pmf_ = 0.0f;
     Distribution1D distribution_;
 };
 

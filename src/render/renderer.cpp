@@ -43,12 +43,12 @@ namespace {
     constexpr int kBatchSamples = 4;
     constexpr size_t kBatchRays = static_cast<size_t>(kTileSize) * kBatchSamples;
 
-    // A camera sample waiting for its ray's hit: its generator, wavelengths and ray.
+    // A camera sample waiting for its ray's hit: its generator, ray and the number its
+    // wavelengths come from (they are drawn after the hit, with their CIE values).
     struct CameraSample {
         Pcg32 rng;
-        PatinaWavelengths wl;
-        SampledSpectrum pdf;
         Ray ray;
+        float u_wavelengths;
     };
     struct CameraBatch {
         std::array<CameraSample, kBatchRays> samples;
@@ -56,20 +56,30 @@ namespace {
         std::array<std::optional<Hit>, kBatchRays> hits;
     };
 
-    // Add one sample of pixel i (index into the region) to the film sums.
-    void accumulate(Accumulator& acc, const FilmSettings& film, size_t i, const SampledSpectrum& L,
-                    const PatinaWavelengths& wl, const CieAtWavelengths& cie,
-                    const SampledSpectrum& pdf, const PathAovs& aov)
+    // Add one sample's colour to pixel i's sums (i indexes the region).
+    void accumulate_xyz(Accumulator& acc, size_t i, const SampledSpectrum& L,
+                        const CieAtWavelengths& cie, const SampledSpectrum& pdf)
     {
         const Xyz c = xyz_from_samples(L, cie, pdf);
         for (size_t k = 0; k < 3; ++k)
             if (std::isfinite(c[k]))
                 acc.xyz[i * 3 + k] += c[k];
+    }
+
+    // The same and the sample's AOVs.
+    void accumulate(Accumulator& acc, const FilmSettings& film, size_t i, const SampledSpectrum& L,
+                    const PatinaWavelengths& wl, const CieAtWavelengths& cie,
+                    const SampledSpectrum& pdf, const PathAovs& aov)
+    {
+        accumulate_xyz(acc, i, L, cie, pdf);
         if (!aov.hit)
             return;
         if (film.aov_albedo) {
+            // The density the wavelengths were drawn with (pdf may have lost its secondary
+            // wavelengths to dispersion after the first hit).
             const SampledSpectrum a = aov.albedo * SampledSpectrum::from_function(wl, unit_d65);
-            const Xyz ax = xyz_from_samples(a, wl, visible_wavelength_pdf(wl));
+            const Xyz ax = xyz_from_samples(
+                a, wl, SampledSpectrum::from_function(wl, tabulated_wavelength_pdf));
             for (size_t k = 0; k < 3; ++k)
                 acc.albedo[i * 3 + k] += ax[k];
         }
@@ -166,6 +176,10 @@ FilmResult render_region(const Scene& scene, const Region& region, const RenderC
         limit = std::make_unique<tbb::global_control>(
             tbb::global_control::max_allowed_parallelism, static_cast<size_t>(control.threads));
 
+    // Pinhole camera rays from per-frame terms (the lens numbers are not drawn then).
+    const bool pinhole = scene.camera.is_pinhole();
+    const Camera::Raster raster = scene.camera.raster(film.width, film.height);
+
     int spp_done = 0;
     for (int pass = 0; pass < passes; ++pass) {
         const int s0 = pass * pass_spp, s1 = std::min(film.spp, s0 + pass_spp);
@@ -192,14 +206,17 @@ FilmResult render_region(const Scene& scene, const Region& region, const RenderC
                             // pixel_sample_rng(seed, x, y, s), with the pixel's hash taken once.
                             cs.rng = sample_rng(streams[static_cast<size_t>(lx - tx0)], film.seed,
                                                 static_cast<uint64_t>(s));
-                            const float fx = (static_cast<float>(x) + cs.rng.uniform_float()) /
-                                             static_cast<float>(film.width);
-                            const float fy = (static_cast<float>(y) + cs.rng.uniform_float()) /
-                                             static_cast<float>(film.height);
-                            const Imath::V2f lens{cs.rng.uniform_float(), cs.rng.uniform_float()};
-                            cs.wl = sample_wavelengths_visible(cs.rng.uniform_float(),
-                                                               film.wavelengths, cs.pdf);
-                            cs.ray = scene.camera.generate(fx, fy, lens);
+                            const float px = static_cast<float>(x) + cs.rng.uniform_float();
+                            const float py = static_cast<float>(y) + cs.rng.uniform_float();
+                            if (pinhole) {
+                                cs.ray = raster.ray(px, py);
+                            } else {
+                                const Imath::V2f lens{cs.rng.uniform_float(), cs.rng.uniform_float()};
+                                cs.ray = scene.camera.generate(px / static_cast<float>(film.width),
+                                                               py / static_cast<float>(film.height),
+                                                               lens);
+                            }
+                            cs.u_wavelengths = cs.rng.uniform_float();
                             batch.queries[n] = {cs.ray.origin, cs.ray.dir};
                         }
                     }
@@ -210,12 +227,20 @@ FilmResult render_region(const Scene& scene, const Region& region, const RenderC
                         const size_t i = static_cast<size_t>(ly) * w + lx;
                         for (int s = g0; s < g1; ++s, ++n) {
                             CameraSample& cs = batch.samples[n];
-                            const CieAtWavelengths cie = cie_at_wavelengths(cs.wl);
+                            SampledSpectrum pdf;
+                            CieAtWavelengths cie;
+                            const PatinaWavelengths wl = sample_wavelengths_tabulated(
+                                cs.u_wavelengths, film.wavelengths, pdf, cie);
+                            if (!want_aovs) {
+                                const SampledSpectrum L =
+                                    trace_path(scene, cs.ray, batch.hits[n], wl, cie, pdf, cs.rng);
+                                accumulate_xyz(acc, i, L, cie, pdf);
+                                continue;
+                            }
                             PathAovs aov;
-                            const SampledSpectrum L =
-                                trace_path(scene, cs.ray, batch.hits[n], cs.wl, cie, cs.pdf,
-                                           cs.rng, want_aovs ? &aov : nullptr);
-                            accumulate(acc, film, i, L, cs.wl, cie, cs.pdf, aov);
+                            const SampledSpectrum L = trace_path(scene, cs.ray, batch.hits[n], wl,
+                                                                 cie, pdf, cs.rng, &aov);
+                            accumulate(acc, film, i, L, wl, cie, pdf, aov);
                         }
                     }
                 }

@@ -8,6 +8,33 @@ namespace {
     PatinaVec3 to_abi(const Imath::V3f& v) { return {v.x, v.y, v.z}; }
 }  // namespace
 
+namespace {
+    void fill_context(const SurfacePoint& p, PatinaShadingContext& c)
+    {
+        c.P = to_abi(p.P);
+        c.N = to_abi(p.N);
+        c.Ng = to_abi(p.Ng);
+        c.dPdu = to_abi(p.dPdu);
+        c.dPdv = to_abi(p.dPdv);
+        c.uv = {p.uv.x, p.uv.y};
+        c.primitive_id = p.prim_id;
+        c.mesh_id = p.mesh_id;
+        c.mode = PATINA_TRANSPORT_RADIANCE;
+    }
+}  // namespace
+
+ShadingFrame make_shading_frame(const SurfacePoint& p, bool orthonormal)
+{
+    if (!orthonormal)
+        return make_shading_frame(p);
+    ShadingFrame f;
+    f.n = p.N;
+    f.s = p.dPdu;
+    f.t = p.dPdv;
+    fill_context(p, f.ctx);
+    return f;
+}
+
 ShadingFrame make_shading_frame(const SurfacePoint& p)
 {
     ShadingFrame f;
@@ -20,16 +47,7 @@ ShadingFrame make_shading_frame(const SurfacePoint& p)
     }
     f.s = s.normalized();
     f.t = f.n.cross(f.s);
-    PatinaShadingContext& c = f.ctx;
-    c.P = to_abi(p.P);
-    c.N = to_abi(p.N);
-    c.Ng = to_abi(p.Ng);
-    c.dPdu = to_abi(p.dPdu);
-    c.dPdv = to_abi(p.dPdv);
-    c.uv = {p.uv.x, p.uv.y};
-    c.primitive_id = p.prim_id;
-    c.mesh_id = p.mesh_id;
-    c.mode = PATINA_TRANSPORT_RADIANCE;
+    fill_context(p, f.ctx);
     return f;
 }
 

@@ -20,5 +20,9 @@ struct ShadingFrame {
 };
 
 ShadingFrame make_shading_frame(const SurfacePoint& p);
+/// The same for a point whose (dPdu, dPdv, N) is already orthonormal (what
+/// EmbreeScene::interpolate_shading reports): the frame is (dPdu, dPdv, N) as it is, not
+/// re-orthogonalised (equal to make_shading_frame's up to rounding).
+ShadingFrame make_shading_frame(const SurfacePoint& p, bool orthonormal);
 
 }  // namespace patina::render

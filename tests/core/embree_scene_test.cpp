@@ -290,3 +290,56 @@ namespace {
 
 }  // namespace
 }  // namespace patina
+
+namespace patina {
+
+// The renderer's lean interpolation gives interpolate()'s fields bit for bit (all but wo),
+// and says when (dPdu, dPdv, N) is already an orthonormal frame: for meshes without uvs.
+TEST(EmbreeScene, InterpolateShadingMatchesInterpolate)
+{
+    TriangleMesh bare = make_uv_sphere(Imath::V3f(0), 1.0f, 16, 32);
+    bare.uvs.clear();
+    TriangleMesh flat;  // no normals, no uvs
+    flat.name = "flat";
+    flat.positions = {{-3, -2, -3}, {3, -2, -3}, {0, -2, 3}};
+    flat.indices = {0, 2, 1};
+    EmbreeScene scene;
+    const int uv_id = scene.add_mesh(make_uv_sphere(Imath::V3f(0, 3, 0), 1.0f, 16, 32));
+    const int bare_id = scene.add_mesh(bare);
+    scene.add_mesh(flat);
+    scene.commit();
+    std::mt19937 rng(7);
+    int seen[3] = {0, 0, 0};
+    for (int i = 0; i < 300; ++i) {
+        const Imath::V3f o = random_unit(rng) * 6.0f;
+        const Imath::V3f target = Imath::V3f(0, (i % 3 == 0) ? 3.0f : 0.0f, 0) + 0.5f * random_unit(rng);
+        const Imath::V3f d = (i % 3 == 2) ? Imath::V3f(0, -1, 0) : (target - o).normalized();
+        const Imath::V3f origin = (i % 3 == 2) ? Imath::V3f(o.x * 0.3f, 5.0f, o.z * 0.3f) : o;
+        const auto hit = scene.intersect(origin, d);
+        if (!hit)
+            continue;
+        ++seen[hit->mesh_id];
+        const SurfacePoint a = scene.interpolate(*hit, origin, d);
+        SurfacePoint b;
+        const bool orthonormal = scene.interpolate_shading(*hit, d, b);
+        EXPECT_EQ(a.P, b.P);
+        EXPECT_EQ(a.p_error, b.p_error);
+        EXPECT_EQ(a.Ng, b.Ng);
+        EXPECT_EQ(a.N, b.N);
+        EXPECT_EQ(a.uv, b.uv);
+        EXPECT_EQ(a.dPdu, b.dPdu);
+        EXPECT_EQ(a.dPdv, b.dPdv);
+        EXPECT_EQ(a.prim_id, b.prim_id);
+        EXPECT_EQ(orthonormal, hit->mesh_id != uv_id);
+        if (orthonormal) {
+            EXPECT_NEAR(b.dPdu.length(), 1.0f, 1e-6f);
+            EXPECT_NEAR(b.dPdu.dot(b.N), 0.0f, 1e-6f);
+            EXPECT_NEAR((b.dPdu.cross(b.dPdv) - b.N).length(), 0.0f, 2e-6f);
+        }
+    }
+    EXPECT_GT(seen[uv_id], 10);
+    EXPECT_GT(seen[bare_id], 10);
+    EXPECT_GT(seen[2], 10);
+}
+
+}  // namespace patina
