@@ -160,8 +160,21 @@ SlabLattice::SlabLattice(const SlabShell& shell, int n_t, int n_d)
 
 void SlabLattice::fill_halo(float* field, const std::vector<int>* active) const
 {
+    fill_halo(std::span<float* const>(&field, 1), active);
+}
+
+void SlabLattice::fill_halo(std::span<float* const> fields, const std::vector<int>* active) const
+{
     // Ghosts are stored by slab, then layer: with `active`, only the ghosts of the layers
-    // read this step (k <= active depth) are visited at all.
+    // read this step (k <= active depth) are visited at all. Several fields share one walk
+    // over the ghosts' sources (each field's sums in the same order as alone).
+    constexpr size_t kMaxFields = 4;
+    if (fields.size() > kMaxFields) {
+        for (size_t f = 0; f < fields.size(); f += kMaxFields)
+            fill_halo(fields.subspan(f, std::min(kMaxFields, fields.size() - f)), active);
+        return;
+    }
+    const size_t n = fields.size();
     const size_t per_slab = ghost_cell_.size() / size_t(grid_.slab_count);
     const size_t per_layer = per_slab / size_t(grid_.n_d);
     tbb::parallel_for(0, grid_.slab_count, [&](int slab) {
@@ -170,21 +183,24 @@ void SlabLattice::fill_halo(float* field, const std::vector<int>* active) const
         const size_t begin = size_t(slab) * per_slab;
         const size_t end = begin + size_t(layers) * per_layer;
         for (size_t g = begin; g < end; ++g) {
-            float v = 0.0f;
+            std::array<float, kMaxFields> v{};
             for (const GhostSource& s : ghost_sources_[g])
-                v += s.weight * field[s.cell];
-            field[ghost_cell_[g]] = v;
+                for (size_t f = 0; f < n; ++f)
+                    v[f] += s.weight * fields[f][s.cell];
+            for (size_t f = 0; f < n; ++f)
+                fields[f][ghost_cell_[g]] = v[f];
         }
     });
     const SlabGrid& g = grid_;
     tbb::parallel_for(0, g.slab_count, [&](int s) {
         const bool bottom = !active || (*active)[size_t(s)] >= g.n_d - 1;
-        for (int j = -1; j <= g.n_t; ++j)
-            for (int i = -1; i <= g.n_t; ++i) {
-                field[g.index(s, i, j, -1)] = field[g.index(s, i, j, 0)];
-                if (bottom)
-                    field[g.index(s, i, j, g.n_d)] = field[g.index(s, i, j, g.n_d - 1)];
-            }
+        for (float* field : fields)
+            for (int j = -1; j <= g.n_t; ++j)
+                for (int i = -1; i <= g.n_t; ++i) {
+                    field[g.index(s, i, j, -1)] = field[g.index(s, i, j, 0)];
+                    if (bottom)
+                        field[g.index(s, i, j, g.n_d)] = field[g.index(s, i, j, g.n_d - 1)];
+                }
     });
 }
 

@@ -17,6 +17,7 @@
 
 #include <array>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 namespace patina::texgen::stone {
@@ -76,6 +77,8 @@ public:
     /// `active` (layers per slab that a step reads), halo cells deeper than their slab's
     /// active layers are left as they are.
     void fill_halo(float* field, const std::vector<int>* active = nullptr) const;
+    /// The same for several fields at once (one walk over the ghosts' sources).
+    void fill_halo(std::span<float* const> fields, const std::vector<int>* active = nullptr) const;
     /// Ghost cells whose position lies in no other slab (copied from their own slab).
     size_t unconnected_ghosts() const { return unconnected_; }
 

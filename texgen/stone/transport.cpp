@@ -154,8 +154,10 @@ void transport_step(StoneState& st, bool wet, int steps)
             }
         }
     });
+    std::array<float*, kSpecies> concentrations;
     for (int m = 0; m < kSpecies; ++m)
-        lat.fill_halo(st.concentration[m].data(), &st.active_depth);
+        concentrations[size_t(m)] = st.concentration[m].data();
+    lat.fill_halo(concentrations, &st.active_depth);
 
     // Fluxes handed to ghosts (per species; one slab's halo is written by its own task only).
     for (int m = 0; m < kSpecies; ++m)
