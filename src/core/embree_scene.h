@@ -154,6 +154,9 @@ private:
     /// Per mesh, per triangle: the unit winding normal cross(p1 - p0, p2 - p0), or 0 for a
     /// degenerate triangle; computed once in add_mesh instead of at every hit.
     std::vector<std::vector<Imath::V3f>> unit_normals_;
+    /// Per mesh: positions and normals (empty without normals) padded to four floats, so
+    /// that interpolate_shading loads each with one SIMD load.
+    std::vector<std::vector<Imath::V4f>> positions4_, normals4_;
 };
 
 }  // namespace patina
