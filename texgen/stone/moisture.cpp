@@ -195,15 +195,30 @@ namespace {
                     std::copy(theta + row, theta + row + g.n_t, out_row);
                     continue;
                 }
+                // First, branch-free over the row: air to 0, everything else kept, and which
+                // voxels can change: surface voxels, moist ones (their wet time grows) and
+                // dry ones beside a moist voxel (Darcy inflow).
+                thread_local std::vector<uint8_t> work;
+                work.resize(size_t(g.n_t));
+                const long up = lat.axis_offset(1), down = lat.axis_offset(2);
                 for (int i = 0; i < g.n_t; ++i) {
+                    const size_t c = row + size_t(i);
+                    const int stone = st.flags[c] & kStone;
+                    const int near_moist =
+                        int(theta[c] >= 0.5f) | int(theta[c - 1] >= 0.5f) |
+                        int(theta[c + 1] >= 0.5f) | int(theta[c - up] >= 0.5f) |
+                        int(theta[c + up] >= 0.5f) | int(theta[c - down] >= 0.5f) |
+                        int(theta[c + down] >= 0.5f) | int((st.flags[c] & kSurface) != 0);
+                    out_row[i] = stone ? theta[c] : 0.0f;
+                    work[size_t(i)] = uint8_t(stone & near_moist);
+                }
+                for (int i = 0; i < g.n_t; ++i) {
+                    if (!work[size_t(i)])
+                        continue;
                     const size_t c = row + size_t(i);
                     float& out_c = out_row[i];
                     const uint8_t f = st.flags[c];
                     float th = theta[c];
-                    if (!(f & kStone)) {
-                        out_c = 0.0f;
-                        continue;
-                    }
                     const size_t col = column_index(g, s, i, j);
                     if (f & kSurface) {
                         if (wet && st.column_wetness[col] > 0.05f)

@@ -142,7 +142,13 @@ void transport_step(StoneState& st, bool wet, int steps)
                     conc[i] = water > 0.0f ? (a != 0.0f ? a / water : a) : 0.0f;
                 }
             }
-            // Whether each moist voxel has its whole stencil (read only for moist voxels).
+            // Whether each moist voxel has its whole stencil (read only for moist voxels, so
+            // rows without one are left as they are).
+            int any_moist = 0;
+            for (int i = 0; i < g.n_t; ++i)
+                any_moist |= int(st.moisture[row + size_t(i)] >= 0.5f);
+            if (!any_moist)
+                continue;
             for (int i = 0; i < g.n_t; ++i) {
                 const size_t c = row + size_t(i);
                 bool full = moist(st, c);
