@@ -385,6 +385,8 @@ namespace {
 
 }  // namespace
 
+// AVX2 and baseline clones (as sample_wavelengths_tabulated: no FMA, the same bits).
+[[gnu::target_clones("avx2", "default")]]
 bool EmbreeScene::interpolate_shading(const Hit& hit, const Imath::V3f& dir,
                                       SurfacePoint& sp) const
 {

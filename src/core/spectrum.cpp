@@ -518,6 +518,9 @@ CieAtWavelengths cie_at_wavelengths(const PatinaWavelengths& wl)
     return cie;
 }
 
+// AVX2 and baseline clones, chosen at load time (VEX encoding: fewer register copies). No
+// FMA in either, so both round alike: the same bits.
+[[gnu::target_clones("avx2", "default")]]
 PatinaWavelengths sample_wavelengths_tabulated(float u, int count, SampledSpectrum& pdf,
                                                CieAtWavelengths& cie)
 {
@@ -546,16 +549,17 @@ PatinaWavelengths sample_wavelengths_tabulated(float u, int count, SampledSpectr
     return wl;
 }
 
+[[gnu::target_clones("avx2", "default")]]  // as sample_wavelengths_tabulated
 Xyz xyz_from_samples(const SampledSpectrum& L, const CieAtWavelengths& cie,
                      const SampledSpectrum& pdf)
 {
     // As above: terminated wavelengths (pdf 0) count as 0, the average is over L.count.
     if (L.count == 0)
         return {0.0, 0.0, 0.0};
-    // Over every lane in blocks of four, without a loop over the count: the lanes past it
-    // hold 0 in L, pdf and the tables, so they add 0 (L / pdf gives 0 for a zero pdf).
+    // In whole blocks of four lanes up to the count: the lanes past it hold 0 in L, pdf and
+    // the tables, so they add 0 (L / pdf gives 0 for a zero pdf).
     Float4 x = {}, y = {}, z = {};
-    for (int b = 0; b < SampledSpectrum::kLanes; b += 4) {
+    for (int b = 0; b < L.count; b += 4) {
         Float4 l, p, cx, cy, cz;
         std::memcpy(&l, L.v + b, sizeof l);
         std::memcpy(&p, pdf.v + b, sizeof p);
