@@ -269,12 +269,11 @@ void transport_step(StoneState& st, bool wet, int steps)
                             y, ghost, full_c && (ghost || st.full_stencil[y]),
                             w[d][c] + wy, std::min(st.porosity[c], st.porosity[y]),
                             std::min(vw_c, vw_y)};
-                    }
-                for (int a = 0; a < 3; ++a)
-                    for (int sign = -1; sign <= 1; sign += 2) {
-                        const size_t y = c + sign * lat.axis_offset(a);
-                        if (!lat.flux_partner(y) || !moist(st, y))
+                        if (d >= 3)
                             continue;
+                        // Directions 0-2 are the lattice axes: the face neighbours also
+                        // exchange by advection (a solute partner there is exactly a moist
+                        // flux partner, the halo above and below the shell being none).
                         // Darcy flow rate (volume per time) from c into y, symmetric in the
                         // pair up to its sign; limited so a step moves at most a tenth of the
                         // smaller voxel's water.
@@ -282,14 +281,12 @@ void transport_step(StoneState& st, bool wet, int steps)
                         const float vd = -kf * inv_eta *
                                          ((st.pressure[y] - st.pressure[c]) +
                                           (st.head[y] - st.head[c]));
-                        const float vy = vol[y] != 0.0f ? vol[y] : vol[c];
-                        const float hc = axis_metric(w, a, c);
-                        const float hy = vol[y] != 0.0f ? axis_metric(w, a, y) : hc;
+                        const float hc = axis_metric(w, d, c);
+                        const float hy = ghost ? hc : axis_metric(w, d, y);
                         float q = vd * 0.25f * (vol[c] + vy) * (hc + hy);
-                        const float cap = 0.1f / dt *
-                                          std::min(vw_c, st.porosity[y] * st.density[y] * vy);
+                        const float cap = 0.1f / dt * std::min(vw_c, vw_y);
                         q = std::clamp(q, -cap, cap);
-                        advective[size_t(n_advective++)] = {y, vol[y] == 0.0f, q};
+                        advective[size_t(n_advective++)] = {y, ghost, q};
                     }
                 // The three species in the lanes of one vector: each lane does the scalar
                 // operations in the same order, so the bits are those of a loop over species.
