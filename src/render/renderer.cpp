@@ -187,6 +187,10 @@ FilmResult render_region(const Scene& scene, const Region& region, const RenderC
             const int tx0 = (tile % tiles_x) * kTileSize, ty0 = (tile / tiles_x) * kTileSize;
             const int tx1 = std::min(tx0 + kTileSize, w);
             CameraBatch batch;
+            // Every lane of these is rewritten for each sample: made once per tile, not
+            // zeroed per sample.
+            SampledSpectrum pdf;
+            CieAtWavelengths cie;
             for (int ly = ty0; ly < std::min(ty0 + kTileSize, h); ++ly) {
                 const int y = region.y0 + ly;
                 std::array<uint64_t, kTileSize> streams;  // each pixel's hash, taken once
@@ -227,8 +231,6 @@ FilmResult render_region(const Scene& scene, const Region& region, const RenderC
                         const size_t i = static_cast<size_t>(ly) * w + lx;
                         for (int s = g0; s < g1; ++s, ++n) {
                             CameraSample& cs = batch.samples[n];
-                            SampledSpectrum pdf;
-                            CieAtWavelengths cie;
                             const PatinaWavelengths wl = sample_wavelengths_tabulated(
                                 cs.u_wavelengths, film.wavelengths, pdf, cie);
                             if (!want_aovs) {
