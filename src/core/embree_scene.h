@@ -134,7 +134,8 @@ public:
 
     /// interpolate() for a renderer's shading point, leaner: the same P, p_error, Ng, N, uv,
     /// dPdu and dPdv, but wo is not computed (the renderer has the ray) and the hit is not
-    /// range-checked (it must come from this scene's intersect). Returns true when
+    /// range-checked (it must come from this scene's intersect); `dir`, the ray's direction,
+    /// only turns a degenerate triangle's normal towards the ray. Returns true when
     /// (dPdu, dPdv, N) is already an orthonormal right-handed frame, as for a mesh without
     /// uvs (Duff et al.'s frame about N), so that a shading frame can be taken as it is.
     bool interpolate_shading(const Hit& hit, const Imath::V3f& dir, SurfacePoint& sp) const;
