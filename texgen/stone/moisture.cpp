@@ -198,19 +198,22 @@ namespace {
                 // First, branch-free over the row: air to 0, everything else kept, and which
                 // voxels can change: surface voxels, moist ones (their wet time grows) and
                 // dry ones beside a moist voxel (Darcy inflow).
-                thread_local std::vector<uint8_t> work;
+                thread_local std::vector<int> work;
                 work.resize(size_t(g.n_t));
                 const long up = lat.axis_offset(1), down = lat.axis_offset(2);
-                for (int i = 0; i < g.n_t; ++i) {
-                    const size_t c = row + size_t(i);
-                    const int stone = st.flags[c] & kStone;
-                    const int near_moist =
-                        int(theta[c] >= 0.5f) | int(theta[c - 1] >= 0.5f) |
-                        int(theta[c + 1] >= 0.5f) | int(theta[c - up] >= 0.5f) |
-                        int(theta[c + up] >= 0.5f) | int(theta[c - down] >= 0.5f) |
-                        int(theta[c + down] >= 0.5f) | int((st.flags[c] & kSurface) != 0);
-                    out_row[i] = stone ? theta[c] : 0.0f;
-                    work[size_t(i)] = uint8_t(stone & near_moist);
+                const float* t = theta + row;
+                int* wk = work.data();
+                const int n = g.n_t;
+                for (int i = 0; i < n; ++i)  // floats only, so that it vectorises
+                    wk[i] = int(t[i] >= 0.5f) | int(t[i - 1] >= 0.5f) | int(t[i + 1] >= 0.5f) |
+                            int(t[i - up] >= 0.5f) | int(t[i + up] >= 0.5f) |
+                            int(t[i - down] >= 0.5f) | int(t[i + down] >= 0.5f);
+                const uint8_t* fl = st.flags.data() + row;
+                for (int i = 0; i < n; ++i) {
+                    const int stone = fl[i] & kStone;
+                    wk[i] = stone & (wk[i] | int((fl[i] & kSurface) != 0));
+                    // Air to 0: moisture is never negative, so t x 0 is +0 and t x 1 is t.
+                    out_row[i] = t[i] * float(stone);
                 }
                 for (int i = 0; i < g.n_t; ++i) {
                     if (!work[size_t(i)])
