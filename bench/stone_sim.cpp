@@ -8,7 +8,10 @@
 //   bench_stone_sim [--tangential N] [--depth N] [--threads N] [--warm-cycles N]
 //                   [--cycles N]     run N timed cycles, the moist depth every N/10
 //                   [--check N]      run N cycles and print a hash of the state (to compare
-//                                    builds bit for bit), then exit
+//                                    builds bit for bit) and totals of the weathering, then exit
+//                   [--transport-interval N]  moisture steps per transport step (default:
+//                                    the solutes' stability limit; 1 gives the results of the
+//                                    code before the transport had its own step)
 #include "core/mesh.h"
 #include "texgen/stone/quarry.h"
 #include "texgen/stone/slab_lattice.h"
@@ -70,6 +73,36 @@ static uint64_t state_hash(const StoneState& st)
                         mix(st.pressure[c]);
                 }
     return h;
+}
+
+/// What the weathering has done so far, summed over the stone (to compare runs that differ
+/// in their bits, e.g. --transport-interval).
+static void print_totals(const StoneState& st)
+{
+    const SlabGrid& g = st.lattice->grid();
+    const auto& vol = st.lattice->volume();
+    double black = 0.0, decay = 0.0, lost = 0.0, volume = 0.0;
+    std::array<double, kSpecies> crust{}, dissolved{};
+    for (int s = 0; s < g.slab_count; ++s)
+        for (int k = 0; k < g.n_d; ++k)
+            for (int j = 0; j < g.n_t; ++j)
+                for (int i = 0; i < g.n_t; ++i) {
+                    const size_t c = g.index(s, i, j, k);
+                    const double v = vol[c];
+                    black += v * st.black[c];
+                    decay += v * st.decay[c];
+                    lost += v * (1.0 - st.density[c]);
+                    volume += v;
+                    for (int m = 0; m < kSpecies; ++m) {
+                        crust[size_t(m)] += v * st.crust[m][c];
+                        dissolved[size_t(m)] += v * st.dissolved[m][c];
+                    }
+                }
+    std::printf("totals (volume-weighted means): black crust %.4g, decay %.4g, density lost "
+                "%.4g; crust binder/iron/salt %.4g %.4g %.4g; dissolved %.4g %.4g %.4g\n",
+                black / volume, decay / volume, lost / volume, crust[0] / volume,
+                crust[1] / volume, crust[2] / volume, dissolved[0] / volume,
+                dissolved[1] / volume, dissolved[2] / volume);
 }
 
 /// Mean and largest active depth (layers a step works on) over the slabs.
@@ -136,7 +169,7 @@ static void print_activity(const StoneState& st, const char* when)
 
 int main(int argc, char** argv)
 {
-    int n_t = 32, n_d = 32, threads = 2, warm = 20, cycles = 3, check = 0;
+    int n_t = 32, n_d = 32, threads = 2, warm = 20, cycles = 3, check = 0, transport_interval = 0;
     for (int i = 1; i + 1 < argc; i += 2) {
         const std::string a = argv[i];
         const int v = std::atoi(argv[i + 1]);
@@ -146,6 +179,7 @@ int main(int argc, char** argv)
         else if (a == "--warm-cycles") warm = v;
         else if (a == "--cycles") cycles = std::max(1, v);
         else if (a == "--check") check = v;
+        else if (a == "--transport-interval") transport_interval = v;
         else {
             std::fprintf(stderr, "bench_stone_sim: unknown option '%s'\n", a.c_str());
             return 2;
@@ -173,6 +207,8 @@ int main(int argc, char** argv)
     initialise_state(st, lattice, mesh, Quarry(q), params);
     for (size_t c = 0; c < st.columns.size(); ++c)
         st.column_wetness[c] = 0.3f + 0.7f * std::max(0.0f, st.columns[c].N.y);
+    if (transport_interval > 0)
+        st.transport_interval = transport_interval;
     const SlabGrid& g = lattice.grid();
     std::printf("grid: %d slabs of %d x %d x %d = %zu voxels (%zu cells with halo); set-up %.1f s\n",
                 g.slab_count, n_t, n_t, n_d, g.voxel_count(), g.cell_count(),
@@ -185,6 +221,7 @@ int main(int argc, char** argv)
         for (int c = 0; c < check; ++c)
             run_cycle(st);
         print_activity(st, "after the check cycles");
+        print_totals(st);
         std::printf("state hash after %d cycles: %016llx\n", check,
                     (unsigned long long)state_hash(st));
         return 0;
