@@ -21,7 +21,7 @@
 # What is timed (render only, for both; scene loading and BVH builds are excluded):
 #   patina-render  the "elapsed" of its last progress line: the wall time of render_region,
 #                  from the first tile to the last, after plugins, the OBJ and the BVH are
-#                  loaded and before the EXR is written; printed with 0.1 s resolution.
+#                  loaded and before the EXR is written; printed to 0.01 s.
 #   pathtracer     `--benchmark 1 1 --legacy`: one warm-up frame (the tutorial builds its
 #                  BVH inside the first frame), then one frame timed with wall-clock
 #                  getSeconds() around the render call, printed as fps (BENCHMARK_RENDER_MAX);
@@ -147,7 +147,7 @@ run_patina() {
     say "patina-render failed:"; tr '\r' '\n' <"$tmp/patina.err" | tail -3 >&2; return 1
   fi
   t1=$(now_ns)
-  # Its last progress line: "render: 100.0%  elapsed 2.3s  ETA 0.0s".
+  # Its last progress line: "render: 100.0%  elapsed 2.31s  ETA 0.0s".
   sec=$(tr '\r' '\n' <"$tmp/patina.err" | sed -n 's/^render: 100.0% *elapsed \([0-9.]*\)s.*/\1/p' | tail -1)
   [ -n "$sec" ] || { say "patina-render printed no elapsed time"; return 1; }
   say "run $1: patina-render render ${sec} s, process $(span "$t0" "$t1") s"
