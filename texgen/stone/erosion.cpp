@@ -8,6 +8,8 @@
 
 #include "core/sampling.h"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
 
@@ -50,19 +52,26 @@ void erosion_events(StoneState& st)
     if (rng.uniform_double() < expected - double(events))
         ++events;
 
-    const int r = int(std::ceil(prm.erosion_radius));
-    const float amount = float(prm.erosion_amount);
+    // The centres are drawn in sequence (one generator); an event's zone stays inside its
+    // centre's slab, so the slabs apply their own events in parallel, each in drawing order:
+    // the same result as applying them one by one.
+    std::vector<std::vector<uint32_t>> centres(size_t(g.slab_count));
     for (size_t e = 0; e < events; ++e) {
         const double x = rng.uniform_double() * total;
         const size_t pick = size_t(std::upper_bound(cdf.begin(), cdf.end(), x) - cdf.begin());
-        const size_t centre = cells[std::min(pick, cells.size() - 1)];
+        const uint32_t centre = cells[std::min(pick, cells.size() - 1)];
+        centres[centre / g.slab_size].push_back(centre);
+    }
+    const int r = int(std::ceil(prm.erosion_radius));
+    const float amount = float(prm.erosion_amount);
+    const auto& w = lat.weights();
+    tbb::parallel_for(0, g.slab_count, [&](int s) {
+      for (const uint32_t centre : centres[size_t(s)]) {
         const size_t local = centre % g.slab_size;
-        const int s = int(centre / g.slab_size);
         const int ci = int(local % g.sx) - 1, cj = int((local / g.sx) % g.sy) - 1,
                   ck = int(local / (size_t(g.sx) * g.sy)) - 1;
         const Imath::V3f pc = lat.position()[centre];
         // Depth step at the centre: the zone's radius is measured in it.
-        const auto& w = lat.weights();
         const float h = 1.0f / std::sqrt(w[2][centre] + w[4][centre] + w[5][centre]);
         const float radius = float(prm.erosion_radius) * h;
         for (int k = std::max(0, ck - r); k <= std::min(g.n_d - 1, ck + r); ++k)
@@ -84,7 +93,8 @@ void erosion_events(StoneState& st)
                         st.flags[c] = 0;
                     }
                 }
-    }
+      }
+    });
     update_flags(st);
     lat.fill_halo(st.moisture.data());
 }
