@@ -16,6 +16,26 @@ namespace patina {
 
 namespace {
 
+    /// The uv at barycentrics (b0, b1, b2) of triangle (i0, i1, i2) and the tangents dP/du,
+    /// dP/dv from its uvs (pbrt-v4 Triangle::InteractionFromIntersection); false when the
+    /// uvs are degenerate (the caller makes a frame about the normal instead).
+    inline bool uv_tangents(const TriangleMesh& m, uint32_t i0, uint32_t i1, uint32_t i2,
+                            float b0, float b1, float b2, SurfacePoint& sp)
+    {
+        const Imath::V3f &p0 = m.positions[i0], &p1 = m.positions[i1], &p2 = m.positions[i2];
+        const Imath::V2f &uv0 = m.uvs[i0], &uv1 = m.uvs[i1], &uv2 = m.uvs[i2];
+        sp.uv = b0 * uv0 + b1 * uv1 + b2 * uv2;
+        const Imath::V2f duv02 = uv0 - uv2, duv12 = uv1 - uv2;
+        const Imath::V3f dp02 = p0 - p2, dp12 = p1 - p2;
+        const float det = duv02.x * duv12.y - duv02.y * duv12.x;
+        if (!(std::abs(det) > 1e-12f))
+            return false;
+        const float inv = 1.0f / det;
+        sp.dPdu = (duv12.y * dp02 - duv02.y * dp12) * inv;
+        sp.dPdv = (duv02.x * dp12 - duv12.x * dp02) * inv;
+        return sp.dPdu.cross(sp.dPdv).length2() > 0.0f;
+    }
+
     // Embree reports errors through a callback on the thread that made the call; keep the
     // text there and throw from check() after the call returns (never through Embree).
     thread_local std::string t_embree_error;
@@ -338,23 +358,11 @@ SurfacePoint EmbreeScene::interpolate(const Hit& hit, const Imath::V3f& origin,
         }
     }
 
-    // uv and the tangents dP/du, dP/dv (pbrt-v4 Triangle::InteractionFromIntersection).
     bool frame_ok = false;
-    if (m.has_uvs()) {
-        const Imath::V2f &uv0 = m.uvs[i0], &uv1 = m.uvs[i1], &uv2 = m.uvs[i2];
-        sp.uv = b0 * uv0 + b1 * uv1 + b2 * uv2;
-        const Imath::V2f duv02 = uv0 - uv2, duv12 = uv1 - uv2;
-        const Imath::V3f dp02 = p0 - p2, dp12 = p1 - p2;
-        const float det = duv02.x * duv12.y - duv02.y * duv12.x;
-        if (std::abs(det) > 1e-12f) {
-            const float inv = 1.0f / det;
-            sp.dPdu = (duv12.y * dp02 - duv02.y * dp12) * inv;
-            sp.dPdv = (duv02.x * dp12 - duv12.x * dp02) * inv;
-            frame_ok = sp.dPdu.cross(sp.dPdv).length2() > 0.0f;
-        }
-    } else {
+    if (m.has_uvs())
+        frame_ok = uv_tangents(m, i0, i1, i2, b0, b1, b2, sp);
+    else
         sp.uv = Imath::V2f(hit.u, hit.v);
-    }
     if (!frame_ok)
         tangent_frame(sp.N, sp.dPdu, sp.dPdv);
     return sp;
@@ -425,19 +433,8 @@ bool EmbreeScene::interpolate_shading(const Hit& hit, const Imath::V3f& dir,
         tangent_frame(sp.N, sp.dPdu, sp.dPdv);
         return true;
     }
-    const Imath::V3f &p0 = m.positions[i0], &p1 = m.positions[i1], &p2 = m.positions[i2];
-    const Imath::V2f &uv0 = m.uvs[i0], &uv1 = m.uvs[i1], &uv2 = m.uvs[i2];
-    sp.uv = b0 * uv0 + b1 * uv1 + b2 * uv2;
-    const Imath::V2f duv02 = uv0 - uv2, duv12 = uv1 - uv2;
-    const Imath::V3f dp02 = p0 - p2, dp12 = p1 - p2;
-    const float det = duv02.x * duv12.y - duv02.y * duv12.x;
-    if (std::abs(det) > 1e-12f) {
-        const float inv = 1.0f / det;
-        sp.dPdu = (duv12.y * dp02 - duv02.y * dp12) * inv;
-        sp.dPdv = (duv02.x * dp12 - duv12.x * dp02) * inv;
-        if (sp.dPdu.cross(sp.dPdv).length2() > 0.0f)
-            return false;
-    }
+    if (uv_tangents(m, i0, i1, i2, b0, b1, b2, sp))
+        return false;
     tangent_frame(sp.N, sp.dPdu, sp.dPdv);
     return true;
 }
