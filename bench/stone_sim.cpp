@@ -140,7 +140,8 @@ static void print_activity(const StoneState& st, const char* when)
                     int d = 0;
                     for (int k = 0; k < g.n_d; ++k) {
                         const size_t c = g.index(s, i, j, k);
-                        if ((st.flags[c] & kSurface) || ((st.flags[c] & kStone) && st.moisture[c] >= 0.5f))
+                        const bool moist = (st.flags[c] & kStone) && st.moisture[c] >= 0.5f;
+                        if ((st.flags[c] & kSurface) || moist)
                             d = k + 1;
                     }
                     deepest[size_t(j) * g.n_t + size_t(i)] = d;

@@ -298,7 +298,8 @@ namespace {
         return table;
     }
     // Built at load time (no guard per call).
-    const std::array<WavelengthStep, kWavelengthTableSize> kWavelengthTable = make_wavelength_table();
+    const std::array<WavelengthStep, kWavelengthTableSize> kWavelengthTable =
+        make_wavelength_table();
 
 } // namespace
 

@@ -24,11 +24,12 @@ public:
         const uint8_t* flags = st.flags.data();
         for (int k = -1; k <= last; ++k)
             for (int j = -1; j <= g.n_t; ++j) {
-                const size_t row = g.index(s, -1, j, k);
+                const float* t = theta + g.index(s, -1, j, k);
+                const uint8_t* f = flags + g.index(s, -1, j, k);
                 // A branch-free reduction over the row, so that it vectorises.
                 int any = 0;
                 for (int i = 0; i < g.sx; ++i)
-                    any |= int(theta[row + size_t(i)] >= 0.5f) | (flags[row + size_t(i)] & kSurface);
+                    any |= int(t[i] >= 0.5f) | (f[i] & kSurface);
                 live_[at(j, k)] = uint8_t(any != 0);
             }
     }

@@ -43,8 +43,9 @@ namespace {
 
     /// Whether the pressure step changes any of the n voxels from `row`: a moist stone voxel
     /// below the surface, or a dry one whose pressure is not yet the front's +0 (it dried in
-    /// the last step; compared as bits, as the step writes +0). Air and surface voxels keep their Dirichlet values. Branch-free, so
-    /// that it vectorises: most rows of the active layers are air or dry stone.
+    /// the last step; compared as bits, as the step writes +0). Air and surface voxels keep
+    /// their Dirichlet values. Branch-free, so that it vectorises: most rows of the active
+    /// layers are air or dry stone.
     inline bool pressure_changes(const StoneState& st, size_t row, int n)
     {
         const uint8_t* f = st.flags.data() + row;
@@ -200,14 +201,14 @@ namespace {
                 // dry ones beside a moist voxel (Darcy inflow).
                 thread_local std::vector<int> work;
                 work.resize(size_t(g.n_t));
-                const long up = lat.axis_offset(1), down = lat.axis_offset(2);
+                const long dj = lat.axis_offset(1), dk = lat.axis_offset(2);
                 const float* t = theta + row;
                 int* wk = work.data();
                 const int n = g.n_t;
                 for (int i = 0; i < n; ++i)  // floats only, so that it vectorises
                     wk[i] = int(t[i] >= 0.5f) | int(t[i - 1] >= 0.5f) | int(t[i + 1] >= 0.5f) |
-                            int(t[i - up] >= 0.5f) | int(t[i + up] >= 0.5f) |
-                            int(t[i - down] >= 0.5f) | int(t[i + down] >= 0.5f);
+                            int(t[i - dj] >= 0.5f) | int(t[i + dj] >= 0.5f) |
+                            int(t[i - dk] >= 0.5f) | int(t[i + dk] >= 0.5f);
                 const uint8_t* fl = st.flags.data() + row;
                 for (int i = 0; i < n; ++i) {
                     const int stone = fl[i] & kStone;
@@ -215,8 +216,8 @@ namespace {
                     // Air to 0: moisture is never negative, so t x 0 is +0 and t x 1 is t.
                     out_row[i] = t[i] * float(stone);
                 }
-                for (int i = 0; i < g.n_t; ++i) {
-                    if (!work[size_t(i)])
+                for (int i = 0; i < n; ++i) {
+                    if (!wk[i])
                         continue;
                     const size_t c = row + size_t(i);
                     float& out_c = out_row[i];
