@@ -206,6 +206,51 @@ std::optional<Hit> EmbreeScene::intersect(const Imath::V3f& origin, const Imath:
                rh.hit.u, rh.hit.v};
 }
 
+namespace {
+
+    // Closest hits of a batch through Embree's ray stream API, in chunks of 64 rays.
+    void intersect_stream(RTCScene scene, RTCIntersectContextFlags flags,
+                          std::span<const RayQuery> rays, std::span<std::optional<Hit>> hits)
+    {
+        constexpr size_t kChunk = 64;
+        RTCRayHit batch[kChunk];
+        RTCIntersectContext context;
+        rtcInitIntersectContext(&context);
+        context.flags = flags;
+        for (size_t first = 0; first < rays.size(); first += kChunk) {
+            const size_t n = std::min(kChunk, rays.size() - first);
+            for (size_t i = 0; i < n; ++i) {
+                const RayQuery& r = rays[first + i];
+                RTCRayHit& rh = batch[i];
+                rh.ray.time = 0.0f;
+                rh.ray.id = static_cast<unsigned>(i);
+                rh.ray.flags = 0;
+                rh.ray.org_x = r.origin.x;
+                rh.ray.org_y = r.origin.y;
+                rh.ray.org_z = r.origin.z;
+                rh.ray.dir_x = r.dir.x;
+                rh.ray.dir_y = r.dir.y;
+                rh.ray.dir_z = r.dir.z;
+                rh.ray.tnear = r.tmin;
+                rh.ray.tfar = r.tmax;
+                rh.ray.mask = 0xFFFFFFFFu;
+                rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+                rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+            }
+            rtcIntersect1M(scene, &context, batch, static_cast<unsigned>(n), sizeof(RTCRayHit));
+            for (size_t i = 0; i < n; ++i) {
+                const RTCRayHit& rh = batch[i];
+                if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID)
+                    hits[first + i].reset();
+                else
+                    hits[first + i] = Hit{rh.ray.tfar, static_cast<int>(rh.hit.geomID),
+                                          static_cast<int>(rh.hit.primID), rh.hit.u, rh.hit.v};
+            }
+        }
+    }
+
+}  // namespace
+
 void EmbreeScene::intersect_coherent(std::span<const RayQuery> rays,
                                      std::span<std::optional<Hit>> hits) const
 {
@@ -213,41 +258,17 @@ void EmbreeScene::intersect_coherent(std::span<const RayQuery> rays,
         throw std::runtime_error("EmbreeScene::intersect_coherent called before commit()");
     if (hits.size() != rays.size())
         throw std::invalid_argument("EmbreeScene::intersect_coherent: one result per ray");
-    constexpr size_t kChunk = 64;
-    RTCRayHit batch[kChunk];
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
-    context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-    for (size_t first = 0; first < rays.size(); first += kChunk) {
-        const size_t n = std::min(kChunk, rays.size() - first);
-        for (size_t i = 0; i < n; ++i) {
-            const RayQuery& r = rays[first + i];
-            RTCRayHit& rh = batch[i];
-            rh.ray.time = 0.0f;
-            rh.ray.id = static_cast<unsigned>(i);
-            rh.ray.flags = 0;
-            rh.ray.org_x = r.origin.x;
-            rh.ray.org_y = r.origin.y;
-            rh.ray.org_z = r.origin.z;
-            rh.ray.dir_x = r.dir.x;
-            rh.ray.dir_y = r.dir.y;
-            rh.ray.dir_z = r.dir.z;
-            rh.ray.tnear = r.tmin;
-            rh.ray.tfar = r.tmax;
-            rh.ray.mask = 0xFFFFFFFFu;
-            rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-            rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-        }
-        rtcIntersect1M(scene_, &context, batch, static_cast<unsigned>(n), sizeof(RTCRayHit));
-        for (size_t i = 0; i < n; ++i) {
-            const RTCRayHit& rh = batch[i];
-            if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID)
-                hits[first + i].reset();
-            else
-                hits[first + i] = Hit{rh.ray.tfar, static_cast<int>(rh.hit.geomID),
-                                      static_cast<int>(rh.hit.primID), rh.hit.u, rh.hit.v};
-        }
-    }
+    intersect_stream(scene_, RTC_INTERSECT_CONTEXT_FLAG_COHERENT, rays, hits);
+}
+
+void EmbreeScene::intersect_incoherent(std::span<const RayQuery> rays,
+                                       std::span<std::optional<Hit>> hits) const
+{
+    if (!committed_)
+        throw std::runtime_error("EmbreeScene::intersect_incoherent called before commit()");
+    if (hits.size() != rays.size())
+        throw std::invalid_argument("EmbreeScene::intersect_incoherent: one result per ray");
+    intersect_stream(scene_, RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT, rays, hits);
 }
 
 bool EmbreeScene::occluded(const Imath::V3f& origin, const Imath::V3f& dir, float tmin,

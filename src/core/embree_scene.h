@@ -114,6 +114,11 @@ public:
     /// call: Embree's ray stream API with RTC_INTERSECT_CONTEXT_FLAG_COHERENT, which traces
     /// them as packets. hits[i] answers rays[i] (`hits` as long as `rays`).
     void intersect_coherent(std::span<const RayQuery> rays, std::span<std::optional<Hit>> hits) const;
+    /// Closest hits of a batch of unrelated rays (a wavefront's bounce rays): the stream API
+    /// without the coherent flag, which Embree traces one ray at a time, so hits[i] is
+    /// bitwise what intersect(rays[i]...) gives; one call for the batch.
+    void intersect_incoherent(std::span<const RayQuery> rays,
+                              std::span<std::optional<Hit>> hits) const;
     /// True if anything lies along the ray with t in [tmin, tmax] (shadow rays).
     bool occluded(const Imath::V3f& origin, const Imath::V3f& dir, float tmin = 0.0f,
                   float tmax = std::numeric_limits<float>::infinity()) const;

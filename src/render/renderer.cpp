@@ -2,6 +2,7 @@
 
 #include "render/film_output.h"
 #include "render/integrator.h"
+#include "render/wavefront.h"
 #include "core/progress.h"
 #include "render/scene.h"
 
@@ -15,6 +16,7 @@
 #include <charconv>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <stdexcept>
 
 namespace patina::render {
@@ -90,6 +92,12 @@ namespace {
             acc.depth[i] += aov.depth;
     }
 
+    bool per_path_forced()
+    {
+        const char* v = std::getenv("PATINA_RENDER_PER_PATH");
+        return v && v[0] == '1';
+    }
+
     int parse_int(std::string_view text, const char* what)
     {
         int v = 0;
@@ -97,6 +105,91 @@ namespace {
         if (ec != std::errc() || ptr != text.data() + text.size())
             throw std::invalid_argument(fmt::format("{}: '{}' is not an integer", what, text));
         return v;
+    }
+
+    // A wavefront holds one tile row's pixels times up to this many samples (256 paths);
+    // a multiple of kBatchSamples, so that the camera batches are the per-path loop's.
+    constexpr int kWaveSamples = 16;
+
+    // Everything a tile needs to render in wavefront form, reused from row to row.
+    struct WaveTile {
+        CameraBatch batch;
+        std::vector<WavefrontPath> paths;
+        std::vector<uint32_t> pixel;  // the region's pixel index of each path
+        WavefrontScratch scratch;
+    };
+
+    // Samples [s0, s1) of the tile row's pixels [tx0, tx1) x {ly} in wavefront form: the
+    // camera rays in the per-path loop's batches (the same generators, rays and hits), then
+    // every path at once, then the film sums in the per-path loop's order (per pixel by
+    // sample index), so the pixels are bitwise the per-path loop's.
+    void render_row_wavefront(const Scene& scene, const Region& region, int tx0, int tx1, int ly,
+                              int s0, int s1, const Camera::Raster& raster, bool want_aovs,
+                              Accumulator& acc, WaveTile& wt)
+    {
+        const FilmSettings& film = scene.film;
+        const bool pinhole = scene.camera.is_pinhole();
+        const int w = region.width();
+        const int y = region.y0 + ly;
+        std::array<uint64_t, kTileSize> streams;  // each pixel's hash, taken once
+        for (int lx = tx0; lx < tx1; ++lx)
+            streams[static_cast<size_t>(lx - tx0)] = pixel_stream(film.seed, region.x0 + lx, y);
+        CameraBatch& batch = wt.batch;
+        for (int c0 = s0; c0 < s1; c0 = std::min(s1, (c0 / kWaveSamples + 1) * kWaveSamples)) {
+            const int c1 = std::min(s1, (c0 / kWaveSamples + 1) * kWaveSamples);
+            wt.paths.resize(static_cast<size_t>(tx1 - tx0) * static_cast<size_t>(c1 - c0));
+            wt.pixel.resize(wt.paths.size());
+            size_t np = 0;
+            for (int g0 = c0; g0 < c1; g0 = std::min(c1, (g0 / kBatchSamples + 1) * kBatchSamples)) {
+                const int g1 = std::min(c1, (g0 / kBatchSamples + 1) * kBatchSamples);
+                size_t n = 0;
+                for (int lx = tx0; lx < tx1; ++lx) {
+                    const int x = region.x0 + lx;
+                    for (int s = g0; s < g1; ++s, ++n) {
+                        CameraSample& cs = batch.samples[n];
+                        cs.rng = sample_rng(streams[static_cast<size_t>(lx - tx0)], film.seed,
+                                            static_cast<uint64_t>(s));
+                        const float px = static_cast<float>(x) + cs.rng.uniform_float();
+                        const float py = static_cast<float>(y) + cs.rng.uniform_float();
+                        if (pinhole) {
+                            cs.ray = raster.ray(px, py);
+                        } else {
+                            const Imath::V2f lens{cs.rng.uniform_float(), cs.rng.uniform_float()};
+                            cs.ray = scene.camera.generate(px / static_cast<float>(film.width),
+                                                           py / static_cast<float>(film.height),
+                                                           lens);
+                        }
+                        cs.u_wavelengths = cs.rng.uniform_float();
+                        batch.queries[n] = {cs.ray.origin, cs.ray.dir};
+                    }
+                }
+                scene.geometry->intersect_coherent(std::span(batch.queries.data(), n),
+                                                   std::span(batch.hits.data(), n));
+                n = 0;
+                for (int lx = tx0; lx < tx1; ++lx) {
+                    for (int s = g0; s < g1; ++s, ++n, ++np) {
+                        const CameraSample& cs = batch.samples[n];
+                        WavefrontPath& p = wt.paths[np];
+                        p.rng = cs.rng;
+                        p.ray = cs.ray;
+                        p.hit = batch.hits[n];
+                        p.wl = sample_wavelengths_tabulated(cs.u_wavelengths, film.wavelengths,
+                                                            p.pdf, p.cie);
+                        wt.pixel[np] = static_cast<uint32_t>(ly * w + lx);
+                    }
+                }
+            }
+            trace_wavefront(scene, std::span(wt.paths.data(), np), want_aovs, wt.scratch);
+            // Per pixel the paths stand in sample order (group by group), as the per-path
+            // loop adds them.
+            for (size_t k = 0; k < np; ++k) {
+                const WavefrontPath& p = wt.paths[k];
+                if (want_aovs)
+                    accumulate(acc, film, wt.pixel[k], p.L, p.wl, p.cie, p.pdf, p.aov);
+                else
+                    accumulate_xyz(acc, wt.pixel[k], p.L, p.cie, p.pdf);
+            }
+        }
     }
 
 }  // namespace
@@ -179,6 +272,10 @@ FilmResult render_region(const Scene& scene, const Region& region, const RenderC
     // Pinhole camera rays from per-frame terms (the lens numbers are not drawn then).
     const bool pinhole = scene.camera.is_pinhole();
     const Camera::Raster raster = scene.camera.raster(film.width, film.height);
+    // Surface-only scenes take the wavefront loop (the same bits as the per-path loop);
+    // scenes with media the per-path loop. PATINA_RENDER_PER_PATH=1 forces the latter
+    // (for comparisons).
+    const bool wavefront = wavefront_supported(scene) && !per_path_forced();
 
     int spp_done = 0;
     for (int pass = 0; pass < passes; ++pass) {
@@ -186,6 +283,14 @@ FilmResult render_region(const Scene& scene, const Region& region, const RenderC
         tbb::parallel_for(0, tiles_x * tiles_y, [&](int tile) {
             const int tx0 = (tile % tiles_x) * kTileSize, ty0 = (tile / tiles_x) * kTileSize;
             const int tx1 = std::min(tx0 + kTileSize, w);
+            if (wavefront) {
+                WaveTile wt;
+                for (int ly = ty0; ly < std::min(ty0 + kTileSize, h); ++ly)
+                    render_row_wavefront(scene, region, tx0, tx1, ly, s0, s1, raster, want_aovs,
+                                         acc, wt);
+                progress.step();
+                return;
+            }
             CameraBatch batch;
             // Every lane of these is rewritten for each sample: made once per tile, not
             // zeroed per sample.

@@ -1,9 +1,11 @@
 #include "core/embree_scene.h"
+#include "core/sampling.h"
 
 #include <gtest/gtest.h>
 
 #include <atomic>
 #include <cmath>
+#include <cstring>
 #include <numbers>
 #include <random>
 #include <stdexcept>
@@ -343,3 +345,45 @@ TEST(EmbreeScene, InterpolateShadingMatchesInterpolate)
 }
 
 }  // namespace patina
+
+// The wavefront renderer's bounce rays go through intersect_incoherent: one stream call,
+// the same hits bit for bit as one intersect call per ray (rays from inside and outside a
+// sphere, some missing it, some with a limited range; more than one 64-ray chunk).
+TEST(EmbreeScene, IncoherentStreamGivesTheSameHitsAsSingleRays)
+{
+    patina::EmbreeScene scene;
+    scene.add_mesh(patina::make_uv_sphere({0.3f, -0.2f, 0.1f}, 1.0f, 24, 12));
+    scene.commit();
+    patina::Pcg32 rng(5);
+    std::vector<patina::RayQuery> rays(150);
+    for (size_t i = 0; i < rays.size(); ++i) {
+        patina::RayQuery& r = rays[i];
+        r.origin = {4.0f * rng.uniform_float() - 2.0f, 4.0f * rng.uniform_float() - 2.0f,
+                    4.0f * rng.uniform_float() - 2.0f};
+        // Towards the sphere, give or take 1.5: most hit, some miss.
+        r.dir = Imath::V3f(0.3f, -0.2f, 0.1f) - r.origin +
+                Imath::V3f(3.0f * rng.uniform_float() - 1.5f, 3.0f * rng.uniform_float() - 1.5f,
+                           3.0f * rng.uniform_float() - 1.5f);
+        r.tmax = i % 3 == 0 ? 1.5f : std::numeric_limits<float>::infinity();
+    }
+    std::vector<std::optional<patina::Hit>> hits(rays.size());
+    scene.intersect_incoherent(rays, hits);
+    size_t found = 0;
+    for (size_t i = 0; i < rays.size(); ++i) {
+        const std::optional<patina::Hit> one =
+            scene.intersect(rays[i].origin, rays[i].dir, rays[i].tmin, rays[i].tmax);
+        ASSERT_EQ(one.has_value(), hits[i].has_value()) << "ray " << i;
+        if (!one)
+            continue;
+        ++found;
+        EXPECT_EQ(std::memcmp(&one->t, &hits[i]->t, sizeof(float)), 0) << "ray " << i;
+        EXPECT_EQ(one->prim_id, hits[i]->prim_id);
+        EXPECT_EQ(one->mesh_id, hits[i]->mesh_id);
+        EXPECT_EQ(std::memcmp(&one->u, &hits[i]->u, sizeof(float)), 0);
+        EXPECT_EQ(std::memcmp(&one->v, &hits[i]->v, sizeof(float)), 0);
+    }
+    EXPECT_GT(found, rays.size() / 4);
+    EXPECT_LT(found, rays.size());
+    std::vector<std::optional<patina::Hit>> too_few(3);
+    EXPECT_THROW(scene.intersect_incoherent(rays, too_few), std::invalid_argument);
+}

@@ -1,0 +1,122 @@
+// Pieces of a path's estimator shared by the per-path loop (integrator.cpp) and the
+// wavefront loop (wavefront.cpp), so that both compute every value with the same
+// operations in the same order (and so the same bits).
+#pragma once
+
+#include "render/environment_light.h"
+#include "render/scene.h"
+#include "render/shading_frame.h"
+
+#include "core/sampling.h"
+#include "core/spectrum.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace patina::render::path {
+
+constexpr float kInf = std::numeric_limits<float>::infinity();
+
+inline PatinaVec3 to_abi(const Imath::V3f& v) { return {v.x, v.y, v.z}; }
+inline Imath::V3f from_abi(const PatinaVec3& v) { return {v.x, v.y, v.z}; }
+// v / |v| with one square root and one division (Imath's normalized() divides thrice and
+// checks for tiny vectors); v must not be 0.
+inline Imath::V3f unit(const Imath::V3f& v) { return v * (1.0f / std::sqrt(v.dot(v))); }
+
+// What the previous scattering vertex knows, for MIS weights of emission found by BSDF
+// or phase sampling (pbrt-v4 §13.4 and §14.2, VolPathIntegrator).
+struct PrevVertex {
+    Imath::V3f P{0, 0, 0};
+    float pdf = 0.0f;      // solid-angle pdf of the direction it sampled
+    bool specular = true;  // camera ray or delta lobe: no light sampling competed
+};
+
+inline float emission_mis_weight(const Scene& scene, const PrevVertex& prev, float light_pdf)
+{
+    if (prev.specular || !scene.film.mis)
+        return 1.0f;
+    return power_heuristic(1, prev.pdf, 1, light_pdf);
+}
+
+// How a scattering vertex (a surface BSDF or a medium's phase function) answers NEE.
+struct Scatterer {
+    const ShaderInstance* shader;
+    const PatinaShadingContext* ctx;
+    const ShadingFrame* frame;  // null for a medium point (world-space directions)
+    PatinaVec3 wo;
+
+    // Value (times |cos| on surfaces) and pdf of scattering towards world direction wi;
+    // the pdf is left at 0 when the value is 0 (the sample is dropped).
+    float eval(const Imath::V3f& wi, const PatinaWavelengths& wl, SampledSpectrum& f) const
+    {
+        float v[PATINA_MAX_WAVELENGTHS] = {};
+        if (frame) {
+            const PatinaVec3 wl_i = to_abi(frame->to_local(wi));
+            shader->bsdf()->eval(shader->get(), ctx, wo, wl_i, &wl, v);
+            f = SampledSpectrum::from_lanes(wl.count, v) * std::abs(wl_i.z);
+            if (f.is_black())
+                return 0.0f;
+            return shader->bsdf()->pdf(shader->get(), ctx, wo, wl_i, &wl);
+        }
+        const float pdf = shader->medium()->phase_eval(shader->get(), ctx, wo, to_abi(wi), &wl, v);
+        f = SampledSpectrum::from_lanes(wl.count, v);
+        return pdf;
+    }
+};
+
+// A constant environment's radiance at the path's wavelengths, evaluated once per path
+// (it is the same for every direction and every vertex), with its selection probability.
+struct UniformSky {
+    const EnvironmentLight* light = nullptr;
+    SampledSpectrum L;
+    float pmf = 0.0f;
+    bool black = true;  // L is 0 at every wavelength (or there is no uniform sky)
+
+    UniformSky() = default;
+    UniformSky(const Scene& scene, const PatinaWavelengths& wl, const SampledSpectrum& d65)
+        : light(scene.lights.uniform_sky())
+    {
+        if (light) {
+            L = light->constant_radiance(wl, d65);
+            pmf = scene.lights.uniform_sky_pmf();
+            black = L.is_black();
+        }
+    }
+};
+
+// Radiance of the infinite lights seen by a ray leaving the scene, MIS-weighted.
+inline SampledSpectrum escaped(const Scene& scene, const Ray& ray, const PrevVertex& prev,
+                               const PatinaWavelengths& wl, const UniformSky& sky)
+{
+    SampledSpectrum L(wl.count, 0.0f);
+    for (const Light* light : scene.lights.infinite_lights()) {
+        if (light == sky.light) {
+            if (!sky.black)
+                L += sky.L * emission_mis_weight(scene, prev,
+                                                 sky.pmf * EnvironmentLight::kUniformSpherePdf);
+            continue;
+        }
+        const SampledSpectrum Le = light->escaped_radiance(ray.dir, wl);
+        if (Le.is_black())
+            continue;
+        const float light_pdf = scene.lights.pmf(light) * light->pdf(prev.P, ray.dir);
+        L += Le * emission_mis_weight(scene, prev, light_pdf);
+    }
+    return L;
+}
+
+// Russian roulette once the path has some length (pbrt-v4 §13.3: on the largest
+// throughput component, so bright paths survive). False ends the path.
+inline bool survive_roulette(int depth, SampledSpectrum& beta, Pcg32& rng)
+{
+    if (depth < 3)
+        return true;
+    const float q = std::max(0.05f, 1.0f - beta.max_value());
+    if (rng.uniform_float() < q)
+        return false;
+    beta /= 1.0f - q;
+    return true;
+}
+
+}  // namespace patina::render::path
