@@ -9,6 +9,8 @@
 //                   [--cycles N]     run N timed cycles, the moist depth every N/10
 //                   [--check N]      run N cycles and print a hash of the state (to compare
 //                                    builds bit for bit) and totals of the weathering, then exit
+//                   [--deposit D]    a deposit map of D per unit area on every column (black
+//                                    crust and salt supply; default 0)
 //                   [--transport-interval N]  moisture steps per transport step (default:
 //                                    the solutes' stability limit; 1 gives the results of the
 //                                    code before the transport had its own step)
@@ -161,6 +163,23 @@ static void print_activity(const StoneState& st, const char* when)
                 }
         }
     }
+    // Rows (along u) of the active layers that hold a moist or surface voxel: the rows the
+    // steps work on (texgen/stone/live_rows.h); the others are only streamed past.
+    size_t rows = 0, live_rows = 0;
+    for (int s = 0; s < g.slab_count; ++s)
+        for (int k = 0; k < st.active_depth[size_t(s)]; ++k)
+            for (int j = 0; j < g.n_t; ++j) {
+                ++rows;
+                for (int i = 0; i < g.n_t; ++i) {
+                    const size_t c = g.index(s, i, j, k);
+                    if ((st.flags[c] & kSurface) || st.moisture[c] >= 0.5f) {
+                        ++live_rows;
+                        break;
+                    }
+                }
+            }
+    std::printf("  live rows: %.1f%% of the active layers' rows\n",
+                100.0 * double(live_rows) / double(std::max<size_t>(rows, 1)));
     std::printf("  layers per column if per column: mean %.2f\n",
                 column_layers / (double(g.slab_count) * g.n_t * g.n_t));
     std::printf("%s: moist depth %.3g m, %zu moist voxels (%.1f%%), active layers per slab "
@@ -171,6 +190,7 @@ static void print_activity(const StoneState& st, const char* when)
 int main(int argc, char** argv)
 {
     int n_t = 32, n_d = 32, threads = 2, warm = 20, cycles = 3, check = 0, transport_interval = 0;
+    double deposit = 0.0;
     for (int i = 1; i + 1 < argc; i += 2) {
         const std::string a = argv[i];
         const int v = std::atoi(argv[i + 1]);
@@ -181,6 +201,7 @@ int main(int argc, char** argv)
         else if (a == "--cycles") cycles = std::max(1, v);
         else if (a == "--check") check = v;
         else if (a == "--transport-interval") transport_interval = v;
+        else if (a == "--deposit") deposit = std::atof(argv[i + 1]);
         else {
             std::fprintf(stderr, "bench_stone_sim: unknown option '%s'\n", a.c_str());
             return 2;
@@ -208,6 +229,10 @@ int main(int argc, char** argv)
     initialise_state(st, lattice, mesh, Quarry(q), params);
     for (size_t c = 0; c < st.columns.size(); ++c)
         st.column_wetness[c] = 0.3f + 0.7f * std::max(0.0f, st.columns[c].N.y);
+    if (deposit > 0.0) {
+        std::fill(st.column_deposit.begin(), st.column_deposit.end(), float(deposit));
+        st.params.salt_supply = 0.01;
+    }
     if (transport_interval > 0)
         st.transport_interval = transport_interval;
     const SlabGrid& g = lattice.grid();

@@ -85,6 +85,7 @@ public:
     /// Whether a cell may exchange fluxes: interior voxels and ghosts located in another
     /// slab; not the halo above and below the shell nor unconnected ghosts (no-flux).
     bool flux_partner(size_t cell) const { return flux_partner_[cell] != 0; }
+    const uint8_t* flux_partner_data() const { return flux_partner_.data(); }
     /// The ghosts a voxel feeds (CSR by cell): what a flux into a ghost delivers to its
     /// sources, so fluxes across slab seams conserve mass (transport.cpp).
     struct Feed {

@@ -1,0 +1,357 @@
+// Row kernels of the transport step; the model and its conservation are described at the top
+// of transport.cpp, which drives them. Here only how a row is worked: kLanes voxels at a time,
+// each lane the scalar code of its voxel (std::min, std::max and std::clamp spelled as the
+// selects they are, so that even the sign of a zero is kept).
+#include "texgen/stone/transport_rows.h"
+
+#include <algorithm>
+#include <cstring>
+
+// The vector helpers are always inlined: no vector crosses a call, whatever the clone's ISA.
+#pragma GCC diagnostic ignored "-Wpsabi"
+
+namespace patina::texgen::stone {
+
+namespace {
+
+    constexpr int kLanes = 8;
+    using VF = float __attribute__((vector_size(4 * kLanes)));
+    using VI = int32_t __attribute__((vector_size(4 * kLanes)));
+    using VB = uint8_t __attribute__((vector_size(kLanes)));
+
+    /// The first n lanes from p (n <= kLanes), the others 0: a row's last group may be short.
+    /// (Whole groups copy a constant size, which is one vector move.)
+    [[gnu::always_inline]] inline VF load(const float* p, int n)
+    {
+        VF v{};
+        if (n == kLanes)
+            std::memcpy(&v, p, sizeof v);
+        else
+            for (int l = 0; l < n; ++l)
+                v[l] = p[l];
+        return v;
+    }
+
+    [[gnu::always_inline]] inline VI load(const uint8_t* p, int n)
+    {
+        VB b{};
+        if (n == kLanes)
+            std::memcpy(&b, p, sizeof b);
+        else
+            for (int l = 0; l < n; ++l)
+                b[l] = p[l];
+        return __builtin_convertvector(b, VI);
+    }
+
+    [[gnu::always_inline]] inline void store(float* p, VF v, int n)
+    {
+        if (n == kLanes)
+            std::memcpy(p, &v, sizeof v);
+        else
+            for (int l = 0; l < n; ++l)
+                p[l] = v[l];
+    }
+
+    [[gnu::always_inline]] inline bool any(VI m)
+    {
+        int r = 0;
+        for (int l = 0; l < kLanes; ++l)
+            r |= m[l];
+        return r != 0;
+    }
+
+    /// std::min(a, b), std::max(a, b) and std::clamp(v, lo, hi), lane by lane.
+    [[gnu::always_inline]] inline VF vmin(VF a, VF b) { return b < a ? b : a; }
+    [[gnu::always_inline]] inline VF vmax(VF a, VF b) { return a < b ? b : a; }
+    [[gnu::always_inline]] inline VF vclamp(VF v, VF lo, VF hi)
+    {
+        return v < lo ? lo : (hi < v ? hi : v);
+    }
+
+    /// H_aa of lattice axis a from the stencil weights at the n cells from `at`.
+    [[gnu::always_inline]] inline VF axis_metric(const std::array<const float*, 6>& w, int a,
+                                                 size_t at, int n)
+    {
+        const int x = a == 0 ? 0 : a == 1 ? 1 : 2;
+        const int y = a == 0 ? 3 : a == 1 ? 3 : 4;
+        const int z = a == 0 ? 5 : a == 1 ? 4 : 5;
+        return load(w[size_t(x)] + at, n) + load(w[size_t(y)] + at, n) +
+               load(w[size_t(z)] + at, n);
+    }
+
+    /// The 12 stencil partners of the voxels of a row: entry e = 2 d + (sign > 0), at
+    /// offset[e], and whether the partner's layer lies inside the shell (the halo above and
+    /// below it is no-flux).
+    struct Partners {
+        std::array<long, 12> offset{};
+        std::array<bool, 12> inside{};
+
+        Partners(const SlabLattice& lat, int s, int k)
+        {
+            const auto& o = lat.offsets(s);
+            const StencilSigns& sg = lat.signs(s);
+            const std::array<int, 6> dk = {0, 0, 1, 0, sg.s[1], sg.s[2]};
+            for (int d = 0; d < 6; ++d)
+                for (int sign = -1; sign <= 1; sign += 2) {
+                    const size_t e = size_t(2 * d + (sign > 0));
+                    offset[e] = sign * o[size_t(d)];
+                    const int ky = k + sign * dk[size_t(d)];
+                    inside[e] = ky >= 0 && ky < lat.grid().n_d;
+                }
+        }
+    };
+
+    /// Moist voxels (as transport.cpp's moist()), and those that are solute partners.
+    [[gnu::always_inline]] inline VI moist(const TransportRows& t, size_t at, int n)
+    {
+        return (load(t.density + at, n) >= 0.5f) & (load(t.moisture + at, n) >= 0.5f);
+    }
+
+    [[gnu::always_inline]] inline VI solute_partner(const TransportRows& t, size_t at, int n)
+    {
+        return (load(t.partner + at, n) != 0) & moist(t, at, n);
+    }
+
+    [[gnu::target_clones("avx2", "default")]]
+    void full_stencil_lanes(const TransportRows& t, const Partners& pt, size_t row, int n_t)
+    {
+        for (int i0 = 0; i0 < n_t; i0 += kLanes) {
+            const int n = std::min(kLanes, n_t - i0);
+            const size_t c = row + size_t(i0);
+            VI full = moist(t, c, n);
+            for (size_t e = 0; e < 12 && any(full); ++e)
+                full = pt.inside[e] ? full & solute_partner(t, c + size_t(pt.offset[e]), n)
+                                    : VI{};
+            for (int l = 0; l < n; ++l)
+                t.full_stencil[c + size_t(l)] = full[l] != 0;
+        }
+    }
+
+    /// Wet phases: deposits turn binder at the surface into black crust, and salt comes in
+    /// from the atmosphere (scalar: a few voxels per row).
+    void deposit(const TransportRows& t, size_t c, size_t column)
+    {
+        const float dep = t.st->column_deposit[column];
+        const float turned = std::min(t.solid[kSoluble][c], t.dt * t.black_crust_rate * dep);
+        t.solid[kSoluble][c] -= turned;
+        t.black[c] += turned;
+        if (t.density[c] >= 0.5f && t.moisture[c] >= 0.5f)
+            t.dissolved[kSalt][c] += t.dt * t.salt_supply * dep;
+    }
+
+    /// Voxels c .. c + n - 1 of a row (n <= kLanes; the columns from `first_column`).
+    [[gnu::always_inline]] inline void transport_group(const TransportRows& t,
+                                                       const Partners& pt, const long* axis,
+                                                       size_t c, size_t first_column, int n)
+    {
+        const VI f = load(t.flags + c, n);
+        const VI stone = (f & int(kStone)) != 0;
+        if (!any(stone))
+            return;
+        const VI surface = stone & ((f & int(kSurface)) != 0);
+        if (t.wet && any(surface))
+            for (int l = 0; l < n; ++l)
+                if (surface[l])
+                    deposit(t, c + size_t(l), first_column + size_t(l));
+        const VI M = stone & moist(t, c, n);
+        if (!any(M))
+            return;
+
+        const VF rho = load(t.density + c, n), phi = load(t.porosity + c, n);
+        const VF vol = load(t.volume + c, n);
+        const VF water_c = phi * rho;
+        const VF vw_c = water_c * vol;
+        const VI full_c = load(t.full_stencil + c, n) != 0;
+        // A front voxel has a dry stone face neighbour.
+        VI front{};
+        for (int a = 0; a < 3; ++a)
+            for (int sign = -1; sign <= 1; sign += 2) {
+                const size_t y = c + size_t(sign * axis[a]);
+                front |= (load(t.density + y, n) >= 0.5f) & (load(t.moisture + y, n) < 0.5f);
+            }
+        std::array<VF, kSpecies> cc, flux;
+        for (int m = 0; m < kSpecies; ++m) {
+            cc[size_t(m)] = load(t.concentration[size_t(m)] + c, n);
+            flux[size_t(m)] = VF{};
+        }
+        // What ghosts receive, by entry (12 diffusive, then 6 advective) and species: half
+        // of each exchange, added to the ledger voxel by voxel after the group.
+        std::array<std::array<VF, kSpecies>, 18> half;
+        std::array<VI, 18> to_ghost;
+        bool any_ghost = false;
+        auto exchange = [&](size_t e, VI valid, VI ghost, size_t m, VF F) {
+            flux[m] = valid ? flux[m] + (ghost ? 0.5f * F : F) : flux[m];
+            half[e][m] = 0.5f * F;
+        };
+        // Darcy flows across the faces (directions 0-2), from the diffusive pass.
+        std::array<VF, 6> q;
+        std::array<VI, 6> q_valid{}, q_ghost{};
+        for (size_t e = 0; e < 12; ++e) {
+            to_ghost[e] = VI{};
+            if (!pt.inside[e])
+                continue;
+            const size_t y = c + size_t(pt.offset[e]);
+            const VI valid = M & solute_partner(t, y, n);
+            if (!any(valid))
+                continue;
+            const int d = int(e / 2);
+            // Ghosts carry no weights, volume or stencil flag: use c's.
+            const VF vol_y = load(t.volume + y, n);
+            const VI ghost = vol_y == 0.0f;
+            const VF w_c = load(t.weight[size_t(d)] + c, n);
+            const VF w_y = ghost ? w_c : load(t.weight[size_t(d)] + y, n);
+            const VF vy = ghost ? vol : vol_y;
+            const VF phi_y = load(t.porosity + y, n);
+            const VF vw_y = phi_y * load(t.density + y, n) * vy;
+            const VI negative_allowed = full_c & (ghost | (load(t.full_stencil + y, n) != 0));
+            const VF pair_weight = w_c + w_y;
+            const VF porosity = vmin(phi, phi_y);
+            const VF water = vmin(vw_c, vw_y);
+            to_ghost[e] = valid & ghost;
+            any_ghost |= any(to_ghost[e]);
+            for (size_t m = 0; m < kSpecies; ++m) {
+                VF kappa = t.half_diffusivity[m] * pair_weight * porosity * water;
+                kappa = negative_allowed ? kappa : (kappa < 0.0f ? VF{} : kappa);
+                const VF cy = load(t.concentration[m] + y, n);
+                exchange(e, valid, ghost, m, kappa * (cy - cc[m]));
+            }
+            if (d >= 3)
+                continue;
+            // Darcy flow rate from c into y, limited to a tenth of the smaller water
+            // volume per step (transport.cpp).
+            const VF kf = 0.5f * (load(t.permeability + c, n) + load(t.permeability + y, n));
+            const VF vd = -kf * t.inv_eta *
+                          ((load(t.pressure + y, n) - load(t.pressure + c, n)) +
+                           (load(t.head + y, n) - load(t.head + c, n)));
+            const VF hc = axis_metric(t.weight, d, c, n);
+            const VF hy = ghost ? hc : axis_metric(t.weight, d, y, n);
+            const VF cap = 0.1f / t.dt * water;
+            q[e] = vclamp(vd * 0.25f * (vol + vy) * (hc + hy), -cap, cap);
+            q_valid[e] = valid;
+            q_ghost[e] = ghost;
+        }
+        for (size_t a = 0; a < 6; ++a) {
+            const size_t e = 12 + a;
+            to_ghost[e] = VI{};
+            if (!any(q_valid[a]))
+                continue;
+            const size_t y = c + size_t(pt.offset[a]);
+            to_ghost[e] = q_valid[a] & q_ghost[a];
+            const VF in = vmax(VF{}, -q[a]), out = vmax(VF{}, q[a]);
+            for (size_t m = 0; m < kSpecies; ++m) {
+                const VF cy = load(t.concentration[m] + y, n);
+                exchange(e, q_valid[a], q_ghost[a], m, in * cy - out * cc[m]);
+            }
+        }
+        if (any_ghost)
+            for (int l = 0; l < n; ++l)
+                for (size_t e = 0; e < 18; ++e) {
+                    if (!to_ghost[e][l])
+                        continue;
+                    const size_t y = c + size_t(l) + size_t(pt.offset[e < 12 ? e : e - 12]);
+                    for (size_t m = 0; m < kSpecies; ++m)
+                        t.ledger[m][y] += half[e][m][l];
+                }
+
+        const VI front_m = M & front;
+        const VI dries = t.wet ? VI{} : M & surface;
+        VF take_soluble{};
+        for (size_t m = 0; m < kSpecies; ++m) {
+            const VF old = load(t.dissolved[m] + c, n);
+            VF amount = old + t.dt * flux[m] / vol;
+            // Dissolution at the front up to saturation, from the solid mineral.
+            const VF room = t.saturation[m] - cc[m];
+            const VF solid = load(t.solid[m] + c, n);
+            VF take = t.rate_cap[m] * (room > 0.0f ? room : VF{}) * water_c;
+            take = solid < take ? solid : take;
+            take = front_m ? take : VF{};
+            store(t.solid[m] + c, front_m ? solid - take : solid, n);
+            amount = front_m ? amount + take : amount;
+            if (m == kSoluble)
+                take_soluble = take;
+            // Evaporation at the surface in dry phases: the load crystallises as crust.
+            if (!t.wet) {
+                const VF crust = load(t.crust[m] + c, n);
+                const VF cryst = t.crystallise * amount;
+                store(t.crust[m] + c, dries ? crust + cryst : crust, n);
+                amount = dries ? amount - cryst : amount;
+            }
+            store(t.dissolved[m] + c, M ? amount : old, n);
+        }
+        // Decay index (§4.3.4): time moist plus binder dissolved.
+        const VF decay = load(t.decay + c, n);
+        const VF grown = decay + (t.decay_water * t.dt + t.decay_dissolution * take_soluble);
+        store(t.decay + c, M ? grown : decay, n);
+    }
+
+    [[gnu::target_clones("avx2", "default")]]
+    void transport_lanes(const TransportRows& t, const Partners& pt, const SlabGrid& g,
+                         size_t row, size_t first_column)
+    {
+        const long axis[3] = {1, g.sx, long(g.sx) * g.sy};
+        for (int i0 = 0; i0 < g.n_t; i0 += kLanes) {
+            // Whole groups with a constant lane count (their loads and stores are moves).
+            const size_t c = row + size_t(i0), column = first_column + size_t(i0);
+            if (g.n_t - i0 >= kLanes)
+                transport_group(t, pt, axis, c, column, kLanes);
+            else
+                transport_group(t, pt, axis, c, column, g.n_t - i0);
+        }
+    }
+
+} // namespace
+
+TransportRows::TransportRows(StoneState& s, bool is_wet, float step)
+    : st(&s), wet(is_wet), dt(step)
+{
+    const SlabLattice& lat = *s.lattice;
+    const StoneParameters& prm = s.params;
+    flags = s.flags.data();
+    full_stencil = s.full_stencil.data();
+    density = s.density.data();
+    moisture = s.moisture.data();
+    porosity = s.porosity.data();
+    permeability = s.permeability.data();
+    pressure = s.pressure.data();
+    head = s.head.data();
+    volume = lat.volume().data();
+    partner = lat.flux_partner_data();
+    for (size_t d = 0; d < 6; ++d)
+        weight[d] = lat.weights()[d].data();
+    for (size_t m = 0; m < kSpecies; ++m) {
+        concentration[m] = s.concentration[m].data();
+        dissolved[m] = s.dissolved[m].data();
+        solid[m] = s.solid[m].data();
+        crust[m] = s.crust[m].data();
+        ledger[m] = s.ghost_flux[m].data();
+    }
+    decay = s.decay.data();
+    black = s.black.data();
+    const float alpha = float(prm.pressure_diffusivity);
+    inv_eta = float(1.0 / prm.viscosity);
+    crystallise = std::min(1.0f, dt * float(prm.crystallisation_rate));
+    decay_water = float(prm.decay_water);
+    decay_dissolution = float(prm.decay_dissolution);
+    black_crust_rate = float(prm.black_crust_rate);
+    salt_supply = float(prm.salt_supply);
+    for (size_t m = 0; m < kSpecies; ++m) {
+        half_diffusivity[m] = alpha * float(prm.diffusivity[m]) * 0.5f;
+        saturation[m] = float(prm.saturation[m]);
+        rate_cap[m] = std::min(1.0f, dt * float(prm.solubility[m]));
+    }
+}
+
+void TransportRows::full_stencil_row(int s, int j, int k) const
+{
+    const SlabGrid& g = st->lattice->grid();
+    full_stencil_lanes(*this, Partners(*st->lattice, s, k), g.index(s, 0, j, k), g.n_t);
+}
+
+void TransportRows::transport_row(int s, int j, int k) const
+{
+    const SlabGrid& g = st->lattice->grid();
+    transport_lanes(*this, Partners(*st->lattice, s, k), g, g.index(s, 0, j, k),
+                    column_index(g, s, 0, j));
+}
+
+} // namespace patina::texgen::stone

@@ -1,0 +1,49 @@
+// The per-voxel work of a transport step (transport.cpp) over one row of a slab (the n_t
+// voxels along u), a few voxels at a time in the lanes of a vector. Every lane does the
+// scalar operations of its voxel in the same order, without contraction, so the results
+// are the same bits as a loop over the voxels; partners at a fixed offset from a row are a
+// row too, so their fields load without gathers, and the branches of the partner tests
+// become masks.
+#pragma once
+
+#include "texgen/stone/stone_state.h"
+
+#include <array>
+#include <cstdint>
+
+namespace patina::texgen::stone {
+
+/// The fields a transport step reads and writes, and its per-step constants.
+struct TransportRows {
+    using Fields = std::array<float*, kSpecies>;
+
+    const StoneState* st = nullptr;
+    const uint8_t* flags = nullptr;
+    const uint8_t* partner = nullptr;  ///< SlabLattice::flux_partner per cell
+    uint8_t* full_stencil = nullptr;
+    const float *density = nullptr, *moisture = nullptr, *porosity = nullptr;
+    const float *permeability = nullptr, *pressure = nullptr, *head = nullptr;
+    const float* volume = nullptr;
+    std::array<const float*, 6> weight{};
+    Fields concentration{}, dissolved{}, solid{}, crust{}, ledger{};
+    float* decay = nullptr;
+    float* black = nullptr;
+
+    bool wet = false;
+    float dt = 0.0f, inv_eta = 0.0f, crystallise = 0.0f;
+    float decay_water = 0.0f, decay_dissolution = 0.0f;
+    float black_crust_rate = 0.0f, salt_supply = 0.0f;
+    std::array<float, kSpecies> half_diffusivity{};  ///< alpha D_i / 2
+    std::array<float, kSpecies> saturation{}, rate_cap{};
+
+    TransportRows(StoneState& st, bool wet, float dt);
+
+    /// full_stencil of the voxels of row (j, k) of slab s: moist, with all 12 stencil
+    /// partners moist solute partners.
+    void full_stencil_row(int s, int j, int k) const;
+    /// Deposits, dissolution, transport and crusts of the voxels of row (j, k) of slab s, in
+    /// place; fluxes into ghosts are added to `ledger`, voxel by voxel in order.
+    void transport_row(int s, int j, int k) const;
+};
+
+} // namespace patina::texgen::stone
