@@ -14,6 +14,7 @@
 // 1/2. In dry phases the surface dries at `evaporation_speed`, and the dry zone spreads
 // inwards down each column (water evaporates from the surface side); dissolved minerals in
 // a voxel that dries recrystallise in place (as crust in a surface voxel).
+#include "texgen/stone/front_rows.h"
 #include "texgen/stone/live_rows.h"
 #include "texgen/stone/stone_state.h"
 
@@ -31,14 +32,6 @@ namespace {
     inline float boundary_pressure(const StoneState& st, size_t column, bool wet)
     {
         return wet ? float(st.params.surface_pressure) * st.column_wetness[column] : 0.0f;
-    }
-
-    /// H_aa of axis a from the stored weights (stencil.h metric_from_weights).
-    inline float axis_metric(const std::array<std::vector<float>, 6>& w, int a, size_t c)
-    {
-        return a == 0 ? w[0][c] + w[3][c] + w[5][c]
-             : a == 1 ? w[1][c] + w[3][c] + w[4][c]
-                      : w[2][c] + w[4][c] + w[5][c];
     }
 
     /// Whether the pressure step changes any of the n voxels from `row`: a moist stone voxel
@@ -171,15 +164,8 @@ namespace {
     {
         const SlabLattice& lat = *st.lattice;
         const SlabGrid& g = lat.grid();
-        const auto& w = lat.weights();
-        const float* p = st.pressure.data();
-        const float* psi = st.head.data();
-        const float* K = st.permeability.data();
-        const float* rho = st.density.data();
         float* theta = st.moisture.data();
-        const float dt = float(st.dt);
-        const float inv_eta = float(1.0 / st.params.viscosity);
-        const float evap = float(st.params.evaporation_speed);
+        const FrontRows rows(st, wet);
         // Below the active layers the stone is dry and unreachable this step: nothing moves.
         // Nor in a row without a moist or surface voxel in it or across its faces: air stays
         // at 0 (erosion dries what it turns to air) and dry stone without a moist face
@@ -196,74 +182,7 @@ namespace {
                     std::copy(theta + row, theta + row + g.n_t, out_row);
                     continue;
                 }
-                // First, branch-free over the row: air to 0, everything else kept, and which
-                // voxels can change: surface voxels, moist ones (their wet time grows) and
-                // dry ones beside a moist voxel (Darcy inflow).
-                thread_local std::vector<int> work;
-                work.resize(size_t(g.n_t));
-                const long dj = lat.axis_offset(1), dk = lat.axis_offset(2);
-                const float* t = theta + row;
-                int* wk = work.data();
-                const int n = g.n_t;
-                for (int i = 0; i < n; ++i)  // floats only, so that it vectorises
-                    wk[i] = int(t[i] >= 0.5f) | int(t[i - 1] >= 0.5f) | int(t[i + 1] >= 0.5f) |
-                            int(t[i - dj] >= 0.5f) | int(t[i + dj] >= 0.5f) |
-                            int(t[i - dk] >= 0.5f) | int(t[i + dk] >= 0.5f);
-                const uint8_t* fl = st.flags.data() + row;
-                for (int i = 0; i < n; ++i) {
-                    const int stone = fl[i] & kStone;
-                    wk[i] = stone & (wk[i] | int((fl[i] & kSurface) != 0));
-                    // Air to 0: moisture is never negative, so t x 0 is +0 and t x 1 is t.
-                    out_row[i] = t[i] * float(stone);
-                }
-                for (int i = 0; i < n; ++i) {
-                    if (!wk[i])
-                        continue;
-                    const size_t c = row + size_t(i);
-                    float& out_c = out_row[i];
-                    const uint8_t f = st.flags[c];
-                    float th = theta[c];
-                    const size_t col = column_index(g, s, i, j);
-                    if (f & kSurface) {
-                        if (wet && st.column_wetness[col] > 0.05f)
-                            th = 1.0f;
-                        else if (!wet)
-                            th -= dt * evap * std::sqrt(axis_metric(w, 2, c));
-                    } else if (th < 0.5f) {
-                        // Darcy inflow from the moist face neighbours.
-                        float speed = 0.0f;
-                        for (int a = 0; a < 3; ++a)
-                            for (int sign = -1; sign <= 1; sign += 2) {
-                                const size_t y = c + sign * lat.axis_offset(a);
-                                if (rho[y] < 0.5f || theta[y] < 0.5f)
-                                    continue;
-                                const float kf = 0.5f * (K[c] + K[y]);
-                                const float vd = -kf * inv_eta * ((p[c] - p[y]) + (psi[c] - psi[y]));
-                                if (vd > 0.0f)
-                                    speed += vd * axis_metric(w, a, c);
-                            }
-                        th += dt * speed / st.porosity[c];
-                    } else if (!wet) {
-                        // Drying spreads inwards along the column from a dry outer voxel.
-                        const size_t above = c - lat.axis_offset(2);
-                        if (rho[above] < 0.5f || theta[above] < 0.5f)
-                            th -= dt * evap * std::sqrt(axis_metric(w, 2, c));
-                    }
-                    th = std::clamp(th, 0.0f, 1.0f);
-                    if (theta[c] >= 0.5f && th < 0.5f) {
-                        // The voxel dried: what the water held recrystallises in place, in
-                        // the pores below the surface, and as a crust (efflorescence,
-                        // iron oxide) where the water evaporated at the surface.
-                        auto& into = (f & kSurface) ? st.crust : st.solid;
-                        for (int m = 0; m < kSpecies; ++m) {
-                            into[m][c] += st.dissolved[m][c];
-                            st.dissolved[m][c] = 0.0f;
-                        }
-                    }
-                    if (th >= 0.5f)
-                        st.wet_time[c] += dt;
-                    out_c = th;
-                }
+                rows.row(s, j, k, out_row);
             }
           });
         });

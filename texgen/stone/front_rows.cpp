@@ -1,0 +1,147 @@
+// Row kernel of the moisture front; the model (Darcy's law, §4.3.2) is described at the top of
+// moisture.cpp, which drives it.
+#include "texgen/stone/front_rows.h"
+
+#include "texgen/stone/lanes.h"
+
+namespace patina::texgen::stone {
+
+using namespace lanes;
+
+namespace {
+
+    [[gnu::always_inline]] inline VF axis_metric(const std::array<const float*, 6>& w, int a,
+                                                 size_t at, int n)
+    {
+        return a == 0 ? load(w[0] + at, n) + load(w[3] + at, n) + load(w[5] + at, n)
+             : a == 1 ? load(w[1] + at, n) + load(w[3] + at, n) + load(w[4] + at, n)
+                      : load(w[2] + at, n) + load(w[4] + at, n) + load(w[5] + at, n);
+    }
+
+    /// The voxel dried: what the water held recrystallises in place, in the pores below the
+    /// surface, and as a crust (efflorescence, iron oxide) where the water evaporated at the
+    /// surface.
+    void recrystallise(StoneState& st, size_t c, bool surface)
+    {
+        auto& into = surface ? st.crust : st.solid;
+        for (int m = 0; m < kSpecies; ++m) {
+            into[m][c] += st.dissolved[m][c];
+            st.dissolved[m][c] = 0.0f;
+        }
+    }
+
+    /// Voxels c .. c + n - 1 (n <= kLanes; their columns from `column`) into out.
+    [[gnu::always_inline]] inline void front_group(const FrontRows& t, const long* axis,
+                                                   size_t c, size_t column, float* out, int n)
+    {
+        const float* theta = t.moisture;
+        const VF th0 = load(theta + c, n);
+        const VI f = load(t.flags + c, n);
+        const VI stone = (f & int(kStone)) != 0;
+        const VI surface = (f & int(kSurface)) != 0;
+        // Air to 0: moisture is never negative, so t x 0 is +0 and t x 1 is t.
+        const VF kept = th0 * (stone ? VF{} + 1.0f : VF{});
+        // Which voxels can change: surface voxels, moist ones (their wet time grows) and dry
+        // ones beside a moist voxel (Darcy inflow).
+        VI near_moist = th0 >= 0.5f;
+        for (int a = 0; a < 3; ++a)
+            near_moist |= (load(theta + c - size_t(axis[a]), n) >= 0.5f) |
+                          (load(theta + c + size_t(axis[a]), n) >= 0.5f);
+        const VI work = stone & (near_moist | surface);
+        if (!any(work)) {
+            store(out, kept, n);
+            return;
+        }
+        // Surface voxels soak in wet phases (where it rains) and dry in dry ones.
+        const VF th = th0;
+        const VF drying = t.dt * t.evaporation * vsqrt(axis_metric(t.weight, 2, c, n));
+        VF th_surface = th;
+        if (t.wet) {
+            VI rained{};
+            for (int l = 0; l < n; ++l)
+                rained[l] = -int(t.wetness[column + size_t(l)] > 0.05f);
+            th_surface = rained ? VF{} + 1.0f : th;
+        } else {
+            th_surface = th - drying;
+        }
+        // Dry voxels: Darcy inflow from the moist face neighbours.
+        const VF K_c = load(t.permeability + c, n), p_c = load(t.pressure + c, n),
+                 psi_c = load(t.head + c, n);
+        VF speed{};
+        for (int a = 0; a < 3; ++a)
+            for (int sign = -1; sign <= 1; sign += 2) {
+                const size_t y = c + size_t(sign * axis[a]);
+                const VI moist_y = ~((load(t.density + y, n) < 0.5f) | (load(theta + y, n) < 0.5f));
+                const VF kf = 0.5f * (K_c + load(t.permeability + y, n));
+                const VF vd = -kf * t.inv_eta *
+                              ((p_c - load(t.pressure + y, n)) + (psi_c - load(t.head + y, n)));
+                const VI flows = moist_y & (vd > 0.0f);
+                if (any(flows))
+                    speed = flows ? speed + vd * axis_metric(t.weight, a, c, n) : speed;
+            }
+        const VF th_dry = th + t.dt * speed / load(t.porosity + c, n);
+        // Moist voxels in dry phases: drying spreads inwards along the column from a dry
+        // outer voxel.
+        VF th_moist = th;
+        if (!t.wet) {
+            const size_t above = c - size_t(axis[2]);
+            const VI outer_dry = (load(t.density + above, n) < 0.5f) | (load(theta + above, n) < 0.5f);
+            th_moist = outer_dry ? th - drying : th;
+        }
+        VF th1 = surface ? th_surface : (th < 0.5f ? th_dry : th_moist);
+        th1 = vclamp(th1, VF{}, VF{} + 1.0f);
+        const VI dried = work & (th0 >= 0.5f) & (th1 < 0.5f);
+        if (any(dried))
+            for (int l = 0; l < n; ++l)
+                if (dried[l])
+                    recrystallise(*t.st, c + size_t(l), surface[l] != 0);
+        const VI moist = work & (th1 >= 0.5f);
+        if (any(moist)) {
+            const VF wet_time = load(t.wet_time + c, n);
+            store(t.wet_time + c, moist ? wet_time + t.dt : wet_time, n);
+        }
+        store(out, work ? th1 : kept, n);
+    }
+
+    [[gnu::target_clones("avx2", "default")]]
+    void front_lanes(const FrontRows& t, const SlabGrid& g, size_t row, size_t first_column,
+                     float* out)
+    {
+        const long axis[3] = {1, g.sx, long(g.sx) * g.sy};
+        for (int i0 = 0; i0 < g.n_t; i0 += kLanes) {
+            const size_t c = row + size_t(i0), column = first_column + size_t(i0);
+            if (g.n_t - i0 >= kLanes)
+                front_group(t, axis, c, column, out + i0, kLanes);
+            else
+                front_group(t, axis, c, column, out + i0, g.n_t - i0);
+        }
+    }
+
+} // namespace
+
+FrontRows::FrontRows(StoneState& s, bool is_wet) : st(&s), wet(is_wet)
+{
+    const SlabLattice& lat = *s.lattice;
+    flags = s.flags.data();
+    density = s.density.data();
+    moisture = s.moisture.data();
+    porosity = s.porosity.data();
+    permeability = s.permeability.data();
+    pressure = s.pressure.data();
+    head = s.head.data();
+    wetness = s.column_wetness.data();
+    for (size_t d = 0; d < 6; ++d)
+        weight[d] = lat.weights()[d].data();
+    wet_time = s.wet_time.data();
+    dt = float(s.dt);
+    inv_eta = float(1.0 / s.params.viscosity);
+    evaporation = float(s.params.evaporation_speed);
+}
+
+void FrontRows::row(int s, int j, int k, float* out) const
+{
+    const SlabGrid& g = st->lattice->grid();
+    front_lanes(*this, g, g.index(s, 0, j, k), column_index(g, s, 0, j), out);
+}
+
+} // namespace patina::texgen::stone
