@@ -135,13 +135,13 @@ namespace {
         for (int lx = tx0; lx < tx1; ++lx)
             streams[static_cast<size_t>(lx - tx0)] = pixel_stream(film.seed, region.x0 + lx, y);
         CameraBatch& batch = wt.batch;
-        for (int c0 = s0; c0 < s1; c0 = std::min(s1, (c0 / kWaveSamples + 1) * kWaveSamples)) {
-            const int c1 = std::min(s1, (c0 / kWaveSamples + 1) * kWaveSamples);
+        for (int c0 = s0, c1 = 0; c0 < s1; c0 = c1) {
+            c1 = std::min(s1, (c0 / kWaveSamples + 1) * kWaveSamples);
             wt.paths.resize(static_cast<size_t>(tx1 - tx0) * static_cast<size_t>(c1 - c0));
             wt.pixel.resize(wt.paths.size());
             size_t np = 0;
-            for (int g0 = c0; g0 < c1; g0 = std::min(c1, (g0 / kBatchSamples + 1) * kBatchSamples)) {
-                const int g1 = std::min(c1, (g0 / kBatchSamples + 1) * kBatchSamples);
+            for (int g0 = c0, g1 = 0; g0 < c1; g0 = g1) {
+                g1 = std::min(c1, (g0 / kBatchSamples + 1) * kBatchSamples);
                 size_t n = 0;
                 for (int lx = tx0; lx < tx1; ++lx) {
                     const int x = region.x0 + lx;

@@ -165,7 +165,8 @@ void trace_wavefront(const Scene& scene, std::span<WavefrontPath> paths, bool wa
         p.prev = PrevVertex{};
         p.sky = UniformSky(scene, p.wl, p.cie.d65);
         p.depth = 0;
-        p.aov = PathAovs{};
+        if (want_aovs)
+            p.aov = PathAovs{};
         s.live[i] = static_cast<uint32_t>(i);
     }
     s.shadows.resize(n);

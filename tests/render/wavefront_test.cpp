@@ -164,8 +164,8 @@ TEST(Wavefront, RenderBitwiseAsThePerPathLoop)
     for (int y = 0; y < full.y1; ++y)
         for (int x = 0; x < full.x1; ++x)
             for (int k = 0; k < 3; ++k) {
-                const float v = x < 7 ? a.xyz[static_cast<size_t>((y * 7 + x) * 3 + k)]
-                                      : b.xyz[static_cast<size_t>((y * (full.x1 - 7) + x - 7) * 3 + k)];
+                const int i = x < 7 ? (y * 7 + x) * 3 + k : (y * (full.x1 - 7) + x - 7) * 3 + k;
+                const float v = (x < 7 ? a : b).xyz[static_cast<size_t>(i)];
                 const float w = wave.xyz[static_cast<size_t>((y * full.x1 + x) * 3 + k)];
                 differing += std::memcmp(&v, &w, sizeof v) != 0 ? 1 : 0;
             }
