@@ -4,6 +4,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <stdexcept>
 
@@ -101,6 +102,9 @@ SlabLattice::SlabLattice(const SlabShell& shell, int n_t, int n_d)
                     if (i < 0 || j < 0 || i >= n_t || j >= n_t)
                         ghost_cell_.push_back(uint32_t(grid_.index(s, i, j, k)));
     ghost_sources_.resize(ghost_cell_.size());
+    for (uint32_t c = 0; c < 8; ++c)
+        block_offset_[c] = (c & 1) + ((c >> 1) & 1) * uint32_t(grid_.sx) +
+                           ((c >> 2) & 1) * uint32_t(grid_.sx * grid_.sy);
     std::vector<char> connected(ghost_cell_.size(), 1);
     const int per_slab = int(ghost_cell_.size()) / grid_.slab_count;
     tbb::parallel_for(size_t(0), ghost_cell_.size(), [&](size_t g) {
@@ -127,7 +131,13 @@ SlabLattice::SlabLattice(const SlabShell& shell, int n_t, int n_d)
             connected[g] = 0;
             at = SlabPoint{s, grid_.uvw(i, j, k)};
         }
-        ghost_sources_[g] = trilinear_sources(grid_, *at, true);
+        const std::array<GhostSource, 8> sources = trilinear_sources(grid_, *at, true);
+        GhostBlock& block = ghost_sources_[g];
+        block.base = sources[0].cell;
+        for (size_t c = 0; c < 8; ++c) {
+            assert(sources[c].cell == block.base + block_offset_[c]);
+            block.weight[c] = sources[c].weight;
+        }
     });
     unconnected_ = size_t(std::count(connected.begin(), connected.end(), 0));
 
@@ -142,8 +152,8 @@ SlabLattice::SlabLattice(const SlabShell& shell, int n_t, int n_d)
     for (size_t g = 0; g < ghost_cell_.size(); ++g)
         if (connected[g]) {
             flux_partner_[ghost_cell_[g]] = 1;
-            for (const GhostSource& src : ghost_sources_[g])
-                ++feed_begin_[src.cell + 1];
+            for (uint32_t offset : block_offset_)
+                ++feed_begin_[ghost_sources_[g].base + offset + 1];
         }
     for (size_t c = 0; c < cells; ++c)
         feed_begin_[c + 1] += feed_begin_[c];
@@ -151,8 +161,10 @@ SlabLattice::SlabLattice(const SlabShell& shell, int n_t, int n_d)
     std::vector<uint32_t> fill(feed_begin_.begin(), feed_begin_.end() - 1);
     for (size_t g = 0; g < ghost_cell_.size(); ++g)
         if (connected[g])
-            for (const GhostSource& src : ghost_sources_[g])
-                feeds_[fill[src.cell]++] = Feed{ghost_cell_[g], src.weight};
+            for (size_t c = 0; c < 8; ++c) {
+                const uint32_t cell = ghost_sources_[g].base + block_offset_[c];
+                feeds_[fill[cell]++] = Feed{ghost_cell_[g], ghost_sources_[g].weight[c]};
+            }
     for (size_t c = 0; c < cells; ++c)
         if (feed_begin_[c + 1] > feed_begin_[c])
             feeding_.push_back(uint32_t(c));
@@ -183,10 +195,11 @@ void SlabLattice::fill_halo(std::span<float* const> fields, const std::vector<in
         const size_t begin = size_t(slab) * per_slab;
         const size_t end = begin + size_t(layers) * per_layer;
         for (size_t g = begin; g < end; ++g) {
+            const GhostBlock& block = ghost_sources_[g];
             std::array<float, kMaxFields> v{};
-            for (const GhostSource& s : ghost_sources_[g])
+            for (size_t c = 0; c < 8; ++c)
                 for (size_t f = 0; f < n; ++f)
-                    v[f] += s.weight * fields[f][s.cell];
+                    v[f] += block.weight[c] * fields[f][block.base + block_offset_[c]];
             for (size_t f = 0; f < n; ++f)
                 fields[f][ghost_cell_[g]] = v[f];
         }

@@ -110,7 +110,15 @@ private:
     std::vector<StencilSigns> signs_;
     std::vector<std::array<long, 6>> offsets_;
     std::vector<uint32_t> ghost_cell_;
-    std::vector<std::array<GhostSource, 8>> ghost_sources_;
+    /// A ghost's sources: the 2 x 2 x 2 voxels from `base` in trilinear_sources' order (i
+    /// fastest), with their weights; 36 bytes a ghost where 8 (cell, weight) pairs take 64,
+    /// and the halo fills stream them every step.
+    struct GhostBlock {
+        uint32_t base = 0;
+        std::array<float, 8> weight{};
+    };
+    std::array<uint32_t, 8> block_offset_{};
+    std::vector<GhostBlock> ghost_sources_;
     size_t unconnected_ = 0;
     std::vector<uint8_t> flux_partner_;
     std::vector<uint32_t> feed_begin_;
