@@ -20,7 +20,7 @@ SeamSchedule::SeamSchedule(const SlabLattice& lattice)
     for (size_t q = 0; q < groups; ++q)
         group_begin_[q + 1] += group_begin_[q];
 
-    // Per group, the shallowest ghost layer of every neighbour slab that feeds it.
+    // Per group, the ghost layers of every neighbour slab that feeds it.
     source_begin_.assign(groups + 1, 0);
     std::vector<Source> group_sources;
     for (size_t q = 0; q < groups; ++q) {
@@ -32,10 +32,12 @@ SeamSchedule::SeamSchedule(const SlabLattice& lattice)
                 const int layer = layer_of(feeds[e].ghost);
                 auto it = std::find_if(group_sources.begin(), group_sources.end(),
                                        [&](const Source& s) { return s.slab == slab; });
-                if (it == group_sources.end())
-                    group_sources.push_back({slab, layer});
-                else
-                    it->layer = std::min(it->layer, layer);
+                if (it == group_sources.end()) {
+                    group_sources.push_back({slab, layer, layer});
+                } else {
+                    it->first_layer = std::min(it->first_layer, layer);
+                    it->last_layer = std::max(it->last_layer, layer);
+                }
             }
         }
         sources_.insert(sources_.end(), group_sources.begin(), group_sources.end());
@@ -43,11 +45,15 @@ SeamSchedule::SeamSchedule(const SlabLattice& lattice)
     }
 }
 
-bool SeamSchedule::may_receive(size_t group, const std::vector<int>& active) const
+bool SeamSchedule::received(size_t group, const std::vector<uint8_t>& received, int n_d) const
 {
-    for (uint32_t e = source_begin_[group]; e < source_begin_[group + 1]; ++e)
-        if (sources_[e].layer <= active[size_t(sources_[e].slab)])
-            return true;
+    for (uint32_t e = source_begin_[group]; e < source_begin_[group + 1]; ++e) {
+        const Source& src = sources_[e];
+        const uint8_t* flags = received.data() + size_t(src.slab) * size_t(n_d);
+        for (int k = src.first_layer; k <= src.last_layer; ++k)
+            if (flags[k])
+                return true;
+    }
     return false;
 }
 

@@ -71,8 +71,9 @@ struct StoneState {
     std::vector<float> density, porosity, permeability, head, moisture, pressure;
     std::array<std::vector<float>, kSpecies> solid, dissolved, crust, concentration;
     std::array<std::vector<float>, kSpecies> ghost_flux;  ///< seam fluxes (transport.cpp)
-    /// Per slab: ghost_flux may be non-zero in layers <= this (zero below).
-    std::vector<int> ghost_flux_depth;
+    /// Per slab and layer (s * n_d + k): whether a ghost of that layer received a flux in
+    /// the last transport step (ghost_flux is 0 in every other layer).
+    std::vector<uint8_t> ghost_received;
     SeamSchedule seams;                 ///< the seam voxels a transport step visits
     std::vector<uint8_t> full_stencil;  ///< moist with all 12 stencil partners moist
     std::vector<float> black, decay, wet_time;

@@ -39,6 +39,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 
 namespace patina::texgen::stone {
 
@@ -55,8 +56,8 @@ void transport_step(StoneState& st, bool wet, int steps)
     for (int m = 0; m < kSpecies; ++m)
         if (st.ghost_flux[m].size() != g.cell_count())
             st.ghost_flux[m].assign(g.cell_count(), 0.0f);
-    if (st.ghost_flux_depth.size() != size_t(g.slab_count))
-        st.ghost_flux_depth.assign(size_t(g.slab_count), g.n_d - 1);
+    if (st.ghost_received.size() != size_t(g.slab_count) * size_t(g.n_d))
+        st.ghost_received.assign(size_t(g.slab_count) * size_t(g.n_d), 0);
     const TransportRows rows(st, wet, dt);
 
     // Concentrations in the water, C = amount / water volume fraction (phi * density), and
@@ -75,6 +76,13 @@ void transport_step(StoneState& st, bool wet, int steps)
             for (int m = 0; m < kSpecies; ++m) {
                 const float* amount = st.dissolved[m].data() + row;
                 float* conc = st.concentration[m].data() + row;
+                // Most rows hold nothing and held nothing at the last step (+0 in, +0 out):
+                // then the row is only read, and its cache lines stay clean.
+                uint32_t bits = 0;
+                for (int i = 0; i < g.n_t; ++i)
+                    bits |= std::bit_cast<uint32_t>(amount[i]) | std::bit_cast<uint32_t>(conc[i]);
+                if (bits == 0)
+                    continue;
                 for (int i = 0; i < g.n_t; ++i) {
                     // Most voxels hold nothing: 0 / water is the amount itself (sign kept).
                     const float water = phi[i] * rho[i];
@@ -97,15 +105,18 @@ void transport_step(StoneState& st, bool wet, int steps)
     lat.fill_halo(concentrations, &st.active_depth);
 
     tbb::parallel_for(0, g.slab_count, [&](int s) {
-        // Ghosts receive from the active layers and one below; clear what the last step wrote.
-        int& written = st.ghost_flux_depth[size_t(s)];
-        const int active = st.active_depth[size_t(s)];
-        for (int k = 0; k <= std::min(g.n_d - 1, std::max(active, written)); ++k)
+        // Clear what the ghosts received in the last step.
+        uint8_t* received = st.ghost_received.data() + size_t(s) * size_t(g.n_d);
+        for (int k = 0; k < g.n_d; ++k) {
+            if (!received[k])
+                continue;
             for (int j = -1; j <= g.n_t; ++j)
                 for (int i = -1; i <= g.n_t; i += (j < 0 || j == g.n_t) ? 1 : g.n_t + 1)
                     for (int m = 0; m < kSpecies; ++m)
                         st.ghost_flux[m][g.index(s, i, j, k)] = 0.0f;
-        written = active;
+            received[k] = 0;
+        }
+        const int active = st.active_depth[size_t(s)];
         // Only moist voxels and (wet) surface voxels change: rows without either are skipped.
         thread_local LiveRows live;
         live.scan(st, s, std::min(active, g.n_d));
@@ -116,12 +127,12 @@ void transport_step(StoneState& st, bool wet, int steps)
     });
 
     // Seams: each voxel gives up what the ghosts it feeds received, by its weight in them;
-    // only the groups whose ghosts lie in their slab's active layers can have received.
+    // only the groups with a ghost in a layer that received a flux can give anything up.
     const auto& begin = lat.feed_begin();
     const auto& feeds = lat.feeds();
     const auto& feeding = lat.feeding_cells();
     tbb::parallel_for(size_t(0), st.seams.group_count(), [&](size_t q) {
-        if (!st.seams.may_receive(q, st.active_depth))
+        if (!st.seams.received(q, st.ghost_received, g.n_d))
             return;
         for (uint32_t e0 = st.seams.first(q); e0 < st.seams.last(q); ++e0) {
             const size_t c = feeding[e0];

@@ -20,8 +20,9 @@ namespace {
     struct Partners {
         std::array<long, 12> offset{};
         std::array<bool, 12> inside{};
+        const SlabGrid* grid = nullptr;
 
-        Partners(const SlabLattice& lat, int s, int k)
+        Partners(const SlabLattice& lat, int s, int k) : grid(&lat.grid())
         {
             const auto& o = lat.offsets(s);
             const StencilSigns& sg = lat.signs(s);
@@ -33,6 +34,14 @@ namespace {
                     const int ky = k + sign * dk[size_t(d)];
                     inside[e] = ky >= 0 && ky < lat.grid().n_d;
                 }
+        }
+
+        /// Slab and layer of a cell as an index of StoneState::ghost_received.
+        size_t layer_key(size_t cell) const
+        {
+            const size_t slab = cell / grid->slab_size;
+            const size_t layer = (cell % grid->slab_size) / (size_t(grid->sx) * grid->sy) - 1;
+            return slab * size_t(grid->n_d) + layer;
         }
     };
 
@@ -186,6 +195,7 @@ namespace {
                     const size_t y = c + size_t(l) + size_t(pt.offset[e < 12 ? e : e - 12]);
                     for (size_t m = 0; m < kSpecies; ++m)
                         t.ledger[m][y] += half[e][m][l];
+                    t.ghost_received[pt.layer_key(y)] = 1;
                 }
 
         const VI front_m = M & front;
@@ -260,6 +270,7 @@ TransportRows::TransportRows(StoneState& s, bool is_wet, float step)
         crust[m] = s.crust[m].data();
         ledger[m] = s.ghost_flux[m].data();
     }
+    ghost_received = s.ghost_received.data();
     decay = s.decay.data();
     black = s.black.data();
     const float alpha = float(prm.pressure_diffusivity);

@@ -26,6 +26,7 @@ struct TransportRows {
     const float* volume = nullptr;
     std::array<const float*, 6> weight{};
     Fields concentration{}, dissolved{}, solid{}, crust{}, ledger{};
+    uint8_t* ghost_received = nullptr;  ///< StoneState::ghost_received
     float* decay = nullptr;
     float* black = nullptr;
 
