@@ -52,41 +52,44 @@ namespace {
             store(out, kept, n);
             return;
         }
-        // Surface voxels soak in wet phases (where it rains) and dry in dry ones.
+        // Surface voxels soak in wet phases (where it rains) and dry in dry ones; in dry
+        // phases the moist zone also dries inwards down each column from a dry outer voxel.
         const VF th = th0;
-        const VF drying = t.dt * t.evaporation * vsqrt(axis_metric(t.weight, 2, c, n));
-        VF th_surface = th;
+        VF th_surface = th, th_moist = th;
         if (t.wet) {
-            VI rained{};
-            for (int l = 0; l < n; ++l)
-                rained[l] = -int(t.wetness[column + size_t(l)] > 0.05f);
-            th_surface = rained ? VF{} + 1.0f : th;
-        } else {
-            th_surface = th - drying;
-        }
-        // Dry voxels: Darcy inflow from the moist face neighbours.
-        const VF K_c = load(t.permeability + c, n), p_c = load(t.pressure + c, n),
-                 psi_c = load(t.head + c, n);
-        VF speed{};
-        for (int a = 0; a < 3; ++a)
-            for (int sign = -1; sign <= 1; sign += 2) {
-                const size_t y = c + size_t(sign * axis[a]);
-                const VI moist_y = ~((load(t.density + y, n) < 0.5f) | (load(theta + y, n) < 0.5f));
-                const VF kf = 0.5f * (K_c + load(t.permeability + y, n));
-                const VF vd = -kf * t.inv_eta *
-                              ((p_c - load(t.pressure + y, n)) + (psi_c - load(t.head + y, n)));
-                const VI flows = moist_y & (vd > 0.0f);
-                if (any(flows))
-                    speed = flows ? speed + vd * axis_metric(t.weight, a, c, n) : speed;
+            if (any(work & surface)) {
+                VI rained{};
+                for (int l = 0; l < n; ++l)
+                    rained[l] = -int(t.wetness[column + size_t(l)] > 0.05f);
+                th_surface = rained ? VF{} + 1.0f : th;
             }
-        const VF th_dry = th + t.dt * speed / load(t.porosity + c, n);
-        // Moist voxels in dry phases: drying spreads inwards along the column from a dry
-        // outer voxel.
-        VF th_moist = th;
-        if (!t.wet) {
+        } else {
+            const VF drying = t.dt * t.evaporation * vsqrt(axis_metric(t.weight, 2, c, n));
+            th_surface = th - drying;
             const size_t above = c - size_t(axis[2]);
-            const VI outer_dry = (load(t.density + above, n) < 0.5f) | (load(theta + above, n) < 0.5f);
+            const VI outer_dry =
+                (load(t.density + above, n) < 0.5f) | (load(theta + above, n) < 0.5f);
             th_moist = outer_dry ? th - drying : th;
+        }
+        // Dry voxels beside a moist one: Darcy inflow from the moist face neighbours.
+        VF th_dry = th;
+        if (any(work & ~surface & (th < 0.5f))) {
+            const VF K_c = load(t.permeability + c, n), p_c = load(t.pressure + c, n),
+                     psi_c = load(t.head + c, n);
+            VF speed{};
+            for (int a = 0; a < 3; ++a)
+                for (int sign = -1; sign <= 1; sign += 2) {
+                    const size_t y = c + size_t(sign * axis[a]);
+                    const VI moist_y =
+                        ~((load(t.density + y, n) < 0.5f) | (load(theta + y, n) < 0.5f));
+                    const VF kf = 0.5f * (K_c + load(t.permeability + y, n));
+                    const VF vd = -kf * t.inv_eta * ((p_c - load(t.pressure + y, n)) +
+                                                     (psi_c - load(t.head + y, n)));
+                    const VI flows = moist_y & (vd > 0.0f);
+                    if (any(flows))
+                        speed = flows ? speed + vd * axis_metric(t.weight, a, c, n) : speed;
+                }
+            th_dry = th + t.dt * speed / load(t.porosity + c, n);
         }
         VF th1 = surface ? th_surface : (th < 0.5f ? th_dry : th_moist);
         th1 = vclamp(th1, VF{}, VF{} + 1.0f);
