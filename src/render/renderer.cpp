@@ -284,7 +284,9 @@ FilmResult render_region(const Scene& scene, const Region& region, const RenderC
             const int tx0 = (tile % tiles_x) * kTileSize, ty0 = (tile / tiles_x) * kTileSize;
             const int tx1 = std::min(tx0 + kTileSize, w);
             if (wavefront) {
-                WaveTile wt;
+                // One per thread, kept from tile to tile: every field a row reads is
+                // written for it first, so reuse cannot change a pixel.
+                static thread_local WaveTile wt;
                 for (int ly = ty0; ly < std::min(ty0 + kTileSize, h); ++ly)
                     render_row_wavefront(scene, region, tx0, tx1, ly, s0, s1, raster, want_aovs,
                                          acc, wt);
