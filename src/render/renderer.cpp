@@ -113,7 +113,8 @@ namespace {
 
     // Everything a tile needs to render in wavefront form, reused from row to row.
     struct WaveTile {
-        CameraBatch batch;
+        CameraBatch batch;  // its queries and hits (the paths hold the rest)
+        std::array<float, kBatchRays> u_wavelengths;
         std::vector<WavefrontPath> paths;
         std::vector<uint32_t> pixel;  // the region's pixel index of each path
         WavefrontScratch scratch;
@@ -142,25 +143,27 @@ namespace {
             size_t np = 0;
             for (int g0 = c0, g1 = 0; g0 < c1; g0 = g1) {
                 g1 = std::min(c1, (g0 / kBatchSamples + 1) * kBatchSamples);
+                // The batch's paths are written in place: generator and camera ray first,
+                // the hit and the wavelengths after the batch is traced.
                 size_t n = 0;
                 for (int lx = tx0; lx < tx1; ++lx) {
                     const int x = region.x0 + lx;
                     for (int s = g0; s < g1; ++s, ++n) {
-                        CameraSample& cs = batch.samples[n];
-                        cs.rng = sample_rng(streams[static_cast<size_t>(lx - tx0)], film.seed,
-                                            static_cast<uint64_t>(s));
-                        const float px = static_cast<float>(x) + cs.rng.uniform_float();
-                        const float py = static_cast<float>(y) + cs.rng.uniform_float();
+                        WavefrontPath& p = wt.paths[np + n];
+                        p.rng = sample_rng(streams[static_cast<size_t>(lx - tx0)], film.seed,
+                                           static_cast<uint64_t>(s));
+                        const float px = static_cast<float>(x) + p.rng.uniform_float();
+                        const float py = static_cast<float>(y) + p.rng.uniform_float();
                         if (pinhole) {
-                            cs.ray = raster.ray(px, py);
+                            p.ray = raster.ray(px, py);
                         } else {
-                            const Imath::V2f lens{cs.rng.uniform_float(), cs.rng.uniform_float()};
-                            cs.ray = scene.camera.generate(px / static_cast<float>(film.width),
-                                                           py / static_cast<float>(film.height),
-                                                           lens);
+                            const Imath::V2f lens{p.rng.uniform_float(), p.rng.uniform_float()};
+                            p.ray = scene.camera.generate(px / static_cast<float>(film.width),
+                                                          py / static_cast<float>(film.height),
+                                                          lens);
                         }
-                        cs.u_wavelengths = cs.rng.uniform_float();
-                        batch.queries[n] = {cs.ray.origin, cs.ray.dir};
+                        wt.u_wavelengths[n] = p.rng.uniform_float();
+                        batch.queries[n] = {p.ray.origin, p.ray.dir};
                     }
                 }
                 scene.geometry->intersect_coherent(std::span(batch.queries.data(), n),
@@ -168,12 +171,9 @@ namespace {
                 n = 0;
                 for (int lx = tx0; lx < tx1; ++lx) {
                     for (int s = g0; s < g1; ++s, ++n, ++np) {
-                        const CameraSample& cs = batch.samples[n];
                         WavefrontPath& p = wt.paths[np];
-                        p.rng = cs.rng;
-                        p.ray = cs.ray;
                         p.hit = batch.hits[n];
-                        p.wl = sample_wavelengths_tabulated(cs.u_wavelengths, film.wavelengths,
+                        p.wl = sample_wavelengths_tabulated(wt.u_wavelengths[n], film.wavelengths,
                                                             p.pdf, p.cie);
                         wt.pixel[np] = static_cast<uint32_t>(ly * w + lx);
                     }
