@@ -22,6 +22,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <cstring>
 
 namespace patina::texgen::stone {
 
@@ -47,19 +48,25 @@ namespace {
     /// Updates the first `layers` layers of slab s of `field` in place: `compute(k, out)`
     /// writes layer k's new values (n_t x n_t, row-major) from the old ones. The stencils
     /// reach one layer up and down, so layer k is written back only once layer k + 1 has been
-    /// computed: the same result as a double buffer, without a second array to stream.
+    /// computed: the same result as a double buffer, without a second array to stream. Rows
+    /// whose bits change are written and marked in `changes`; the others stay clean.
     template <class Compute>
     void update_layers_in_place(float* field, const SlabGrid& g, int s, int layers,
-                                Compute&& compute)
+                                HaloChanges& changes, Compute&& compute)
     {
         const size_t n = size_t(g.n_t) * size_t(g.n_t);
         thread_local std::vector<float> buffer;
         buffer.resize(2 * n);
         auto write_back = [&](int k) {
             const float* from = buffer.data() + size_t(k & 1) * n;
-            for (int j = 0; j < g.n_t; ++j)
-                std::copy(from + size_t(j) * g.n_t, from + size_t(j + 1) * g.n_t,
-                          field + g.index(s, 0, j, k));
+            for (int j = 0; j < g.n_t; ++j) {
+                const float* row = from + size_t(j) * g.n_t;
+                float* to = field + g.index(s, 0, j, k);
+                if (std::memcmp(row, to, sizeof(float) * size_t(g.n_t)) != 0) {
+                    std::copy(row, row + g.n_t, to);
+                    changes.mark(g.index(s, 0, j, k), g);
+                }
+            }
         };
         for (int k = 0; k < layers; ++k) {
             compute(k, buffer.data() + size_t(k & 1) * n);
@@ -99,6 +106,7 @@ namespace {
                     if (!differs)
                         continue;
                     changed[size_t(s)] = 1;
+                    st.pressure_halo.mark(row, g);
                     for (int i = 0; i < g.n_t; ++i)
                         if (!(f[i] & kStone) || (f[i] & kSurface))
                             pr[i] = boundary(i);
@@ -107,7 +115,7 @@ namespace {
         // The halo holds the last step's pressure (filled at its end); unless a boundary
         // value changed (a new phase, erosion), it is still the halo of these values.
         if (std::find(changed.begin(), changed.end(), 1) != changed.end())
-            lat.fill_halo(p, &st.active_depth);
+            lat.fill_halo(p, &st.active_depth, &st.pressure_halo);
 
         const float rate = float(st.dt * st.params.pressure_diffusivity);
         const auto& w = lat.weights();
@@ -116,7 +124,8 @@ namespace {
             const auto& o = lat.offsets(s);
             const long ax0 = o[0], ax1 = o[1], ax2 = o[2];
             const StencilSigns& sg = lat.signs(s);
-            update_layers_in_place(p, g, s, st.active_depth[size_t(s)], [&](int k, float* out) {
+            const int layers = st.active_depth[size_t(s)];
+            update_layers_in_place(p, g, s, layers, st.pressure_halo, [&](int k, float* out) {
                 for (int j = 0; j < g.n_t; ++j) {
                     const size_t row = g.index(s, 0, j, k);
                     float* out_row = out + size_t(j) * g.n_t;
@@ -159,7 +168,7 @@ namespace {
                 }
             });
         });
-        lat.fill_halo(p, &st.active_depth);
+        lat.fill_halo(p, &st.active_depth, &st.pressure_halo);
     }
 
     void front_step(StoneState& st, bool wet)
@@ -176,7 +185,7 @@ namespace {
           const int layers = st.active_depth[size_t(s)];
           thread_local LiveRows live;
           live.scan(st, s, std::min(layers, g.n_d));
-          update_layers_in_place(theta, g, s, layers, [&](int k, float* out) {
+          update_layers_in_place(theta, g, s, layers, st.moisture_halo, [&](int k, float* out) {
             for (int j = 0; j < g.n_t; ++j) {
                 const size_t row = g.index(s, 0, j, k);
                 float* out_row = out + size_t(j) * g.n_t;
@@ -189,7 +198,7 @@ namespace {
           });
         });
         refresh_active_depth(st);
-        lat.fill_halo(st.moisture.data(), &st.active_depth);
+        lat.fill_halo(st.moisture.data(), &st.active_depth, &st.moisture_halo);
     }
 
 } // namespace

@@ -170,32 +170,56 @@ SlabLattice::SlabLattice(const SlabShell& shell, int n_t, int n_d)
             feeding_.push_back(uint32_t(c));
 }
 
-void SlabLattice::fill_halo(float* field, const std::vector<int>* active) const
+void SlabLattice::fill_halo(float* field, const std::vector<int>* active,
+                            HaloChanges* changes) const
 {
-    fill_halo(std::span<float* const>(&field, 1), active);
+    fill_halo(std::span<float* const>(&field, 1), active, changes);
 }
 
-void SlabLattice::fill_halo(std::span<float* const> fields, const std::vector<int>* active) const
+void SlabLattice::fill_halo(std::span<float* const> fields, const std::vector<int>* active,
+                            HaloChanges* changes) const
 {
     // Ghosts are stored by slab, then layer: with `active`, only the ghosts of the layers
     // read this step (k <= active depth) are visited at all. Several fields share one walk
     // over the ghosts' sources (each field's sums in the same order as alone).
     constexpr size_t kMaxFields = 4;
     if (fields.size() > kMaxFields) {
-        for (size_t f = 0; f < fields.size(); f += kMaxFields)
-            fill_halo(fields.subspan(f, std::min(kMaxFields, fields.size() - f)), active);
+        // Each group of fields starts from the same changes (a fill clears them).
+        const HaloChanges before = changes ? *changes : HaloChanges{};
+        for (size_t f = 0; f < fields.size(); f += kMaxFields) {
+            HaloChanges group = before;
+            fill_halo(fields.subspan(f, std::min(kMaxFields, fields.size() - f)), active,
+                      changes ? &group : nullptr);
+            if (changes)
+                *changes = std::move(group);
+        }
         return;
     }
     const size_t n = fields.size();
     const size_t per_slab = ghost_cell_.size() / size_t(grid_.slab_count);
     const size_t per_layer = per_slab / size_t(grid_.n_d);
+    const size_t rows = grid_.cell_count() / size_t(grid_.sx);
+    if (changes && changes->row_changed.size() != rows) {
+        changes->row_changed.assign(rows, 0);
+        changes->filled_layers.assign(size_t(grid_.slab_count), 0);
+    }
+    // A ghost's sources lie in 4 rows: (j, k), (j + 1, k), (j, k + 1) and (j + 1, k + 1).
+    const size_t sy = size_t(grid_.sy);
+    const uint8_t* changed = changes ? changes->row_changed.data() : nullptr;
     tbb::parallel_for(0, grid_.slab_count, [&](int slab) {
         const int layers =
             active ? std::clamp((*active)[size_t(slab)] + 1, 0, grid_.n_d) : grid_.n_d;
         const size_t begin = size_t(slab) * per_slab;
         const size_t end = begin + size_t(layers) * per_layer;
+        const size_t current_end =
+            changes ? begin + size_t(changes->filled_layers[size_t(slab)]) * per_layer : begin;
         for (size_t g = begin; g < end; ++g) {
             const GhostBlock& block = ghost_sources_[g];
+            if (g < current_end) {
+                const size_t r = block.base / size_t(grid_.sx);
+                if (!(changed[r] | changed[r + 1] | changed[r + sy] | changed[r + sy + 1]))
+                    continue;
+            }
             std::array<float, kMaxFields> v{};
             for (size_t c = 0; c < 8; ++c)
                 for (size_t f = 0; f < n; ++f)
@@ -203,7 +227,11 @@ void SlabLattice::fill_halo(std::span<float* const> fields, const std::vector<in
             for (size_t f = 0; f < n; ++f)
                 fields[f][ghost_cell_[g]] = v[f];
         }
+        if (changes)
+            changes->filled_layers[size_t(slab)] = layers;
     });
+    if (changes)
+        std::fill(changes->row_changed.begin(), changes->row_changed.end(), 0);
     const SlabGrid& g = grid_;
     tbb::parallel_for(0, g.slab_count, [&](int s) {
         const bool bottom = !active || (*active)[size_t(s)] >= g.n_d - 1;

@@ -46,6 +46,22 @@ struct SlabGrid {
     }
 };
 
+/// What lets a halo fill skip ghosts that would get the value they hold: the rows of the
+/// grid (cell / sx) written with new values since the field's last fill, and per slab the
+/// ghost layers that fill made current. Whoever writes the field marks the rows it changes;
+/// a write that is not marked must be followed by a fill without HaloChanges (all ghosts).
+struct HaloChanges {
+    std::vector<uint8_t> row_changed;  ///< per row of the haloed grid
+    std::vector<int> filled_layers;    ///< per slab: ghosts of layers [0, this) are current
+
+    /// Mark the row of `cell` (sized by the first fill; before it, every ghost is filled).
+    void mark(size_t cell, const SlabGrid& g)
+    {
+        if (!row_changed.empty())
+            row_changed[cell / size_t(g.sx)] = 1;
+    }
+};
+
 /// One source of a ghost cell.
 struct GhostSource {
     uint32_t cell = 0;
@@ -76,9 +92,14 @@ public:
     /// Fill the halo of `field` (cell_count floats) from the neighbours (see above). With
     /// `active` (layers per slab that a step reads), halo cells deeper than their slab's
     /// active layers are left as they are.
-    void fill_halo(float* field, const std::vector<int>* active = nullptr) const;
-    /// The same for several fields at once (one walk over the ghosts' sources).
-    void fill_halo(std::span<float* const> fields, const std::vector<int>* active = nullptr) const;
+    /// With `changes`, ghosts that are current (see HaloChanges) are skipped, and `changes`
+    /// is updated to this fill.
+    void fill_halo(float* field, const std::vector<int>* active = nullptr,
+                   HaloChanges* changes = nullptr) const;
+    /// The same for several fields at once (one walk over the ghosts' sources; `changes`
+    /// covers them all).
+    void fill_halo(std::span<float* const> fields, const std::vector<int>* active = nullptr,
+                   HaloChanges* changes = nullptr) const;
     /// Ghost cells whose position lies in no other slab (copied from their own slab).
     size_t unconnected_ghosts() const { return unconnected_; }
 

@@ -40,6 +40,7 @@
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <cstring>
 
 namespace patina::texgen::stone {
 
@@ -83,11 +84,18 @@ void transport_step(StoneState& st, bool wet, int steps)
                     bits |= std::bit_cast<uint32_t>(amount[i]) | std::bit_cast<uint32_t>(conc[i]);
                 if (bits == 0)
                     continue;
+                thread_local std::vector<float> fresh;
+                fresh.resize(size_t(g.n_t));
                 for (int i = 0; i < g.n_t; ++i) {
                     // Most voxels hold nothing: 0 / water is the amount itself (sign kept).
                     const float water = phi[i] * rho[i];
                     const float a = amount[i];
-                    conc[i] = water > 0.0f ? (a != 0.0f ? a / water : a) : 0.0f;
+                    fresh[size_t(i)] = water > 0.0f ? (a != 0.0f ? a / water : a) : 0.0f;
+                }
+                // Written (and marked for the halo fill) only where the bits change.
+                if (std::memcmp(fresh.data(), conc, sizeof(float) * size_t(g.n_t)) != 0) {
+                    std::copy(fresh.begin(), fresh.end(), conc);
+                    st.concentration_halo.mark(row, g);
                 }
             }
             // Whether each moist voxel has its whole stencil (read only for moist voxels, so
@@ -102,7 +110,7 @@ void transport_step(StoneState& st, bool wet, int steps)
     std::array<float*, kSpecies> concentrations;
     for (int m = 0; m < kSpecies; ++m)
         concentrations[size_t(m)] = st.concentration[m].data();
-    lat.fill_halo(concentrations, &st.active_depth);
+    lat.fill_halo(concentrations, &st.active_depth, &st.concentration_halo);
 
     tbb::parallel_for(0, g.slab_count, [&](int s) {
         // Clear what the ghosts received in the last step.
