@@ -185,3 +185,49 @@ TEST(Wavefront, BsdfOnlyIntegratorBitwiseAsThePerPathLoop)
     EXPECT_TRUE(same_bits(wave.xyz, per_path.xyz));
     EXPECT_GT(mean_y(wave.xyz), 0.01);
 }
+
+TEST(Wavefront, ThinLensCameraBitwiseAsThePerPathLoop)
+{
+    // A thin lens draws two more numbers per camera sample: the wavefront's camera stage
+    // must draw them in the same place.
+    std::string text = kMixedScene;
+    text.replace(text.find("fov_deg = 50"), 12,
+                 "fov_deg = 50\naperture_radius = 0.05\nfocus_distance = 5.0");
+    auto l = load(write_scene("wavefront_lens", text));
+    ASSERT_FALSE(l->scene.camera.is_pinhole());
+    const pr::Region full{0, 0, l->scene.film.width, l->scene.film.height};
+    const pr::FilmResult wave = pr::render_region(l->scene, full, {2, true, std::nullopt});
+    PerPathLoop force;
+    const pr::FilmResult per_path = pr::render_region(l->scene, full, {2, true, std::nullopt});
+    EXPECT_TRUE(same_bits(wave.xyz, per_path.xyz));
+    EXPECT_TRUE(same_bits(wave.depth, per_path.depth));
+    EXPECT_GT(mean_y(wave.xyz), 0.01);
+}
+
+TEST(Wavefront, ScenesWithMediaKeepThePerPathLoop)
+{
+    auto surfaces = load(write_scene("wavefront_mixed", kMixedScene));
+    EXPECT_TRUE(pr::wavefront_supported(surfaces->scene));
+    auto fog = load(write_scene("wavefront_media", R"(
+[film]
+width = 4
+height = 4
+spp = 1
+[camera]
+from = [0, 0, 3]
+to = [0, 0, 0]
+fov_deg = 30
+[environment]
+color = [1, 1, 1]
+[[shader]]
+name = "fog"
+type = "homogeneous"
+sigma_a = 0.5
+sigma_s = 1.0
+[[object]]
+shape = "sphere"
+radius = 0.8
+interior = "fog"
+)"));
+    EXPECT_FALSE(pr::wavefront_supported(fog->scene));
+}
