@@ -46,7 +46,8 @@ namespace {
     }
 
     /// Updates the first `layers` layers of slab s of `field` in place: `compute(k, out)`
-    /// writes layer k's new values (n_t x n_t, row-major) from the old ones. The stencils
+    /// writes the new values of layer k's rows (n_t x n_t, row-major) from the old ones and
+    /// returns, per row, whether it wrote it (rows it leaves keep their values). The stencils
     /// reach one layer up and down, so layer k is written back only once layer k + 1 has been
     /// computed: the same result as a double buffer, without a second array to stream. Rows
     /// whose bits change are written and marked in `changes`; the others stay clean.
@@ -56,20 +57,25 @@ namespace {
     {
         const size_t n = size_t(g.n_t) * size_t(g.n_t);
         thread_local std::vector<float> buffer;
+        thread_local std::vector<uint8_t> written;
         buffer.resize(2 * n);
+        written.resize(2 * size_t(g.n_t));
         auto write_back = [&](int k) {
             const float* from = buffer.data() + size_t(k & 1) * n;
+            const uint8_t* rows = written.data() + size_t(k & 1) * size_t(g.n_t);
             for (int j = 0; j < g.n_t; ++j) {
                 const float* row = from + size_t(j) * g.n_t;
                 float* to = field + g.index(s, 0, j, k);
-                if (std::memcmp(row, to, sizeof(float) * size_t(g.n_t)) != 0) {
+                if (rows[j] && std::memcmp(row, to, sizeof(float) * size_t(g.n_t)) != 0) {
                     std::copy(row, row + g.n_t, to);
                     changes.mark(g.index(s, 0, j, k), g);
                 }
             }
         };
         for (int k = 0; k < layers; ++k) {
-            compute(k, buffer.data() + size_t(k & 1) * n);
+            uint8_t* rows = written.data() + size_t(k & 1) * size_t(g.n_t);
+            std::fill(rows, rows + g.n_t, 0);
+            compute(k, buffer.data() + size_t(k & 1) * n, rows);
             if (k > 0)
                 write_back(k - 1);
         }
@@ -125,14 +131,13 @@ namespace {
             const long ax0 = o[0], ax1 = o[1], ax2 = o[2];
             const StencilSigns& sg = lat.signs(s);
             const int layers = st.active_depth[size_t(s)];
-            update_layers_in_place(p, g, s, layers, st.pressure_halo, [&](int k, float* out) {
+            auto compute = [&](int k, float* out, uint8_t* written) {
                 for (int j = 0; j < g.n_t; ++j) {
                     const size_t row = g.index(s, 0, j, k);
                     float* out_row = out + size_t(j) * g.n_t;
-                    if (!pressure_changes(st, row, g.n_t)) {
-                        std::copy(p + row, p + row + g.n_t, out_row);
+                    if (!pressure_changes(st, row, g.n_t))
                         continue;
-                    }
+                    written[j] = 1;
                     for (int i = 0; i < g.n_t; ++i) {
                         const size_t c = row + size_t(i);
                         const uint8_t f = st.flags[c];
@@ -166,7 +171,8 @@ namespace {
                         out_row[i] = pc + rate * (phi[c] * lap + cross);
                     }
                 }
-            });
+            };
+            update_layers_in_place(p, g, s, layers, st.pressure_halo, compute);
         });
         lat.fill_halo(p, &st.active_depth, &st.pressure_halo);
     }
@@ -185,15 +191,13 @@ namespace {
           const int layers = st.active_depth[size_t(s)];
           thread_local LiveRows live;
           live.scan(st, s, std::min(layers, g.n_d));
-          update_layers_in_place(theta, g, s, layers, st.moisture_halo, [&](int k, float* out) {
+          update_layers_in_place(theta, g, s, layers, st.moisture_halo,
+                                 [&](int k, float* out, uint8_t* written) {
             for (int j = 0; j < g.n_t; ++j) {
-                const size_t row = g.index(s, 0, j, k);
-                float* out_row = out + size_t(j) * g.n_t;
-                if (!live.live_around(j, k)) {
-                    std::copy(theta + row, theta + row + g.n_t, out_row);
+                if (!live.live_around(j, k))
                     continue;
-                }
-                rows.row(s, j, k, out_row);
+                rows.row(s, j, k, out + size_t(j) * g.n_t);
+                written[j] = 1;
             }
           });
         });
