@@ -174,34 +174,36 @@ void trace_wavefront(const Scene& scene, std::span<WavefrontPath> paths, bool wa
     s.visible.resize(n);
     s.queries.resize(n);
     s.hits.resize(n);
-    while (!s.live.empty()) {
-        // Shade every live path's hit; collect the shadow rays and the paths that go on.
-        s.next.clear();
-        size_t nshadow = 0;
-        for (const uint32_t i : s.live) {
+    s.next.resize(n);
+    size_t nlive = n;
+    while (nlive > 0) {
+        // Shade every live path's hit; collect the shadow rays, and the paths that go on
+        // with their next rays (written while the path is at hand, not in a pass of its own).
+        size_t nshadow = 0, m = 0;
+        for (size_t k = 0; k < nlive; ++k) {
+            const uint32_t i = s.live[k];
+            WavefrontPath& p = paths[i];
             LightSampleState nee;
-            if (shade(scene, paths[i], want_aovs, s.shadows[nshadow], nee))
-                s.next.push_back(i);
+            if (shade(scene, p, want_aovs, s.shadows[nshadow], nee)) {
+                s.queries[m] = {p.ray.origin, p.ray.dir, 0.0f, kInf};
+                s.next[m++] = i;
+            }
             if (nee == LightSampleState::shadow_ray)
                 s.shadow_owner[nshadow++] = i;
             else if (nee == LightSampleState::zero)
-                add_light_sample(paths[i], false);
+                add_light_sample(p, false);
         }
         scene.geometry->trace_shadow_rays(std::span(s.shadows.data(), nshadow),
                                           std::span(s.visible.data(), nshadow));
         for (size_t k = 0; k < nshadow; ++k)
             add_light_sample(paths[s.shadow_owner[k]], s.visible[k] != 0);
         // Trace the next closest-hit rays of the paths that go on.
-        const size_t m = s.next.size();
-        for (size_t k = 0; k < m; ++k) {
-            const Ray& r = paths[s.next[k]].ray;
-            s.queries[k] = {r.origin, r.dir, 0.0f, kInf};
-        }
         scene.geometry->intersect_incoherent(std::span(s.queries.data(), m),
                                              std::span(s.hits.data(), m));
         for (size_t k = 0; k < m; ++k)
             paths[s.next[k]].hit = s.hits[k];
         std::swap(s.live, s.next);
+        nlive = m;
     }
 }
 
