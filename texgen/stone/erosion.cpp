@@ -82,6 +82,7 @@ void erosion_events(StoneState& st)
                     if (d >= radius)
                         continue;
                     st.density[c] = std::max(0.0f, st.density[c] - amount * (1.0f - d / radius));
+                    st.density_halo.mark(c, g);
                     if (st.density[c] < 0.5f && (st.flags[c] & kStone)) {
                         // The voxel crumbled: crust and minerals leave with it.
                         for (int m = 0; m < kSpecies; ++m) {
@@ -90,13 +91,15 @@ void erosion_events(StoneState& st)
                         }
                         st.black[c] = 0.0f;
                         st.moisture[c] = 0.0f;
+                        st.moisture_halo.mark(c, g);
                         st.flags[c] = 0;
                     }
                 }
       }
     });
     update_flags(st);
-    lat.fill_halo(st.moisture.data());
+    // The steps read the moisture's halo in the active layers only (and fill it there).
+    lat.fill_halo(st.moisture.data(), &st.active_depth, &st.moisture_halo);
 }
 
 } // namespace patina::texgen::stone

@@ -142,30 +142,31 @@ void update_flags(StoneState& st)
 {
     const SlabLattice& lat = *st.lattice;
     const SlabGrid& g = lat.grid();
-    lat.fill_halo(st.density.data());
+    lat.fill_halo(st.density.data(), nullptr, &st.density_halo);
     st.surface_depth.assign(size_t(g.slab_count), 0);
+    const long dj = lat.axis_offset(1), dk = lat.axis_offset(2);
     tbb::parallel_for(0, g.slab_count, [&](int s) {
         for (int k = 0; k < g.n_d; ++k)
-            for (int j = 0; j < g.n_t; ++j)
+            for (int j = 0; j < g.n_t; ++j) {
+                const size_t row = g.index(s, 0, j, k);
+                const float* rho = st.density.data() + row;
+                uint8_t* flags = st.flags.data() + row;
+                // Branch-free over the row, so that it vectorises. A surface voxel touches
+                // air across a face; the outer layer always counts as surface (above it is
+                // air).
+                int any_surface = 0;
                 for (int i = 0; i < g.n_t; ++i) {
-                    const size_t c = g.index(s, i, j, k);
-                    uint8_t f = 0;
-                    if (st.density[c] >= 0.5f) {
-                        f = kStone;
-                        // A surface voxel touches air across a face; the outer layer always
-                        // counts as surface (above it is air).
-                        bool air = k == 0;
-                        for (int a = 0; a < 3 && !air; ++a) {
-                            const long o = lat.axis_offset(a);
-                            air = st.density[c + o] < 0.5f || st.density[c - o] < 0.5f;
-                        }
-                        if (air) {
-                            f |= kSurface;
-                            st.surface_depth[size_t(s)] = std::max(st.surface_depth[size_t(s)], k + 1);
-                        }
-                    }
-                    st.flags[c] = f;
+                    const int stone = int(rho[i] >= 0.5f);
+                    const int air = int(k == 0) | int(rho[i - 1] < 0.5f) | int(rho[i + 1] < 0.5f) |
+                                    int(rho[i - dj] < 0.5f) | int(rho[i + dj] < 0.5f) |
+                                    int(rho[i - dk] < 0.5f) | int(rho[i + dk] < 0.5f);
+                    const int surface = stone & air;
+                    flags[i] = uint8_t(stone * kStone | surface * kSurface);
+                    any_surface |= surface;
                 }
+                if (any_surface)
+                    st.surface_depth[size_t(s)] = std::max(st.surface_depth[size_t(s)], k + 1);
+            }
     });
     update_active_depth(st);
 }

@@ -70,8 +70,9 @@ struct StoneState {
     // double buffers.
     std::vector<float> density, porosity, permeability, head, moisture, pressure;
     std::array<std::vector<float>, kSpecies> solid, dissolved, crust, concentration;
-    /// Rows changed since each field's last halo fill (moisture.cpp, transport.cpp).
-    HaloChanges pressure_halo, moisture_halo, concentration_halo;
+    /// Rows changed since each field's last halo fill (moisture.cpp, transport.cpp,
+    /// erosion.cpp).
+    HaloChanges density_halo, pressure_halo, moisture_halo, concentration_halo;
     std::array<std::vector<float>, kSpecies> ghost_flux;  ///< seam fluxes (transport.cpp)
     /// Per slab and layer (s * n_d + k): whether a ghost of that layer received a flux in
     /// the last transport step (ghost_flux is 0 in every other layer).
