@@ -63,6 +63,15 @@ using VB = uint8_t __attribute__((vector_size(kLanes)));
     return r != 0;
 }
 
+/// +0 in every lane, from a value the compiler cannot see: a few arrays set to a constant
+/// are otherwise merged into a `rep stos`, which costs more than a kernel's whole group.
+[[gnu::always_inline]] inline VF opaque_zero()
+{
+    float z = 0.0f;
+    asm("" : "+x"(z));
+    return VF{} + z;
+}
+
 /// Square roots, correctly rounded as std::sqrt (SSE's sqrtps, in both clones).
 [[gnu::always_inline]] inline VF vsqrt(VF v)
 {

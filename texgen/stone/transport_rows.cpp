@@ -116,22 +116,25 @@ namespace {
         std::array<VF, kSpecies> cc, flux;
         for (int m = 0; m < kSpecies; ++m) {
             cc[size_t(m)] = load(t.concentration[size_t(m)] + c, n);
-            flux[size_t(m)] = VF{};
+            flux[size_t(m)] = opaque_zero();
         }
         // What ghosts receive, by entry (12 diffusive, then 6 advective) and species: half
         // of each exchange, added to the ledger voxel by voxel after the group.
         std::array<std::array<VF, kSpecies>, 18> half;
+        // (Which entries hand anything to a ghost is a bit mask: zeroing the arrays per group
+        // would cost more than the group.)
         std::array<VI, 18> to_ghost;
-        bool any_ghost = false;
+        uint32_t ghost_entries = 0;
         auto exchange = [&](size_t e, VI valid, VI ghost, size_t m, VF F) {
             flux[m] = valid ? flux[m] + (ghost ? 0.5f * F : F) : flux[m];
             half[e][m] = 0.5f * F;
         };
         // Darcy flows across the faces (directions 0-2), from the diffusive pass.
+        // (Not zero-initialised: that costs a rep stos per group; `flows` says which are set.)
         std::array<VF, 6> q;
-        std::array<VI, 6> q_valid{}, q_ghost{};
+        std::array<VI, 6> q_valid, q_ghost;
+        unsigned flows = 0;
         for (size_t e = 0; e < 12; ++e) {
-            to_ghost[e] = VI{};
             if (!pt.inside[e])
                 continue;
             const size_t y = c + size_t(pt.offset[e]);
@@ -152,7 +155,7 @@ namespace {
             const VF porosity = vmin(phi, phi_y);
             const VF water = vmin(vw_c, vw_y);
             to_ghost[e] = valid & ghost;
-            any_ghost |= any(to_ghost[e]);
+            ghost_entries |= uint32_t(any(to_ghost[e])) << e;
             for (size_t m = 0; m < kSpecies; ++m) {
                 VF kappa = t.half_diffusivity[m] * pair_weight * porosity * water;
                 kappa = negative_allowed ? kappa : (kappa < 0.0f ? VF{} : kappa);
@@ -173,24 +176,25 @@ namespace {
             q[e] = vclamp(vd * 0.25f * (vol + vy) * (hc + hy), -cap, cap);
             q_valid[e] = valid;
             q_ghost[e] = ghost;
+            flows |= 1u << e;
         }
         for (size_t a = 0; a < 6; ++a) {
             const size_t e = 12 + a;
-            to_ghost[e] = VI{};
-            if (!any(q_valid[a]))
+            if (!(flows >> a & 1u))
                 continue;
             const size_t y = c + size_t(pt.offset[a]);
             to_ghost[e] = q_valid[a] & q_ghost[a];
+            ghost_entries |= uint32_t(any(to_ghost[e])) << e;
             const VF in = vmax(VF{}, -q[a]), out = vmax(VF{}, q[a]);
             for (size_t m = 0; m < kSpecies; ++m) {
                 const VF cy = load(t.concentration[m] + y, n);
                 exchange(e, q_valid[a], q_ghost[a], m, in * cy - out * cc[m]);
             }
         }
-        if (any_ghost)
+        if (ghost_entries)
             for (int l = 0; l < n; ++l)
                 for (size_t e = 0; e < 18; ++e) {
-                    if (!to_ghost[e][l])
+                    if (!(ghost_entries >> e & 1u) || !to_ghost[e][l])
                         continue;
                     const size_t y = c + size_t(l) + size_t(pt.offset[e < 12 ? e : e - 12]);
                     for (size_t m = 0; m < kSpecies; ++m)
