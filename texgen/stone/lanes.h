@@ -55,12 +55,14 @@ using VB = uint8_t __attribute__((vector_size(kLanes)));
             p[l] = v[l];
 }
 
+/// Whether any lane is set (masks are 0 or -1): the halves ORed, then SSE's movmskps.
 [[gnu::always_inline]] inline bool any(VI m)
 {
-    int r = 0;
-    for (int l = 0; l < kLanes; ++l)
-        r |= m[l];
-    return r != 0;
+    using I4 = int32_t __attribute__((vector_size(16)));
+    static_assert(sizeof(VI) == 2 * sizeof(I4));
+    I4 half[2];
+    std::memcpy(half, &m, sizeof m);
+    return _mm_movemask_ps(__m128(half[0] | half[1])) != 0;
 }
 
 /// +0 in every lane, from a value the compiler cannot see: a few arrays set to a constant
