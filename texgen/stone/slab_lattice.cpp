@@ -140,6 +140,9 @@ SlabLattice::SlabLattice(const SlabShell& shell, int n_t, int n_d)
         }
     });
     unconnected_ = size_t(std::count(connected.begin(), connected.end(), 0));
+    ghost_source_row_.resize(ghost_sources_.size());
+    for (size_t g = 0; g < ghost_sources_.size(); ++g)
+        ghost_source_row_[g] = ghost_sources_[g].base / uint32_t(grid_.sx);
 
     // Flux partners, and the feeds of every voxel (which connected ghosts it is a source of).
     flux_partner_.assign(cells, 0);
@@ -214,12 +217,12 @@ void SlabLattice::fill_halo(std::span<float* const> fields, const std::vector<in
         const size_t current_end =
             changes ? begin + size_t(changes->filled_layers[size_t(slab)]) * per_layer : begin;
         for (size_t g = begin; g < end; ++g) {
-            const GhostBlock& block = ghost_sources_[g];
             if (g < current_end) {
-                const size_t r = block.base / size_t(grid_.sx);
+                const size_t r = ghost_source_row_[g];
                 if (!(changed[r] | changed[r + 1] | changed[r + sy] | changed[r + sy + 1]))
                     continue;
             }
+            const GhostBlock& block = ghost_sources_[g];
             std::array<float, kMaxFields> v{};
             for (size_t c = 0; c < 8; ++c)
                 for (size_t f = 0; f < n; ++f)

@@ -140,6 +140,9 @@ private:
     };
     std::array<uint32_t, 8> block_offset_{};
     std::vector<GhostBlock> ghost_sources_;
+    /// Per ghost: the row (cell / sx) of its first source, what a fill with HaloChanges
+    /// checks before it reads the block (no division, 4 bytes a ghost streamed).
+    std::vector<uint32_t> ghost_source_row_;
     size_t unconnected_ = 0;
     std::vector<uint8_t> flux_partner_;
     std::vector<uint32_t> feed_begin_;
