@@ -7,6 +7,7 @@
 #include <cassert>
 #include <cmath>
 #include <stdexcept>
+#include <type_traits>
 
 namespace patina::texgen::stone {
 
@@ -199,6 +200,8 @@ void SlabLattice::fill_halo(std::span<float* const> fields, const std::vector<in
         return;
     }
     const size_t n = fields.size();
+    if (n == 0)
+        return;
     const size_t per_slab = ghost_cell_.size() / size_t(grid_.slab_count);
     const size_t per_layer = per_slab / size_t(grid_.n_d);
     const size_t rows = grid_.cell_count() / size_t(grid_.sx);
@@ -216,19 +219,28 @@ void SlabLattice::fill_halo(std::span<float* const> fields, const std::vector<in
         const size_t end = begin + size_t(layers) * per_layer;
         const size_t current_end =
             changes ? begin + size_t(changes->filled_layers[size_t(slab)]) * per_layer : begin;
-        for (size_t g = begin; g < end; ++g) {
-            if (g < current_end) {
-                const size_t r = ghost_source_row_[g];
-                if (!(changed[r] | changed[r + 1] | changed[r + sy] | changed[r + sy + 1]))
-                    continue;
+        // The field count as a constant, so the sums stay in registers.
+        auto fill = [&]<size_t N>(std::integral_constant<size_t, N>) {
+            for (size_t g = begin; g < end; ++g) {
+                if (g < current_end) {
+                    const size_t r = ghost_source_row_[g];
+                    if (!(changed[r] | changed[r + 1] | changed[r + sy] | changed[r + sy + 1]))
+                        continue;
+                }
+                const GhostBlock& block = ghost_sources_[g];
+                std::array<float, N> v{};
+                for (size_t c = 0; c < 8; ++c)
+                    for (size_t f = 0; f < N; ++f)
+                        v[f] += block.weight[c] * fields[f][block.base + block_offset_[c]];
+                for (size_t f = 0; f < N; ++f)
+                    fields[f][ghost_cell_[g]] = v[f];
             }
-            const GhostBlock& block = ghost_sources_[g];
-            std::array<float, kMaxFields> v{};
-            for (size_t c = 0; c < 8; ++c)
-                for (size_t f = 0; f < n; ++f)
-                    v[f] += block.weight[c] * fields[f][block.base + block_offset_[c]];
-            for (size_t f = 0; f < n; ++f)
-                fields[f][ghost_cell_[g]] = v[f];
+        };
+        switch (n) {
+        case 1: fill(std::integral_constant<size_t, 1>{}); break;
+        case 2: fill(std::integral_constant<size_t, 2>{}); break;
+        case 3: fill(std::integral_constant<size_t, 3>{}); break;
+        default: fill(std::integral_constant<size_t, 4>{}); break;
         }
         if (changes)
             changes->filled_layers[size_t(slab)] = layers;
