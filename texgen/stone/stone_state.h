@@ -73,6 +73,8 @@ struct StoneState {
     /// Rows changed since each field's last halo fill (moisture.cpp, transport.cpp,
     /// erosion.cpp).
     HaloChanges density_halo, pressure_halo, moisture_halo, concentration_halo;
+    /// Per row (cell / sx): bit m set when species m's concentrations there are known +0.
+    std::vector<uint8_t> concentration_zero;
     std::array<std::vector<float>, kSpecies> ghost_flux;  ///< seam fluxes (transport.cpp)
     /// Per slab and layer (s * n_d + k): whether a ghost of that layer received a flux in
     /// the last transport step (ghost_flux is 0 in every other layer).

@@ -59,6 +59,8 @@ void transport_step(StoneState& st, bool wet, int steps)
             st.ghost_flux[m].assign(g.cell_count(), 0.0f);
     if (st.ghost_received.size() != size_t(g.slab_count) * size_t(g.n_d))
         st.ghost_received.assign(size_t(g.slab_count) * size_t(g.n_d), 0);
+    if (st.concentration_zero.size() != g.cell_count() / size_t(g.sx))
+        st.concentration_zero.assign(g.cell_count() / size_t(g.sx), 0);
     const TransportRows rows(st, wet, dt);
 
     // Concentrations in the water, C = amount / water volume fraction (phi * density), and
@@ -74,24 +76,38 @@ void transport_step(StoneState& st, bool wet, int steps)
             // dry voxels' concentrations too.
             const float* phi = st.porosity.data() + row;
             const float* rho = st.density.data() + row;
+            uint8_t& zero = st.concentration_zero[row / size_t(g.sx)];
             for (int m = 0; m < kSpecies; ++m) {
                 const float* amount = st.dissolved[m].data() + row;
                 float* conc = st.concentration[m].data() + row;
+                const uint8_t bit = uint8_t(1u << m);
                 // Most rows hold nothing and held nothing at the last step (+0 in, +0 out):
-                // then the row is only read, and its cache lines stay clean.
+                // then only the amounts are read (the row's concentrations are known +0, or
+                // read once to learn it), and the cache lines stay clean.
                 uint32_t bits = 0;
                 for (int i = 0; i < g.n_t; ++i)
-                    bits |= std::bit_cast<uint32_t>(amount[i]) | std::bit_cast<uint32_t>(conc[i]);
-                if (bits == 0)
+                    bits |= std::bit_cast<uint32_t>(amount[i]);
+                if (bits == 0 && (zero & bit))
                     continue;
+                if (bits == 0) {
+                    for (int i = 0; i < g.n_t; ++i)
+                        bits |= std::bit_cast<uint32_t>(conc[i]);
+                    if (bits == 0) {
+                        zero |= bit;
+                        continue;
+                    }
+                }
                 thread_local std::vector<float> fresh;
                 fresh.resize(size_t(g.n_t));
+                uint32_t fresh_bits = 0;
                 for (int i = 0; i < g.n_t; ++i) {
                     // Most voxels hold nothing: 0 / water is the amount itself (sign kept).
                     const float water = phi[i] * rho[i];
                     const float a = amount[i];
                     fresh[size_t(i)] = water > 0.0f ? (a != 0.0f ? a / water : a) : 0.0f;
+                    fresh_bits |= std::bit_cast<uint32_t>(fresh[size_t(i)]);
                 }
+                zero = fresh_bits == 0 ? uint8_t(zero | bit) : uint8_t(zero & ~bit);
                 // Written (and marked for the halo fill) only where the bits change.
                 if (std::memcmp(fresh.data(), conc, sizeof(float) * size_t(g.n_t)) != 0) {
                     std::copy(fresh.begin(), fresh.end(), conc);
