@@ -79,6 +79,8 @@ struct StoneState {
     /// Per slab and layer (s * n_d + k): whether a ghost of that layer received a flux in
     /// the last transport step (ghost_flux is 0 in every other layer).
     std::vector<uint8_t> ghost_received;
+    /// Per cell: the ghost received a flux in the last transport step.
+    std::vector<uint8_t> ghost_hit;
     SeamSchedule seams;                 ///< the seam voxels a transport step visits
     std::vector<uint8_t> full_stencil;  ///< moist with all 12 stencil partners moist
     std::vector<float> black, decay, wet_time;

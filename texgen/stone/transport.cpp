@@ -59,6 +59,8 @@ void transport_step(StoneState& st, bool wet, int steps)
             st.ghost_flux[m].assign(g.cell_count(), 0.0f);
     if (st.ghost_received.size() != size_t(g.slab_count) * size_t(g.n_d))
         st.ghost_received.assign(size_t(g.slab_count) * size_t(g.n_d), 0);
+    if (st.ghost_hit.size() != g.cell_count())
+        st.ghost_hit.assign(g.cell_count(), 0);
     if (st.concentration_zero.size() != g.cell_count() / size_t(g.sx))
         st.concentration_zero.assign(g.cell_count() / size_t(g.sx), 0);
     const TransportRows rows(st, wet, dt);
@@ -135,9 +137,11 @@ void transport_step(StoneState& st, bool wet, int steps)
             if (!received[k])
                 continue;
             for (int j = -1; j <= g.n_t; ++j)
-                for (int i = -1; i <= g.n_t; i += (j < 0 || j == g.n_t) ? 1 : g.n_t + 1)
+                for (int i = -1; i <= g.n_t; i += (j < 0 || j == g.n_t) ? 1 : g.n_t + 1) {
                     for (int m = 0; m < kSpecies; ++m)
                         st.ghost_flux[m][g.index(s, i, j, k)] = 0.0f;
+                    st.ghost_hit[g.index(s, i, j, k)] = 0;
+                }
             received[k] = 0;
         }
         const int active = st.active_depth[size_t(s)];
@@ -160,6 +164,13 @@ void transport_step(StoneState& st, bool wet, int steps)
             return;
         for (uint32_t e0 = st.seams.first(q); e0 < st.seams.last(q); ++e0) {
             const size_t c = feeding[e0];
+            // Most voxels of a group feed no ghost that received: they give up +0 (weights
+            // are >= 0), which leaves them as they are.
+            uint8_t hit = 0;
+            for (uint32_t e = begin[c]; e < begin[c + 1]; ++e)
+                hit |= st.ghost_hit[feeds[e].ghost];
+            if (!hit)
+                continue;
             std::array<float, kSpecies> out{};
             for (uint32_t e = begin[c]; e < begin[c + 1]; ++e)
                 for (int m = 0; m < kSpecies; ++m)

@@ -200,6 +200,7 @@ namespace {
                     for (size_t m = 0; m < kSpecies; ++m)
                         t.ledger[m][y] += half[e][m][l];
                     t.ghost_received[pt.layer_key(y)] = 1;
+                    t.ghost_hit[y] = 1;
                 }
 
         const VI front_m = M & front;
@@ -275,6 +276,7 @@ TransportRows::TransportRows(StoneState& s, bool is_wet, float step)
         ledger[m] = s.ghost_flux[m].data();
     }
     ghost_received = s.ghost_received.data();
+    ghost_hit = s.ghost_hit.data();
     decay = s.decay.data();
     black = s.black.data();
     const float alpha = float(prm.pressure_diffusivity);

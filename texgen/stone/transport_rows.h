@@ -27,6 +27,7 @@ struct TransportRows {
     std::array<const float*, 6> weight{};
     Fields concentration{}, dissolved{}, solid{}, crust{}, ledger{};
     uint8_t* ghost_received = nullptr;  ///< StoneState::ghost_received
+    uint8_t* ghost_hit = nullptr;       ///< StoneState::ghost_hit
     float* decay = nullptr;
     float* black = nullptr;
 
