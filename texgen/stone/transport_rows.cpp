@@ -72,15 +72,21 @@ namespace {
     }
 
     /// Wet phases: deposits turn binder at the surface into black crust, and salt comes in
-    /// from the atmosphere (scalar: a few voxels per row).
-    void deposit(const TransportRows& t, size_t c, size_t column)
+    /// from the atmosphere (the `surface` lanes; the columns of a row are consecutive).
+    [[gnu::always_inline]] inline void deposit(const TransportRows& t, VI surface, size_t c,
+                                               size_t column, int n)
     {
-        const float dep = t.st->column_deposit[column];
-        const float turned = std::min(t.solid[kSoluble][c], t.dt * t.black_crust_rate * dep);
-        t.solid[kSoluble][c] -= turned;
-        t.black[c] += turned;
-        if (t.density[c] >= 0.5f && t.moisture[c] >= 0.5f)
-            t.dissolved[kSalt][c] += t.dt * t.salt_supply * dep;
+        const VF dep = load(t.st->column_deposit.data() + column, n);
+        const VF soluble = load(t.solid[kSoluble] + c, n);
+        const VF turned = vmin(soluble, t.dt * t.black_crust_rate * dep);
+        store(t.solid[kSoluble] + c, surface ? soluble - turned : soluble, n);
+        const VF black = load(t.black + c, n);
+        store(t.black + c, surface ? black + turned : black, n);
+        const VI salted = surface & moist(t, c, n);
+        if (any(salted)) {
+            const VF salt = load(t.dissolved[kSalt] + c, n);
+            store(t.dissolved[kSalt] + c, salted ? salt + t.dt * t.salt_supply * dep : salt, n);
+        }
     }
 
     /// Voxels c .. c + n - 1 of a row (n <= kLanes; the columns from `first_column`).
@@ -94,9 +100,7 @@ namespace {
             return;
         const VI surface = stone & ((f & int(kSurface)) != 0);
         if (t.wet && any(surface))
-            for (int l = 0; l < n; ++l)
-                if (surface[l])
-                    deposit(t, c + size_t(l), first_column + size_t(l));
+            deposit(t, surface, c, first_column, n);
         const VI M = stone & moist(t, c, n);
         if (!any(M))
             return;
