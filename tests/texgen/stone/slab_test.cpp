@@ -7,6 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cstring>
+
 namespace patina::texgen::stone {
 namespace {
 
@@ -137,6 +139,64 @@ TEST(SlabLattice, GhostsConnectSlabsSoALinearFieldCrossesSeamsExactly)
             }
     EXPECT_GT(checked, g.slab_count * g.n_d);
     EXPECT_LT(lat.unconnected_ghosts(), size_t(g.slab_count) * 4 * g.n_t * g.n_d / 2);
+}
+
+
+TEST(SlabLattice, HaloFillThatSkipsUnchangedGhostsMatchesAFullFill)
+{
+    const TriangleMesh box = make_box(Imath::V3f(0.0f), Imath::V3f(1.0f));
+    const auto t = test::make_lattice(box, 6, 5, 0.2);
+    const SlabLattice& lat = *t.lattice;
+    const SlabGrid& g = lat.grid();
+    Pcg32 rng(11);
+    std::vector<float> f(g.cell_count(), 0.0f);
+    auto randomise = [&](int s, int j, int k, HaloChanges* changes) {
+        for (int i = 0; i < g.n_t; ++i)
+            f[g.index(s, i, j, k)] = rng.uniform_float();
+        if (changes)
+            changes->mark(g.index(s, 0, j, k), g);
+    };
+    for (int s = 0; s < g.slab_count; ++s)
+        for (int k = 0; k < g.n_d; ++k)
+            for (int j = 0; j < g.n_t; ++j)
+                randomise(s, j, k, nullptr);
+    // Active depths that grow between fills: ghosts in layers the last fill did not cover
+    // must be filled even though their sources are unmarked.
+    std::vector<int> active(size_t(g.slab_count), 1);
+    HaloChanges changes;
+    std::vector<float> tracked = f;
+    for (int round = 0; round < 6; ++round) {
+        for (int e = 0; e < 12; ++e)
+            randomise(int(rng.uniform_float() * float(g.slab_count)) % g.slab_count,
+                      int(rng.uniform_float() * float(g.n_t)) % g.n_t,
+                      int(rng.uniform_float() * float(g.n_d)) % g.n_d, &changes);
+        for (int s = 0; s < g.slab_count; ++s)
+            active[size_t(s)] = std::min(g.n_d - 1, round / 2 + s % 2);
+        // The interior of `tracked` follows f; its halo only through the skipping fills.
+        for (int s = 0; s < g.slab_count; ++s)
+            for (int k = 0; k < g.n_d; ++k)
+                for (int j = 0; j < g.n_t; ++j)
+                    for (int i = 0; i < g.n_t; ++i)
+                        tracked[g.index(s, i, j, k)] = f[g.index(s, i, j, k)];
+        lat.fill_halo(tracked.data(), &active, &changes);
+        std::vector<float> full = f;
+        lat.fill_halo(full.data(), &active);
+        // Every ghost of the layers a step reads (k <= active) is the full fill's, bit for bit.
+        int compared = 0;
+        for (int s = 0; s < g.slab_count; ++s)
+            for (int k = 0; k <= active[size_t(s)]; ++k)
+                for (int j = -1; j <= g.n_t; ++j)
+                    for (int i = -1; i <= g.n_t; ++i) {
+                        if (i >= 0 && j >= 0 && i < g.n_t && j < g.n_t)
+                            continue;
+                        const size_t c = g.index(s, i, j, k);
+                        ASSERT_EQ(0, std::memcmp(&tracked[c], &full[c], sizeof(float)))
+                            << "round " << round << " slab " << s << " ghost " << i << ' ' << j
+                            << ' ' << k;
+                        ++compared;
+                    }
+        EXPECT_GT(compared, g.slab_count * 4 * g.n_t);
+    }
 }
 
 } // namespace
