@@ -58,9 +58,7 @@ namespace {
         VF th_surface = th, th_moist = th;
         if (t.wet) {
             if (any(work & surface)) {
-                VI rained{};
-                for (int l = 0; l < n; ++l)
-                    rained[l] = -int(t.wetness[column + size_t(l)] > 0.05f);
+                const VI rained = load(t.wetness + column, n) > 0.05f;
                 th_surface = rained ? VF{} + 1.0f : th;
             }
         } else {
