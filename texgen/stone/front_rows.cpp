@@ -10,14 +10,6 @@ using namespace lanes;
 
 namespace {
 
-    [[gnu::always_inline]] inline VF axis_metric(const std::array<const float*, 6>& w, int a,
-                                                 size_t at, int n)
-    {
-        return a == 0 ? load(w[0] + at, n) + load(w[3] + at, n) + load(w[5] + at, n)
-             : a == 1 ? load(w[1] + at, n) + load(w[3] + at, n) + load(w[4] + at, n)
-                      : load(w[2] + at, n) + load(w[4] + at, n) + load(w[5] + at, n);
-    }
-
     /// The voxel dried: what the water held recrystallises in place, in the pores below the
     /// surface, and as a crust (efflorescence, iron oxide) where the water evaporated at the
     /// surface.
@@ -120,19 +112,9 @@ namespace {
 
 } // namespace
 
-FrontRows::FrontRows(StoneState& s, bool is_wet) : st(&s), wet(is_wet)
+FrontRows::FrontRows(StoneState& s, bool is_wet) : RowFields(s), st(&s), wet(is_wet)
 {
-    const SlabLattice& lat = *s.lattice;
-    flags = s.flags.data();
-    density = s.density.data();
-    moisture = s.moisture.data();
-    porosity = s.porosity.data();
-    permeability = s.permeability.data();
-    pressure = s.pressure.data();
-    head = s.head.data();
     wetness = s.column_wetness.data();
-    for (size_t d = 0; d < 6; ++d)
-        weight[d] = lat.weights()[d].data();
     wet_time = s.wet_time.data();
     dt = float(s.dt);
     inv_eta = float(1.0 / s.params.viscosity);

@@ -3,6 +3,7 @@
 // the row's voxels.
 #pragma once
 
+#include "texgen/stone/row_fields.h"
 #include "texgen/stone/stone_state.h"
 
 #include <array>
@@ -10,13 +11,9 @@
 
 namespace patina::texgen::stone {
 
-struct FrontRows {
+struct FrontRows : RowFields {
     StoneState* st = nullptr;
-    const uint8_t* flags = nullptr;
-    const float *density = nullptr, *moisture = nullptr, *porosity = nullptr;
-    const float *permeability = nullptr, *pressure = nullptr, *head = nullptr;
     const float* wetness = nullptr;  ///< per column
-    std::array<const float*, 6> weight{};
     float* wet_time = nullptr;
 
     bool wet = false;

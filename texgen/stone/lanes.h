@@ -95,7 +95,8 @@ using VB = uint8_t __attribute__((vector_size(kLanes)));
     return v < lo ? lo : (hi < v ? hi : v);
 }
 
-/// H_aa of lattice axis a from the stencil weights at the n cells from `at`.
+/// H_aa of lattice axis a (stencil.h metric_from_weights) from the six stencil weights at
+/// the n cells from `at`.
 [[gnu::always_inline]] inline VF axis_metric(const std::array<const float*, 6>& w, int a,
                                              size_t at, int n)
 {

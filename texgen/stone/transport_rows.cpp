@@ -256,22 +256,13 @@ namespace {
 } // namespace
 
 TransportRows::TransportRows(StoneState& s, bool is_wet, float step)
-    : st(&s), wet(is_wet), dt(step)
+    : RowFields(s), st(&s), wet(is_wet), dt(step)
 {
     const SlabLattice& lat = *s.lattice;
     const StoneParameters& prm = s.params;
-    flags = s.flags.data();
     full_stencil = s.full_stencil.data();
-    density = s.density.data();
-    moisture = s.moisture.data();
-    porosity = s.porosity.data();
-    permeability = s.permeability.data();
-    pressure = s.pressure.data();
-    head = s.head.data();
     volume = lat.volume().data();
     partner = lat.flux_partner_data();
-    for (size_t d = 0; d < 6; ++d)
-        weight[d] = lat.weights()[d].data();
     for (size_t m = 0; m < kSpecies; ++m) {
         concentration[m] = s.concentration[m].data();
         dissolved[m] = s.dissolved[m].data();

@@ -6,6 +6,7 @@
 // become masks.
 #pragma once
 
+#include "texgen/stone/row_fields.h"
 #include "texgen/stone/stone_state.h"
 
 #include <array>
@@ -14,17 +15,13 @@
 namespace patina::texgen::stone {
 
 /// The fields a transport step reads and writes, and its per-step constants.
-struct TransportRows {
+struct TransportRows : RowFields {
     using Fields = std::array<float*, kSpecies>;
 
     const StoneState* st = nullptr;
-    const uint8_t* flags = nullptr;
     const uint8_t* partner = nullptr;  ///< SlabLattice::flux_partner per cell
     uint8_t* full_stencil = nullptr;
-    const float *density = nullptr, *moisture = nullptr, *porosity = nullptr;
-    const float *permeability = nullptr, *pressure = nullptr, *head = nullptr;
     const float* volume = nullptr;
-    std::array<const float*, 6> weight{};
     Fields concentration{}, dissolved{}, solid{}, crust{}, ledger{};
     uint8_t* ghost_received = nullptr;  ///< StoneState::ghost_received
     uint8_t* ghost_hit = nullptr;       ///< StoneState::ghost_hit
