@@ -322,6 +322,7 @@ int main(int argc, char** argv)
     // Whole cycles (steps, erosion events, flags), as the command runs them; also the CPU
     // time they take (all threads), which other processes on the machine disturb less.
     const double cpu_start = cpu_seconds();
+    const StoneState::PhaseSeconds phase_start = st.phase_seconds;
     const auto t_cycles = Clock::now();
     for (int c = 0; c < cycles; ++c) {
         run_cycle(st);
@@ -335,6 +336,11 @@ int main(int argc, char** argv)
     std::printf("cycle (%d + %d steps, erosion events): %.3f s over %d cycles (%.3f CPU s per "
                 "cycle, %d threads)\n", params.wet_steps, params.dry_steps, per_cycle, cycles,
                 cpu_per_cycle, threads);
+    const StoneState::PhaseSeconds& ph = st.phase_seconds;
+    std::printf("  per cycle: moisture steps %.3f s, transport steps %.3f s, erosion events "
+                "and flags %.3f s\n", (ph.moisture - phase_start.moisture) / cycles,
+                (ph.transport - phase_start.transport) / cycles,
+                (ph.erosion - phase_start.erosion) / cycles);
     std::printf("projected 1000 wet/dry cycles: %.1f min (target < 10)\n",
                 1000.0 * per_cycle / 60.0);
     return 0;

@@ -6,6 +6,7 @@
 #include <tbb/parallel_reduce.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <stdexcept>
 
@@ -291,20 +292,27 @@ double moist_depth(const StoneState& st, const std::vector<char>* selector)
 
 void run_cycle(StoneState& st)
 {
+    using Clock = std::chrono::steady_clock;
+    auto timed = [](double& total, auto&& work) {
+        const auto start = Clock::now();
+        work();
+        total += std::chrono::duration<double>(Clock::now() - start).count();
+    };
+    StoneState::PhaseSeconds& sec = st.phase_seconds;
     auto phase = [&](int steps, bool wet) {
         int pending = 0;
         for (int i = 0; i < steps; ++i) {
-            moisture_step(st, wet);
+            timed(sec.moisture, [&] { moisture_step(st, wet); });
             st.time += st.dt;
             if (++pending == st.transport_interval || i + 1 == steps) {
-                transport_step(st, wet, pending);
+                timed(sec.transport, [&] { transport_step(st, wet, pending); });
                 pending = 0;
             }
         }
     };
     phase(st.params.wet_steps, true);
     phase(st.params.dry_steps, false);
-    erosion_events(st);
+    timed(sec.erosion, [&] { erosion_events(st); });
     ++st.cycles_done;
 }
 

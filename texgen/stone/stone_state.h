@@ -65,6 +65,10 @@ struct StoneState {
     int transport_interval = 1;
     double time = 0.0;
     int cycles_done = 0;
+    /// Wall seconds run_cycle spent in each phase so far (for benchmarks and profiles).
+    struct PhaseSeconds {
+        double moisture = 0.0, transport = 0.0, erosion = 0.0;
+    } phase_seconds;
 
     // Pressure and moisture are updated in place, one layer behind (moisture.cpp): no
     // double buffers.
