@@ -65,6 +65,17 @@ using VB = uint8_t __attribute__((vector_size(kLanes)));
     return _mm_movemask_ps(__m128(half[0] | half[1])) != 0;
 }
 
+/// Lane l's mask as bit l (masks are 0 or -1).
+[[gnu::always_inline]] inline unsigned lane_bits(VI m)
+{
+    using I4 = int32_t __attribute__((vector_size(16)));
+    static_assert(sizeof(VI) == 2 * sizeof(I4));
+    I4 half[2];
+    std::memcpy(half, &m, sizeof m);
+    return unsigned(_mm_movemask_ps(__m128(half[0]))) |
+           unsigned(_mm_movemask_ps(__m128(half[1]))) << 4;
+}
+
 /// +0 in every lane, from a value the compiler cannot see: a few arrays set to a constant
 /// are otherwise merged into a `rep stos`, which costs more than a kernel's whole group.
 [[gnu::always_inline]] inline VF opaque_zero()

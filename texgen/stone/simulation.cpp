@@ -80,7 +80,6 @@ void initialise_state(StoneState& st, const SlabLattice& lattice, const Triangle
             f->assign(cells, 0.0f);
     st.colour.assign(cells, Imath::V3f(0.0f));
     st.flags.assign(cells, 0);
-    st.seams = SeamSchedule(lattice);
 
     // The quarry at every voxel centre; the head rho g (up . x) for Darcy's gravity term.
     const V3d up = params.up.normalized();

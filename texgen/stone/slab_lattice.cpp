@@ -260,6 +260,32 @@ void SlabLattice::fill_halo(std::span<float* const> fields, const std::vector<in
     });
 }
 
+std::array<uint32_t, 8> SlabLattice::ghost_source_cells(size_t ghost_cell) const
+{
+    // The ghost's index: slab, layer, then its place on the layer's ring (rows j = -1 and
+    // j = n_t whole, the rows between by their two ends), as the constructor stores them.
+    const int n_t = grid_.n_t;
+    const size_t s = ghost_cell / grid_.slab_size;
+    const size_t local = ghost_cell % grid_.slab_size;
+    const int i = int(local % size_t(grid_.sx)) - 1;
+    const int j = int((local / size_t(grid_.sx)) % size_t(grid_.sy)) - 1;
+    const size_t k = local / (size_t(grid_.sx) * size_t(grid_.sy)) - 1;
+    const size_t per_layer = 4 * size_t(n_t) + 4;
+    size_t ring;
+    if (j < 0)
+        ring = size_t(i + 1);
+    else if (j < n_t)
+        ring = size_t(n_t + 2) + 2 * size_t(j) + (i < 0 ? 0 : 1);
+    else
+        ring = size_t(n_t + 2) + 2 * size_t(n_t) + size_t(i + 1);
+    const size_t g = (s * size_t(grid_.n_d) + k) * per_layer + ring;
+    assert(ghost_cell_[g] == ghost_cell);
+    std::array<uint32_t, 8> cells;
+    for (size_t c = 0; c < 8; ++c)
+        cells[c] = ghost_sources_[g].base + block_offset_[c];
+    return cells;
+}
+
 float SlabLattice::sample(const float* field, const SlabPoint& p) const
 {
     float v = 0.0f;

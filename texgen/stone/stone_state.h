@@ -5,7 +5,6 @@
 #pragma once
 
 #include "texgen/stone/quarry.h"
-#include "texgen/stone/seam_schedule.h"
 #include "texgen/stone/slab_lattice.h"
 #include "texgen/stone/voxelizer.h"
 
@@ -80,12 +79,14 @@ struct StoneState {
     /// Per row (cell / sx): bit m set when species m's concentrations there are known +0.
     std::vector<uint8_t> concentration_zero;
     std::array<std::vector<float>, kSpecies> ghost_flux;  ///< seam fluxes (transport.cpp)
-    /// Per slab and layer (s * n_d + k): whether a ghost of that layer received a flux in
-    /// the last transport step (ghost_flux is 0 in every other layer).
-    std::vector<uint8_t> ghost_received;
     /// Per cell: the ghost received a flux in the last transport step.
     std::vector<uint8_t> ghost_hit;
-    SeamSchedule seams;                 ///< the seam voxels a transport step visits
+    /// Per slab: its ghosts that received a flux in the last transport step (ghost_flux is
+    /// 0 at every other ghost), in the order they first did.
+    std::vector<std::vector<uint32_t>> ghost_hits;
+    /// The seam pass's scratch: per cell, whether it is due; per slab, the due voxels.
+    std::vector<uint8_t> seam_mark;
+    std::vector<std::vector<uint32_t>> seam_due;
     std::vector<uint8_t> full_stencil;  ///< moist with all 12 stencil partners moist
     std::vector<float> black, decay, wet_time;
     std::vector<uint8_t> flags;

@@ -39,6 +39,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <bit>
 #include <cstring>
 
@@ -57,10 +58,12 @@ void transport_step(StoneState& st, bool wet, int steps)
     for (int m = 0; m < kSpecies; ++m)
         if (st.ghost_flux[m].size() != g.cell_count())
             st.ghost_flux[m].assign(g.cell_count(), 0.0f);
-    if (st.ghost_received.size() != size_t(g.slab_count) * size_t(g.n_d))
-        st.ghost_received.assign(size_t(g.slab_count) * size_t(g.n_d), 0);
-    if (st.ghost_hit.size() != g.cell_count())
+    if (st.ghost_hit.size() != g.cell_count()) {
         st.ghost_hit.assign(g.cell_count(), 0);
+        st.seam_mark.assign(g.cell_count(), 0);
+        st.ghost_hits.assign(size_t(g.slab_count), {});
+        st.seam_due.assign(size_t(g.slab_count), {});
+    }
     if (st.concentration_zero.size() != g.cell_count() / size_t(g.sx))
         st.concentration_zero.assign(g.cell_count() / size_t(g.sx), 0);
     const TransportRows rows(st, wet, dt);
@@ -132,18 +135,12 @@ void transport_step(StoneState& st, bool wet, int steps)
 
     tbb::parallel_for(0, g.slab_count, [&](int s) {
         // Clear what the ghosts received in the last step.
-        uint8_t* received = st.ghost_received.data() + size_t(s) * size_t(g.n_d);
-        for (int k = 0; k < g.n_d; ++k) {
-            if (!received[k])
-                continue;
-            for (int j = -1; j <= g.n_t; ++j)
-                for (int i = -1; i <= g.n_t; i += (j < 0 || j == g.n_t) ? 1 : g.n_t + 1) {
-                    for (int m = 0; m < kSpecies; ++m)
-                        st.ghost_flux[m][g.index(s, i, j, k)] = 0.0f;
-                    st.ghost_hit[g.index(s, i, j, k)] = 0;
-                }
-            received[k] = 0;
+        for (const uint32_t y : st.ghost_hits[size_t(s)]) {
+            for (int m = 0; m < kSpecies; ++m)
+                st.ghost_flux[m][y] = 0.0f;
+            st.ghost_hit[y] = 0;
         }
+        st.ghost_hits[size_t(s)].clear();
         const int active = st.active_depth[size_t(s)];
         // Only moist voxels and (wet) surface voxels change: rows without either are skipped.
         thread_local LiveRows live;
@@ -154,23 +151,25 @@ void transport_step(StoneState& st, bool wet, int steps)
                     rows.transport_row(s, j, k);
     });
 
-    // Seams: each voxel gives up what the ghosts it feeds received, by its weight in them;
-    // only the groups with a ghost in a layer that received a flux can give anything up.
+    // Seams: each voxel gives up what the ghosts it feeds received, by its weight in them.
+    // Only the sources of the ghosts that received can give anything up: they are marked
+    // (each once, whichever slab's ghost marks it first) and listed by the slab that did.
     const auto& begin = lat.feed_begin();
     const auto& feeds = lat.feeds();
-    const auto& feeding = lat.feeding_cells();
-    tbb::parallel_for(size_t(0), st.seams.group_count(), [&](size_t q) {
-        if (!st.seams.received(q, st.ghost_received, g.n_d))
-            return;
-        for (uint32_t e0 = st.seams.first(q); e0 < st.seams.last(q); ++e0) {
-            const size_t c = feeding[e0];
-            // Most voxels of a group feed no ghost that received: they give up +0 (weights
-            // are >= 0), which leaves them as they are.
-            uint8_t hit = 0;
-            for (uint32_t e = begin[c]; e < begin[c + 1]; ++e)
-                hit |= st.ghost_hit[feeds[e].ghost];
-            if (!hit)
-                continue;
+    tbb::parallel_for(0, g.slab_count, [&](int s) {
+        std::vector<uint32_t>& due = st.seam_due[size_t(s)];
+        due.clear();
+        for (const uint32_t y : st.ghost_hits[size_t(s)])
+            for (const uint32_t c : lat.ghost_source_cells(y))
+                if (std::atomic_ref<uint8_t>(st.seam_mark[c])
+                        .exchange(1, std::memory_order_relaxed) == 0)
+                    due.push_back(c);
+    });
+    tbb::parallel_for(0, g.slab_count, [&](int s) {
+        // Each voxel sums over all the ghosts it feeds, in order, as a pass over every seam
+        // voxel would (the others hold +0, which leaves a sum as it is).
+        for (const uint32_t c : st.seam_due[size_t(s)]) {
+            st.seam_mark[c] = 0;
             std::array<float, kSpecies> out{};
             for (uint32_t e = begin[c]; e < begin[c + 1]; ++e)
                 for (int m = 0; m < kSpecies; ++m)

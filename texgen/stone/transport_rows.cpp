@@ -7,6 +7,7 @@
 #include "texgen/stone/lanes.h"
 
 #include <algorithm>
+#include <bit>
 
 namespace patina::texgen::stone {
 
@@ -20,9 +21,9 @@ namespace {
     struct Partners {
         std::array<long, 12> offset{};
         std::array<bool, 12> inside{};
-        const SlabGrid* grid = nullptr;
+        int slab = 0;
 
-        Partners(const SlabLattice& lat, int s, int k) : grid(&lat.grid())
+        Partners(const SlabLattice& lat, int s, int k) : slab(s)
         {
             const auto& o = lat.offsets(s);
             const StencilSigns& sg = lat.signs(s);
@@ -34,14 +35,6 @@ namespace {
                     const int ky = k + sign * dk[size_t(d)];
                     inside[e] = ky >= 0 && ky < lat.grid().n_d;
                 }
-        }
-
-        /// Slab and layer of a cell as an index of StoneState::ghost_received.
-        size_t layer_key(size_t cell) const
-        {
-            const size_t slab = cell / grid->slab_size;
-            const size_t layer = (cell % grid->slab_size) / (size_t(grid->sx) * grid->sy) - 1;
-            return slab * size_t(grid->n_d) + layer;
         }
     };
 
@@ -195,17 +188,28 @@ namespace {
                 exchange(e, q_valid[a], q_ghost[a], m, in * cy - out * cc[m]);
             }
         }
-        if (ghost_entries)
+        if (ghost_entries) {
+            // Voxel by voxel, entries in order: the scalar loop's order of the ledger's sums
+            // (two entries may feed one ghost). Only the set bits are visited.
+            std::array<uint32_t, kLanes> lane_entries{};
+            for (uint32_t bits = ghost_entries; bits; bits &= bits - 1) {
+                const int e = std::countr_zero(bits);
+                for (unsigned on = lane_bits(to_ghost[size_t(e)]); on; on &= on - 1)
+                    lane_entries[size_t(std::countr_zero(on))] |= 1u << e;
+            }
             for (int l = 0; l < n; ++l)
-                for (size_t e = 0; e < 18; ++e) {
-                    if (!(ghost_entries >> e & 1u) || !to_ghost[e][l])
-                        continue;
-                    const size_t y = c + size_t(l) + size_t(pt.offset[e < 12 ? e : e - 12]);
+                for (uint32_t bits = lane_entries[size_t(l)]; bits; bits &= bits - 1) {
+                    const size_t e = size_t(std::countr_zero(bits));
+                    const size_t a = e < 12 ? e : e - 12;
+                    const size_t y = c + size_t(l) + size_t(pt.offset[a]);
                     for (size_t m = 0; m < kSpecies; ++m)
                         t.ledger[m][y] += half[e][m][l];
-                    t.ghost_received[pt.layer_key(y)] = 1;
-                    t.ghost_hit[y] = 1;
+                    if (!t.ghost_hit[y]) {
+                        t.ghost_hit[y] = 1;
+                        t.ghost_hits[pt.slab].push_back(uint32_t(y));
+                    }
                 }
+        }
 
         const VI front_m = M & front;
         const VI dries = t.wet ? VI{} : M & surface;
@@ -270,8 +274,8 @@ TransportRows::TransportRows(StoneState& s, bool is_wet, float step)
         crust[m] = s.crust[m].data();
         ledger[m] = s.ghost_flux[m].data();
     }
-    ghost_received = s.ghost_received.data();
     ghost_hit = s.ghost_hit.data();
+    ghost_hits = s.ghost_hits.data();
     decay = s.decay.data();
     black = s.black.data();
     const float alpha = float(prm.pressure_diffusivity);

@@ -11,6 +11,7 @@
 
 #include <array>
 #include <cstdint>
+#include <vector>
 
 namespace patina::texgen::stone {
 
@@ -23,8 +24,8 @@ struct TransportRows : RowFields {
     uint8_t* full_stencil = nullptr;
     const float* volume = nullptr;
     Fields concentration{}, dissolved{}, solid{}, crust{}, ledger{};
-    uint8_t* ghost_received = nullptr;  ///< StoneState::ghost_received
-    uint8_t* ghost_hit = nullptr;       ///< StoneState::ghost_hit
+    uint8_t* ghost_hit = nullptr;                  ///< StoneState::ghost_hit
+    std::vector<uint32_t>* ghost_hits = nullptr;   ///< StoneState::ghost_hits, per slab
     float* decay = nullptr;
     float* black = nullptr;
 
