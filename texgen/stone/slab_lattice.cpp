@@ -144,6 +144,22 @@ SlabLattice::SlabLattice(const SlabShell& shell, int n_t, int n_d)
     ghost_source_row_.resize(ghost_sources_.size());
     for (size_t g = 0; g < ghost_sources_.size(); ++g)
         ghost_source_row_[g] = ghost_sources_[g].base / uint32_t(grid_.sx);
+    // The source layers of each ghost layer: those of rows r and r + sy of every ghost (its
+    // sources lie in rows r, r + 1, r + sy and r + sy + 1, and r + 1 in r's layer).
+    const size_t ghost_layers = size_t(grid_.slab_count) * size_t(n_d);
+    const size_t per_ghost_layer = ghost_cell_.size() / ghost_layers;
+    ghost_layer_begin_.assign(ghost_layers + 1, 0);
+    for (size_t q = 0; q < ghost_layers; ++q) {
+        const size_t first = ghost_layer_sources_.size();
+        for (size_t g = q * per_ghost_layer; g < (q + 1) * per_ghost_layer; ++g)
+            for (const uint32_t below : {0, 1}) {
+                const uint32_t layer = ghost_source_row_[g] / uint32_t(grid_.sy) + below;
+                if (std::find(ghost_layer_sources_.begin() + long(first),
+                              ghost_layer_sources_.end(), layer) == ghost_layer_sources_.end())
+                    ghost_layer_sources_.push_back(layer);
+            }
+        ghost_layer_begin_[q + 1] = uint32_t(ghost_layer_sources_.size());
+    }
 
     // Flux partners, and the feeds of every voxel (which connected ghosts it is a source of).
     flux_partner_.assign(cells, 0);
@@ -207,11 +223,13 @@ void SlabLattice::fill_halo(std::span<float* const> fields, const std::vector<in
     const size_t rows = grid_.cell_count() / size_t(grid_.sx);
     if (changes && changes->row_changed.size() != rows) {
         changes->row_changed.assign(rows, 0);
+        changes->layer_changed.assign(rows / size_t(grid_.sy), 0);
         changes->filled_layers.assign(size_t(grid_.slab_count), 0);
     }
     // A ghost's sources lie in 4 rows: (j, k), (j + 1, k), (j, k + 1) and (j + 1, k + 1).
     const size_t sy = size_t(grid_.sy);
     const uint8_t* changed = changes ? changes->row_changed.data() : nullptr;
+    const uint8_t* layer_changed = changes ? changes->layer_changed.data() : nullptr;
     tbb::parallel_for(0, grid_.slab_count, [&](int slab) {
         const int layers =
             active ? std::clamp((*active)[size_t(slab)] + 1, 0, grid_.n_d) : grid_.n_d;
@@ -222,6 +240,17 @@ void SlabLattice::fill_halo(std::span<float* const> fields, const std::vector<in
         // The field count as a constant, so the sums stay in registers.
         auto fill = [&]<size_t N>(std::integral_constant<size_t, N>) {
             for (size_t g = begin; g < end; ++g) {
+                if (g < current_end && (g - begin) % per_layer == 0) {
+                    // A current ghost layer whose source layers are all unchanged stays.
+                    const size_t q = g / per_layer;
+                    bool any = false;
+                    for (uint32_t e = ghost_layer_begin_[q]; e < ghost_layer_begin_[q + 1]; ++e)
+                        any |= layer_changed[ghost_layer_sources_[e]] != 0;
+                    if (!any) {
+                        g += per_layer - 1;
+                        continue;
+                    }
+                }
                 if (g < current_end) {
                     const size_t r = ghost_source_row_[g];
                     if (!(changed[r] | changed[r + 1] | changed[r + sy] | changed[r + sy + 1]))
@@ -245,8 +274,10 @@ void SlabLattice::fill_halo(std::span<float* const> fields, const std::vector<in
         if (changes)
             changes->filled_layers[size_t(slab)] = layers;
     });
-    if (changes)
+    if (changes) {
         std::fill(changes->row_changed.begin(), changes->row_changed.end(), 0);
+        std::fill(changes->layer_changed.begin(), changes->layer_changed.end(), 0);
+    }
     const SlabGrid& g = grid_;
     tbb::parallel_for(0, g.slab_count, [&](int s) {
         const bool bottom = !active || (*active)[size_t(s)] >= g.n_d - 1;

@@ -51,14 +51,18 @@ struct SlabGrid {
 /// ghost layers that fill made current. Whoever writes the field marks the rows it changes;
 /// a write that is not marked must be followed by a fill without HaloChanges (all ghosts).
 struct HaloChanges {
-    std::vector<uint8_t> row_changed;  ///< per row of the haloed grid
-    std::vector<int> filled_layers;    ///< per slab: ghosts of layers [0, this) are current
+    std::vector<uint8_t> row_changed;    ///< per row of the haloed grid
+    std::vector<uint8_t> layer_changed;  ///< per layer of the haloed grid (row / sy)
+    std::vector<int> filled_layers;      ///< per slab: ghosts of layers [0, this) are current
 
     /// Mark the row of `cell` (sized by the first fill; before it, every ghost is filled).
     void mark(size_t cell, const SlabGrid& g)
     {
-        if (!row_changed.empty())
-            row_changed[cell / size_t(g.sx)] = 1;
+        if (row_changed.empty())
+            return;
+        const size_t row = cell / size_t(g.sx);
+        row_changed[row] = 1;
+        layer_changed[row / size_t(g.sy)] = 1;
     }
 };
 
@@ -146,6 +150,10 @@ private:
     /// Per ghost: the row (cell / sx) of its first source, what a fill with HaloChanges
     /// checks before it reads the block (no division, 4 bytes a ghost streamed).
     std::vector<uint32_t> ghost_source_row_;
+    /// Per ghost layer (slab * n_d + k): the layers of the haloed grid (row / sy) its ghosts'
+    /// sources lie in (CSR), so that a fill skips a layer whose sources did not change.
+    std::vector<uint32_t> ghost_layer_begin_;
+    std::vector<uint32_t> ghost_layer_sources_;
     size_t unconnected_ = 0;
     std::vector<uint8_t> flux_partner_;
     std::vector<uint32_t> feed_begin_;
