@@ -40,8 +40,6 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
-#include <bit>
-#include <cstring>
 
 namespace patina::texgen::stone {
 
@@ -77,47 +75,13 @@ void transport_step(StoneState& st, bool wet, int steps)
             return;
         for (int j = 0; j < g.n_t; ++j) {
             const size_t row = g.index(s, 0, j, k);
-            // Branch-free, so that it vectorises: every voxel, as the ghosts interpolate
-            // dry voxels' concentrations too.
-            const float* phi = st.porosity.data() + row;
-            const float* rho = st.density.data() + row;
             uint8_t& zero = st.concentration_zero[row / size_t(g.sx)];
-            for (int m = 0; m < kSpecies; ++m) {
-                const float* amount = st.dissolved[m].data() + row;
-                float* conc = st.concentration[m].data() + row;
+            for (size_t m = 0; m < kSpecies; ++m) {
                 const uint8_t bit = uint8_t(1u << m);
-                // Most rows hold nothing and held nothing at the last step (+0 in, +0 out):
-                // then only the amounts are read (the row's concentrations are known +0, or
-                // read once to learn it), and the cache lines stay clean.
-                uint32_t bits = 0;
-                for (int i = 0; i < g.n_t; ++i)
-                    bits |= std::bit_cast<uint32_t>(amount[i]);
-                if (bits == 0 && (zero & bit))
-                    continue;
-                if (bits == 0) {
-                    for (int i = 0; i < g.n_t; ++i)
-                        bits |= std::bit_cast<uint32_t>(conc[i]);
-                    if (bits == 0) {
-                        zero |= bit;
-                        continue;
-                    }
-                }
-                thread_local std::vector<float> fresh;
-                fresh.resize(size_t(g.n_t));
-                uint32_t fresh_bits = 0;
-                for (int i = 0; i < g.n_t; ++i) {
-                    // Most voxels hold nothing: 0 / water is the amount itself (sign kept).
-                    const float water = phi[i] * rho[i];
-                    const float a = amount[i];
-                    fresh[size_t(i)] = water > 0.0f ? (a != 0.0f ? a / water : a) : 0.0f;
-                    fresh_bits |= std::bit_cast<uint32_t>(fresh[size_t(i)]);
-                }
-                zero = fresh_bits == 0 ? uint8_t(zero | bit) : uint8_t(zero & ~bit);
-                // Written (and marked for the halo fill) only where the bits change.
-                if (std::memcmp(fresh.data(), conc, sizeof(float) * size_t(g.n_t)) != 0) {
-                    std::copy(fresh.begin(), fresh.end(), conc);
+                const auto done = rows.concentration_row(row, m, (zero & bit) != 0);
+                zero = done.zero ? uint8_t(zero | bit) : uint8_t(zero & ~bit);
+                if (done.changed)
                     st.concentration_halo.mark(row, g);
-                }
             }
             // Whether each moist voxel has its whole stencil (read only for moist voxels, so
             // rows without one are left as they are).

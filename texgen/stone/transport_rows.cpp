@@ -49,6 +49,54 @@ namespace {
         return (load(t.partner + at, n) != 0) & moist(t, at, n);
     }
 
+    /// The bits of a float vector, to compare and test values as stored (-0 is not +0).
+    [[gnu::always_inline]] inline VI bits(VF v)
+    {
+        VI b;
+        std::memcpy(&b, &v, sizeof v);
+        return b;
+    }
+
+    [[gnu::target_clones("avx2", "default")]]
+    TransportRows::ConcentrationRow concentration_lanes(const TransportRows& t, size_t row,
+                                                        int n_t, size_t m, bool known_zero)
+    {
+        const float* amount = t.dissolved[m] + row;
+        float* conc = t.concentration[m] + row;
+        // Most rows hold nothing and held nothing at the last step (+0 in, +0 out): then
+        // only the amounts are read, and the cache lines stay clean.
+        VI any_amount{};
+        for (int i0 = 0; i0 < n_t; i0 += kLanes)
+            any_amount |= bits(load(amount + i0, std::min(kLanes, n_t - i0)));
+        if (!any(any_amount != 0)) {
+            if (known_zero)
+                return {true, false};
+            VI any_conc{};
+            for (int i0 = 0; i0 < n_t; i0 += kLanes)
+                any_conc |= bits(load(conc + i0, std::min(kLanes, n_t - i0)));
+            if (!any(any_conc != 0))
+                return {true, false};
+        }
+        // Every voxel, as the ghosts interpolate dry voxels' concentrations too; 0 / water
+        // is the amount itself (its sign kept).
+        TransportRows::ConcentrationRow out;
+        VI any_fresh{};
+        for (int i0 = 0; i0 < n_t; i0 += kLanes) {
+            const int n = std::min(kLanes, n_t - i0);
+            const size_t c = row + size_t(i0);
+            const VF water = load(t.porosity + c, n) * load(t.density + c, n);
+            const VF a = load(amount + i0, n);
+            const VF fresh = water > 0.0f ? (a != 0.0f ? a / water : a) : VF{};
+            any_fresh |= bits(fresh);
+            if (any(bits(fresh) != bits(load(conc + i0, n)))) {
+                store(conc + i0, fresh, n);
+                out.changed = true;
+            }
+        }
+        out.zero = !any(any_fresh != 0);
+        return out;
+    }
+
     [[gnu::target_clones("avx2", "default")]]
     void full_stencil_lanes(const TransportRows& t, const Partners& pt, size_t row, int n_t)
     {
@@ -290,6 +338,12 @@ TransportRows::TransportRows(StoneState& s, bool is_wet, float step)
         saturation[m] = float(prm.saturation[m]);
         rate_cap[m] = std::min(1.0f, dt * float(prm.solubility[m]));
     }
+}
+
+TransportRows::ConcentrationRow TransportRows::concentration_row(size_t row, size_t m,
+                                                               bool known_zero) const
+{
+    return concentration_lanes(*this, row, st->lattice->grid().n_t, m, known_zero);
 }
 
 void TransportRows::full_stencil_row(int s, int j, int k) const

@@ -38,6 +38,15 @@ struct TransportRows : RowFields {
 
     TransportRows(StoneState& st, bool wet, float dt);
 
+    /// What concentration_row did to a row.
+    struct ConcentrationRow {
+        bool zero = false;     ///< every concentration of the row is +0
+        bool changed = false;  ///< some bits changed (and were written)
+    };
+    /// Species m's concentrations C = amount / (phi rho) of the voxels of the row that
+    /// starts at cell `row`, written where their bits change. `known_zero`: the row's
+    /// concentrations are known +0, so a row without amounts is not read further.
+    ConcentrationRow concentration_row(size_t row, size_t m, bool known_zero) const;
     /// full_stencil of the voxels of row (j, k) of slab s: moist, with all 12 stencil
     /// partners moist solute partners.
     void full_stencil_row(int s, int j, int k) const;
