@@ -16,6 +16,7 @@
 // a voxel that dries recrystallise in place (as crust in a surface voxel).
 #include "texgen/stone/front_rows.h"
 #include "texgen/stone/live_rows.h"
+#include "texgen/stone/pressure_rows.h"
 #include "texgen/stone/stone_state.h"
 
 #include <tbb/parallel_for.h>
@@ -123,53 +124,15 @@ namespace {
         if (std::find(changed.begin(), changed.end(), 1) != changed.end())
             lat.fill_halo(p, &st.active_depth, &st.pressure_halo);
 
-        const float rate = float(st.dt * st.params.pressure_diffusivity);
-        const auto& w = lat.weights();
-        const float* phi = st.porosity.data();
+        const PressureRows rows(st);
         tbb::parallel_for(0, g.slab_count, [&](int s) {
-            const auto& o = lat.offsets(s);
-            const long ax0 = o[0], ax1 = o[1], ax2 = o[2];
-            const StencilSigns& sg = lat.signs(s);
             const int layers = st.active_depth[size_t(s)];
             auto compute = [&](int k, float* out, uint8_t* written) {
                 for (int j = 0; j < g.n_t; ++j) {
-                    const size_t row = g.index(s, 0, j, k);
-                    float* out_row = out + size_t(j) * g.n_t;
-                    if (!pressure_changes(st, row, g.n_t))
+                    if (!pressure_changes(st, g.index(s, 0, j, k), g.n_t))
                         continue;
                     written[j] = 1;
-                    for (int i = 0; i < g.n_t; ++i) {
-                        const size_t c = row + size_t(i);
-                        const uint8_t f = st.flags[c];
-                        if (!(f & kStone) || (f & kSurface)) {
-                            out_row[i] = p[c];
-                            continue;
-                        }
-                        if (st.moisture[c] < 0.5f) { // dry: the front's Dirichlet p = 0
-                            out_row[i] = 0.0f;
-                            continue;
-                        }
-                        const float pc = p[c];
-                        float lap = 0.0f;
-                        for (int d = 0; d < 6; ++d)
-                            lap += w[d][c] * (p[c + o[d]] + p[c - o[d]] - 2.0f * pc);
-                        // Central differences along the axes, through H.
-                        const float dp0 = 0.5f * (p[c + ax0] - p[c - ax0]),
-                                    dp1 = 0.5f * (p[c + ax1] - p[c - ax1]),
-                                    dp2 = 0.5f * (p[c + ax2] - p[c - ax2]);
-                        const float df0 = 0.5f * (phi[c + ax0] - phi[c - ax0]),
-                                    df1 = 0.5f * (phi[c + ax1] - phi[c - ax1]),
-                                    df2 = 0.5f * (phi[c + ax2] - phi[c - ax2]);
-                        const float h00 = w[0][c] + w[3][c] + w[5][c],
-                                    h11 = w[1][c] + w[3][c] + w[4][c],
-                                    h22 = w[2][c] + w[4][c] + w[5][c];
-                        const float h01 = sg.s[0] * w[3][c], h12 = sg.s[1] * w[4][c],
-                                    h02 = sg.s[2] * w[5][c];
-                        const float cross = df0 * (h00 * dp0 + h01 * dp1 + h02 * dp2) +
-                                            df1 * (h01 * dp0 + h11 * dp1 + h12 * dp2) +
-                                            df2 * (h02 * dp0 + h12 * dp1 + h22 * dp2);
-                        out_row[i] = pc + rate * (phi[c] * lap + cross);
-                    }
+                    rows.row(s, j, k, out + size_t(j) * g.n_t);
                 }
             };
             update_layers_in_place(p, g, s, layers, st.pressure_halo, compute);
