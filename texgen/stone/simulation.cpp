@@ -142,33 +142,65 @@ void update_flags(StoneState& st)
 {
     const SlabLattice& lat = *st.lattice;
     const SlabGrid& g = lat.grid();
+    const size_t layers = size_t(g.slab_count) * size_t(g.n_d);
+    // A voxel's flags depend on its density and its six face neighbours': after the first
+    // call, only layers with a changed row in them or next to them, or with a changed source
+    // of their ghosts, are recomputed (erosion changes a few layers near the surface; it
+    // marks what it changes in density_halo).
+    const bool first = st.surface_layer.size() != layers || st.density_halo.row_changed.empty();
+    std::vector<uint8_t> redo(layers, 1);
+    if (!first) {
+        const auto& changed = st.density_halo.layer_changed;
+        tbb::parallel_for(0, g.slab_count, [&](int s) {
+            for (int k = 0; k < g.n_d; ++k) {
+                // Haloed layer k + 1 holds layer k.
+                const size_t at = size_t(s) * size_t(g.sz) + size_t(k) + 1;
+                redo[size_t(s) * size_t(g.n_d) + size_t(k)] =
+                    uint8_t(changed[at - 1] | changed[at] | changed[at + 1] |
+                            uint8_t(lat.ghost_sources_changed(s, k, st.density_halo)));
+            }
+        });
+    }
+    if (first)
+        st.surface_layer.assign(layers, 0);
     lat.fill_halo(st.density.data(), nullptr, &st.density_halo);
     st.surface_depth.assign(size_t(g.slab_count), 0);
     const long dj = lat.axis_offset(1), dk = lat.axis_offset(2);
     tbb::parallel_for(0, g.slab_count, [&](int s) {
-        for (int k = 0; k < g.n_d; ++k)
-            for (int j = 0; j < g.n_t; ++j) {
-                const size_t row = g.index(s, 0, j, k);
-                const float* rho = st.density.data() + row;
-                uint8_t* flags = st.flags.data() + row;
-                // Branch-free over the row, so that it vectorises. A surface voxel touches
-                // air across a face; the outer layer always counts as surface (above it is
-                // air).
+        for (int k = 0; k < g.n_d; ++k) {
+            const size_t layer = size_t(s) * size_t(g.n_d) + size_t(k);
+            if (redo[layer]) {
                 int any_surface = 0;
-                for (int i = 0; i < g.n_t; ++i) {
-                    const int stone = int(rho[i] >= 0.5f);
-                    const int air = int(k == 0) | int(rho[i - 1] < 0.5f) | int(rho[i + 1] < 0.5f) |
-                                    int(rho[i - dj] < 0.5f) | int(rho[i + dj] < 0.5f) |
-                                    int(rho[i - dk] < 0.5f) | int(rho[i + dk] < 0.5f);
-                    const int surface = stone & air;
-                    flags[i] = uint8_t(stone * kStone | surface * kSurface);
-                    any_surface |= surface;
+                for (int j = 0; j < g.n_t; ++j) {
+                    const size_t row = g.index(s, 0, j, k);
+                    const float* rho = st.density.data() + row;
+                    uint8_t* flags = st.flags.data() + row;
+                    // Branch-free over the row, so that it vectorises. A surface voxel
+                    // touches air across a face; the outer layer always counts as surface
+                    // (above it is air).
+                    for (int i = 0; i < g.n_t; ++i) {
+                        const int stone = int(rho[i] >= 0.5f);
+                        const int air = int(k == 0) | int(rho[i - 1] < 0.5f) |
+                                        int(rho[i + 1] < 0.5f) | int(rho[i - dj] < 0.5f) |
+                                        int(rho[i + dj] < 0.5f) | int(rho[i - dk] < 0.5f) |
+                                        int(rho[i + dk] < 0.5f);
+                        const int surface = stone & air;
+                        flags[i] = uint8_t(stone * kStone | surface * kSurface);
+                        any_surface |= surface;
+                    }
                 }
-                if (any_surface)
-                    st.surface_depth[size_t(s)] = std::max(st.surface_depth[size_t(s)], k + 1);
+                st.surface_layer[layer] = uint8_t(any_surface);
             }
+            if (st.surface_layer[layer])
+                st.surface_depth[size_t(s)] = k + 1;
+        }
     });
-    update_active_depth(st);
+    // Erosion never adds moisture (what crumbles dries): the deepest moist layer is no
+    // deeper than before, and the scan can start from the old active depth.
+    if (first)
+        update_active_depth(st);
+    else
+        refresh_active_depth(st);
 }
 
 namespace {

@@ -229,7 +229,6 @@ void SlabLattice::fill_halo(std::span<float* const> fields, const std::vector<in
     // A ghost's sources lie in 4 rows: (j, k), (j + 1, k), (j, k + 1) and (j + 1, k + 1).
     const size_t sy = size_t(grid_.sy);
     const uint8_t* changed = changes ? changes->row_changed.data() : nullptr;
-    const uint8_t* layer_changed = changes ? changes->layer_changed.data() : nullptr;
     tbb::parallel_for(0, grid_.slab_count, [&](int slab) {
         const int layers =
             active ? std::clamp((*active)[size_t(slab)] + 1, 0, grid_.n_d) : grid_.n_d;
@@ -242,11 +241,7 @@ void SlabLattice::fill_halo(std::span<float* const> fields, const std::vector<in
             for (size_t g = begin; g < end; ++g) {
                 if (g < current_end && (g - begin) % per_layer == 0) {
                     // A current ghost layer whose source layers are all unchanged stays.
-                    const size_t q = g / per_layer;
-                    bool any = false;
-                    for (uint32_t e = ghost_layer_begin_[q]; e < ghost_layer_begin_[q + 1]; ++e)
-                        any |= layer_changed[ghost_layer_sources_[e]] != 0;
-                    if (!any) {
+                    if (!ghost_sources_changed(slab, int((g - begin) / per_layer), *changes)) {
                         g += per_layer - 1;
                         continue;
                     }
@@ -289,6 +284,15 @@ void SlabLattice::fill_halo(std::span<float* const> fields, const std::vector<in
                         field[g.index(s, i, j, g.n_d)] = field[g.index(s, i, j, g.n_d - 1)];
                 }
     });
+}
+
+bool SlabLattice::ghost_sources_changed(int slab, int k, const HaloChanges& changes) const
+{
+    const size_t q = size_t(slab) * size_t(grid_.n_d) + size_t(k);
+    for (uint32_t e = ghost_layer_begin_[q]; e < ghost_layer_begin_[q + 1]; ++e)
+        if (changes.layer_changed[ghost_layer_sources_[e]])
+            return true;
+    return false;
 }
 
 std::array<uint32_t, 8> SlabLattice::ghost_source_cells(size_t ghost_cell) const

@@ -104,6 +104,9 @@ public:
     /// covers them all).
     void fill_halo(std::span<float* const> fields, const std::vector<int>* active = nullptr,
                    HaloChanges* changes = nullptr) const;
+    /// Whether `changes` marks a row in a layer that the sources of slab s's ghosts of
+    /// layer k lie in (before a fill clears the marks).
+    bool ghost_sources_changed(int slab, int k, const HaloChanges& changes) const;
     /// Ghost cells whose position lies in no other slab (copied from their own slab).
     size_t unconnected_ghosts() const { return unconnected_; }
 

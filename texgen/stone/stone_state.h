@@ -95,6 +95,7 @@ struct StoneState {
     /// skipped, which is most of the shell while the front is shallow.
     std::vector<int> active_depth;
     std::vector<int> surface_depth;  ///< per slab: deepest surface voxel layer + 1
+    std::vector<uint8_t> surface_layer;  ///< per slab and layer: holds a surface voxel
     std::vector<Imath::V3f> colour;        ///< fresh stone albedo
     std::vector<ColumnSurface> columns;
     std::vector<float> column_wetness;     ///< per column, [0, 1]
