@@ -130,14 +130,22 @@ void transport_step(StoneState& st, bool wet, int steps)
                     due.push_back(c);
     });
     tbb::parallel_for(0, g.slab_count, [&](int s) {
-        // Each voxel sums over all the ghosts it feeds, in order, as a pass over every seam
-        // voxel would (the others hold +0, which leaves a sum as it is).
-        for (const uint32_t c : st.seam_due[size_t(s)]) {
+        // Each voxel sums over the ghosts it feeds that received, in order. The others hold
+        // +0, and adding w x +0 (w >= 0) leaves a sum that starts at +0 as it is: it is never
+        // -0, as x + y is +0 when x = -y. In cell order, which walks the neighbour slabs'
+        // arrays forwards rather than at random.
+        std::vector<uint32_t>& due = st.seam_due[size_t(s)];
+        std::sort(due.begin(), due.end());
+        for (const uint32_t c : due) {
             st.seam_mark[c] = 0;
             std::array<float, kSpecies> out{};
-            for (uint32_t e = begin[c]; e < begin[c + 1]; ++e)
+            for (uint32_t e = begin[c]; e < begin[c + 1]; ++e) {
+                const uint32_t y = feeds[e].ghost;
+                if (!st.ghost_hit[y])
+                    continue;
                 for (int m = 0; m < kSpecies; ++m)
-                    out[m] += feeds[e].weight * st.ghost_flux[m][feeds[e].ghost];
+                    out[m] += feeds[e].weight * st.ghost_flux[m][y];
+            }
             for (int m = 0; m < kSpecies; ++m)
                 st.dissolved[m][c] -= dt * out[m] / vol[c];
         }
