@@ -295,7 +295,7 @@ bool SlabLattice::ghost_sources_changed(int slab, int k, const HaloChanges& chan
     return false;
 }
 
-std::array<uint32_t, 8> SlabLattice::ghost_source_cells(size_t ghost_cell) const
+std::array<GhostSource, 8> SlabLattice::ghost_sources(size_t ghost_cell) const
 {
     // The ghost's index: slab, layer, then its place on the layer's ring (rows j = -1 and
     // j = n_t whole, the rows between by their two ends), as the constructor stores them.
@@ -315,10 +315,10 @@ std::array<uint32_t, 8> SlabLattice::ghost_source_cells(size_t ghost_cell) const
         ring = size_t(n_t + 2) + 2 * size_t(n_t) + size_t(i + 1);
     const size_t g = (s * size_t(grid_.n_d) + k) * per_layer + ring;
     assert(ghost_cell_[g] == ghost_cell);
-    std::array<uint32_t, 8> cells;
+    std::array<GhostSource, 8> sources;
     for (size_t c = 0; c < 8; ++c)
-        cells[c] = ghost_sources_[g].base + block_offset_[c];
-    return cells;
+        sources[c] = {ghost_sources_[g].base + block_offset_[c], ghost_sources_[g].weight[c]};
+    return sources;
 }
 
 float SlabLattice::sample(const float* field, const SlabPoint& p) const

@@ -125,8 +125,8 @@ public:
     /// The voxels that feed at least one ghost, ascending.
     const std::vector<uint32_t>& feeding_cells() const { return feeding_; }
     /// The 8 voxels a ghost cell (a halo cell beside a slab's side) interpolates, which its
-    /// feeds go to.
-    std::array<uint32_t, 8> ghost_source_cells(size_t ghost_cell) const;
+    /// feeds go to, with their weights (0 for most where slabs meet edge to edge).
+    std::array<GhostSource, 8> ghost_sources(size_t ghost_cell) const;
 
     /// Trilinear sample of a field at slab point `p` (halo filled), between voxel centres.
     float sample(const float* field, const SlabPoint& p) const;

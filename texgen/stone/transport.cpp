@@ -116,24 +116,28 @@ void transport_step(StoneState& st, bool wet, int steps)
     });
 
     // Seams: each voxel gives up what the ghosts it feeds received, by its weight in them.
-    // Only the sources of the ghosts that received can give anything up: they are marked
-    // (each once, whichever slab's ghost marks it first) and listed by the slab that did.
+    // Only the sources of the ghosts that received can give anything up, and only those with
+    // a weight (a source of weight 0 adds +-0 to its sum: no change, see below): they are
+    // marked (each once, whichever slab's ghost marks it first) and listed by the slab that
+    // did.
     const auto& begin = lat.feed_begin();
     const auto& feeds = lat.feeds();
     tbb::parallel_for(0, g.slab_count, [&](int s) {
         std::vector<uint32_t>& due = st.seam_due[size_t(s)];
         due.clear();
         for (const uint32_t y : st.ghost_hits[size_t(s)])
-            for (const uint32_t c : lat.ghost_source_cells(y))
-                if (std::atomic_ref<uint8_t>(st.seam_mark[c])
-                        .exchange(1, std::memory_order_relaxed) == 0)
-                    due.push_back(c);
+            for (const GhostSource& source : lat.ghost_sources(y))
+                if (source.weight != 0.0f &&
+                    std::atomic_ref<uint8_t>(st.seam_mark[source.cell])
+                            .exchange(1, std::memory_order_relaxed) == 0)
+                    due.push_back(source.cell);
     });
     tbb::parallel_for(0, g.slab_count, [&](int s) {
         // Each voxel sums over the ghosts it feeds that received, in order. The others hold
-        // +0, and adding w x +0 (w >= 0) leaves a sum that starts at +0 as it is: it is never
-        // -0, as x + y is +0 when x = -y. In cell order, which walks the neighbour slabs'
-        // arrays forwards rather than at random.
+        // +0, and adding w x +0 (w >= 0) or 0 x f = +-0 leaves a sum that starts at +0 as it
+        // is: it is never -0, as x + y is +0 when x = -y; and a voxel whose sum stays +0
+        // would keep its amount. In cell order, which walks the neighbour slabs' arrays
+        // forwards rather than at random.
         std::vector<uint32_t>& due = st.seam_due[size_t(s)];
         std::sort(due.begin(), due.end());
         for (const uint32_t c : due) {
