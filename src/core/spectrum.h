@@ -216,7 +216,15 @@ struct SampledSpectrum {
             const Mask lane = Mask{0, 1, 2, 3} + b;
             nonzero |= (x != 0.0f) & (lane < count);
         }
+#if defined(__SSE__)
+        // One movmskps of the lane signs (the mask lanes are 0 or -1) instead of three
+        // extracts and ORs.
+        Block signs;
+        std::memcpy(&signs, &nonzero, sizeof signs);
+        return __builtin_ia32_movmskps(signs) == 0;
+#else
         return (nonzero[0] | nonzero[1] | nonzero[2] | nonzero[3]) == 0;
+#endif
     }
 };
 

@@ -19,6 +19,10 @@
 #include <cstdlib>
 #include <stdexcept>
 
+#if defined(__SSE__)
+#include <xmmintrin.h>
+#endif
+
 namespace patina::render {
 
 namespace fs = std::filesystem;
@@ -91,6 +95,25 @@ namespace {
         if (film.aov_depth)
             acc.depth[i] += aov.depth;
     }
+
+    // Flush-to-zero and denormals-are-zero for the scope (Embree's manual asks for both:
+    // its traversal slows down badly on denormal numbers), the caller's mode restored after.
+    // Per tile, since MXCSR is per thread and TBB's workers keep theirs.
+    class DenormalsAreZero {
+    public:
+#if defined(__SSE__)
+        DenormalsAreZero() : saved_(_mm_getcsr()) { _mm_setcsr(saved_ | kFtz | kDaz); }
+        ~DenormalsAreZero() { _mm_setcsr(saved_); }
+#endif
+        DenormalsAreZero(const DenormalsAreZero&) = delete;
+        DenormalsAreZero& operator=(const DenormalsAreZero&) = delete;
+
+    private:
+#if defined(__SSE__)
+        static constexpr unsigned kFtz = 0x8000, kDaz = 0x0040;
+        unsigned saved_;
+#endif
+    };
 
     bool per_path_forced()
     {
@@ -281,6 +304,7 @@ FilmResult render_region(const Scene& scene, const Region& region, const RenderC
     for (int pass = 0; pass < passes; ++pass) {
         const int s0 = pass * pass_spp, s1 = std::min(film.spp, s0 + pass_spp);
         tbb::parallel_for(0, tiles_x * tiles_y, [&](int tile) {
+            const DenormalsAreZero daz;
             const int tx0 = (tile % tiles_x) * kTileSize, ty0 = (tile / tiles_x) * kTileSize;
             const int tx1 = std::min(tx0 + kTileSize, w);
             if (wavefront) {

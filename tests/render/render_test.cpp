@@ -1,6 +1,10 @@
 // The renderer end to end: furnace, closed forms, MIS, determinism, outputs.
 #include "render_fixture.h"
 
+#if defined(__SSE__)
+#include <xmmintrin.h>
+#endif
+
 using namespace render_test;
 // A white Lambertian sphere in a uniform white environment is invisible: every path that
 // hits it leaves with weight exactly 1 (a convex surface sees only the sky), so sphere and
@@ -37,6 +41,23 @@ TEST(Render, SameSeedSameBitsForAnyThreadCount)
     const std::vector<float> other = pr::render_xyz(l->scene, 2, true);
     EXPECT_NE(0, std::memcmp(one.data(), other.data(), one.size() * sizeof(float)));
 }
+
+#if defined(__SSE__)
+// Tiles run with flush-to-zero and denormals-are-zero (as Embree asks); the calling thread's
+// floating-point mode is left as it was, whichever thread ran the tiles.
+TEST(Render, LeavesTheCallersFloatingPointModeAlone)
+{
+    auto l = load(write_scene("fp_mode", kWhiteFurnace));
+    l->scene.film.spp = 1;
+    const unsigned before = _mm_getcsr();
+    for (const unsigned mode : {before & ~0x8040u, before | 0x8040u}) {
+        _mm_setcsr(mode);
+        pr::render_xyz(l->scene, 1, true);
+        EXPECT_EQ(_mm_getcsr(), mode);
+    }
+    _mm_setcsr(before);
+}
+#endif
 
 // A Lambertian plane lit only by a uniform sky of radiance L reflects R * L (the
 // irradiance of a uniform hemisphere is pi L, times R / pi): the reflected Y is R.
