@@ -199,5 +199,43 @@ TEST(SlabLattice, HaloFillThatSkipsUnchangedGhostsMatchesAFullFill)
     }
 }
 
+
+TEST(SlabLattice, GhostSourcesAreTheVoxelsThatFeedTheGhost)
+{
+    // ghost_sources(cell) finds a ghost's block from its cell (the seam pass of transport.cpp
+    // goes from the ghosts that received back to their sources): each source of a connected
+    // ghost must list that ghost among its feeds, with the same weight, and the weights of a
+    // ghost sum to 1 (trilinear).
+    const TriangleMesh box = make_box(Imath::V3f(0.0f), Imath::V3f(1.0f));
+    const auto t = test::make_lattice(box, 5, 3, 0.2);
+    const SlabLattice& lat = *t.lattice;
+    const SlabGrid& g = lat.grid();
+    const auto& begin = lat.feed_begin();
+    const auto& feeds = lat.feeds();
+    int checked = 0;
+    for (int s = 0; s < g.slab_count; ++s)
+        for (int k = 0; k < g.n_d; ++k)
+            for (int j = -1; j <= g.n_t; ++j)
+                for (int i = -1; i <= g.n_t; ++i) {
+                    if (i >= 0 && j >= 0 && i < g.n_t && j < g.n_t)
+                        continue;
+                    const size_t ghost = g.index(s, i, j, k);
+                    if (!lat.flux_partner(ghost))
+                        continue;
+                    float sum = 0.0f;
+                    for (const GhostSource& source : lat.ghost_sources(ghost)) {
+                        sum += source.weight;
+                        bool listed = false;
+                        for (uint32_t e = begin[source.cell]; e < begin[source.cell + 1]; ++e)
+                            listed |= feeds[e].ghost == ghost && feeds[e].weight == source.weight;
+                        ASSERT_TRUE(listed) << "slab " << s << " ghost " << i << ' ' << j << ' '
+                                            << k << ": source " << source.cell;
+                    }
+                    EXPECT_NEAR(sum, 1.0f, 1e-5f);
+                    ++checked;
+                }
+    EXPECT_GT(checked, g.slab_count * 4 * g.n_t * g.n_d / 2);
+}
+
 } // namespace
 } // namespace patina::texgen::stone
