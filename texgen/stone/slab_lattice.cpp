@@ -185,9 +185,6 @@ SlabLattice::SlabLattice(const SlabShell& shell, int n_t, int n_d)
                 const uint32_t cell = ghost_sources_[g].base + block_offset_[c];
                 feeds_[fill[cell]++] = Feed{ghost_cell_[g], ghost_sources_[g].weight[c]};
             }
-    for (size_t c = 0; c < cells; ++c)
-        if (feed_begin_[c + 1] > feed_begin_[c])
-            feeding_.push_back(uint32_t(c));
 }
 
 void SlabLattice::fill_halo(float* field, const std::vector<int>* active,
@@ -233,24 +230,11 @@ void SlabLattice::fill_halo(std::span<float* const> fields, const std::vector<in
         const int layers =
             active ? std::clamp((*active)[size_t(slab)] + 1, 0, grid_.n_d) : grid_.n_d;
         const size_t begin = size_t(slab) * per_slab;
-        const size_t end = begin + size_t(layers) * per_layer;
-        const size_t current_end =
-            changes ? begin + size_t(changes->filled_layers[size_t(slab)]) * per_layer : begin;
+        // Layers whose ghosts hold the last fill's values (the others are all refilled).
+        const int current = changes ? std::min(layers, changes->filled_layers[size_t(slab)]) : 0;
         // The field count as a constant, so the sums stay in registers.
         auto fill = [&]<size_t N>(std::integral_constant<size_t, N>) {
-            for (size_t g = begin; g < end; ++g) {
-                if (g < current_end && (g - begin) % per_layer == 0) {
-                    // A current ghost layer whose source layers are all unchanged stays.
-                    if (!ghost_sources_changed(slab, int((g - begin) / per_layer), *changes)) {
-                        g += per_layer - 1;
-                        continue;
-                    }
-                }
-                if (g < current_end) {
-                    const size_t r = ghost_source_row_[g];
-                    if (!(changed[r] | changed[r + 1] | changed[r + sy] | changed[r + sy + 1]))
-                        continue;
-                }
+            auto interpolate = [&](size_t g) {
                 const GhostBlock& block = ghost_sources_[g];
                 std::array<float, N> v{};
                 for (size_t c = 0; c < 8; ++c)
@@ -258,6 +242,23 @@ void SlabLattice::fill_halo(std::span<float* const> fields, const std::vector<in
                         v[f] += block.weight[c] * fields[f][block.base + block_offset_[c]];
                 for (size_t f = 0; f < N; ++f)
                     fields[f][ghost_cell_[g]] = v[f];
+            };
+            for (int k = 0; k < layers; ++k) {
+                const size_t first = begin + size_t(k) * per_layer, last = first + per_layer;
+                if (k >= current) {
+                    for (size_t g = first; g < last; ++g)
+                        interpolate(g);
+                    continue;
+                }
+                // A current ghost layer whose source layers are all unchanged stays; in the
+                // others, only the ghosts with a source in a changed row are refilled.
+                if (!ghost_sources_changed(slab, k, *changes))
+                    continue;
+                for (size_t g = first; g < last; ++g) {
+                    const size_t r = ghost_source_row_[g];
+                    if (changed[r] | changed[r + 1] | changed[r + sy] | changed[r + sy + 1])
+                        interpolate(g);
+                }
             }
         };
         switch (n) {

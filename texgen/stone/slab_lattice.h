@@ -122,8 +122,6 @@ public:
     };
     const std::vector<uint32_t>& feed_begin() const { return feed_begin_; }
     const std::vector<Feed>& feeds() const { return feeds_; }
-    /// The voxels that feed at least one ghost, ascending.
-    const std::vector<uint32_t>& feeding_cells() const { return feeding_; }
     /// The 8 voxels a ghost cell (a halo cell beside a slab's side) interpolates, which its
     /// feeds go to, with their weights (0 for most where slabs meet edge to edge).
     std::array<GhostSource, 8> ghost_sources(size_t ghost_cell) const;
@@ -161,7 +159,6 @@ private:
     std::vector<uint8_t> flux_partner_;
     std::vector<uint32_t> feed_begin_;
     std::vector<Feed> feeds_;
-    std::vector<uint32_t> feeding_;
 };
 
 /// Trilinear interpolation weights of the voxel centres of a slab around (u, v, w), clamped
