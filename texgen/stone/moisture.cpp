@@ -69,7 +69,7 @@ namespace {
                 float* to = field + g.index(s, 0, j, k);
                 if (rows[j] && std::memcmp(row, to, sizeof(float) * size_t(g.n_t)) != 0) {
                     std::copy(row, row + g.n_t, to);
-                    changes.mark(g.index(s, 0, j, k), g);
+                    changes.mark_row(s, j, k, g);
                 }
             }
         };
@@ -113,7 +113,7 @@ namespace {
                     if (!differs)
                         continue;
                     changed[size_t(s)] = 1;
-                    st.pressure_halo.mark(row, g);
+                    st.pressure_halo.mark_row(s, j, k, g);
                     for (int i = 0; i < g.n_t; ++i)
                         if (!(f[i] & kStone) || (f[i] & kSurface))
                             pr[i] = boundary(i);

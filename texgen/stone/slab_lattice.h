@@ -64,6 +64,16 @@ struct HaloChanges {
         row_changed[row] = 1;
         layer_changed[row / size_t(g.sy)] = 1;
     }
+    /// The same for row (j, k) of slab s, without the divisions (a write-back marks a row
+    /// at a time).
+    void mark_row(int s, int j, int k, const SlabGrid& g)
+    {
+        if (row_changed.empty())
+            return;
+        const size_t layer = size_t(s) * size_t(g.sz) + size_t(k + 1);
+        row_changed[layer * size_t(g.sy) + size_t(j + 1)] = 1;
+        layer_changed[layer] = 1;
+    }
 };
 
 /// One source of a ghost cell.

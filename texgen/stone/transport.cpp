@@ -81,7 +81,7 @@ void transport_step(StoneState& st, bool wet, int steps)
                 const auto done = rows.concentration_row(row, m, (zero & bit) != 0);
                 zero = done.zero ? uint8_t(zero | bit) : uint8_t(zero & ~bit);
                 if (done.changed)
-                    st.concentration_halo.mark(row, g);
+                    st.concentration_halo.mark_row(s, j, k, g);
             }
             // Whether each moist voxel has its whole stencil (read only for moist voxels, so
             // rows without one are left as they are).
