@@ -15,24 +15,7 @@ class LiveRows {
 public:
     /// Scan the rows j in [-1, n_t] of layers k in [-1, last] of slab s (halo rows included:
     /// ghosts and the halo above the shell, which copies the first layer).
-    void scan(const StoneState& st, int s, int last)
-    {
-        const SlabGrid& g = st.lattice->grid();
-        stride_ = g.n_t + 2;
-        live_.assign(size_t(stride_) * size_t(last + 2), 0);
-        const float* theta = st.moisture.data();
-        const uint8_t* flags = st.flags.data();
-        for (int k = -1; k <= last; ++k)
-            for (int j = -1; j <= g.n_t; ++j) {
-                const float* t = theta + g.index(s, -1, j, k);
-                const uint8_t* f = flags + g.index(s, -1, j, k);
-                // A branch-free reduction over the row, so that it vectorises.
-                int any = 0;
-                for (int i = 0; i < g.sx; ++i)
-                    any |= int(t[i] >= 0.5f) | (f[i] & kSurface);
-                live_[at(j, k)] = uint8_t(any != 0);
-            }
-    }
+    void scan(const StoneState& st, int s, int last);
 
     /// Whether row (j, k) is live; j in [-1, n_t], k in [-1, last].
     bool live(int j, int k) const { return live_[at(j, k)] != 0; }
