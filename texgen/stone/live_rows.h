@@ -14,8 +14,9 @@ namespace patina::texgen::stone {
 class LiveRows {
 public:
     /// Scan the rows j in [-1, n_t] of layers k in [-1, last] of slab s (halo rows included:
-    /// ghosts and the halo above the shell, which copies the first layer).
-    void scan(const StoneState& st, int s, int last);
+    /// ghosts and the halo above the shell, which copies the first layer). Without
+    /// `surface`, only moist voxels make a row live.
+    void scan(const StoneState& st, int s, int last, bool surface = true);
 
     /// Whether row (j, k) is live; j in [-1, n_t], k in [-1, last].
     bool live(int j, int k) const { return live_[at(j, k)] != 0; }

@@ -108,9 +108,10 @@ void transport_step(StoneState& st, bool wet, int steps)
         }
         st.ghost_hits[size_t(s)].clear();
         const int active = st.active_depth[size_t(s)];
-        // Only moist voxels and (wet) surface voxels change: rows without either are skipped.
+        // Only moist voxels and surface voxels under deposits change: rows without either
+        // are skipped.
         thread_local LiveRows live;
-        live.scan(st, s, std::min(active, g.n_d));
+        live.scan(st, s, std::min(active, g.n_d), rows.deposits);
         for (int k = 0; k < active; ++k)
             for (int j = 0; j < g.n_t; ++j)
                 if (live.live(j, k))

@@ -140,7 +140,7 @@ namespace {
         if (!any(stone))
             return;
         const VI surface = stone & ((f & int(kSurface)) != 0);
-        if (t.wet && any(surface))
+        if (t.deposits && any(surface))
             deposit(t, surface, c, first_column, n);
         const VI M = stone & moist(t, c, n);
         if (!any(M))
@@ -322,6 +322,8 @@ TransportRows::TransportRows(StoneState& s, bool is_wet, float step)
         crust[m] = s.crust[m].data();
         ledger[m] = s.ghost_flux[m].data();
     }
+    deposits = wet && std::any_of(s.column_deposit.begin(), s.column_deposit.end(),
+                                  [](float d) { return d != 0.0f; });
     ghost_hit = s.ghost_hit.data();
     ghost_hits = s.ghost_hits.data();
     decay = s.decay.data();

@@ -30,6 +30,9 @@ struct TransportRows : RowFields {
     float* black = nullptr;
 
     bool wet = false;
+    /// Wet, and the deposit map has deposits somewhere: surface voxels that are not moist
+    /// change only then (deposit() adds +0 where the map is 0).
+    bool deposits = false;
     float dt = 0.0f, inv_eta = 0.0f, crystallise = 0.0f;
     float decay_water = 0.0f, decay_dissolution = 0.0f;
     float black_crust_rate = 0.0f, salt_supply = 0.0f;
