@@ -5,6 +5,7 @@
 #include "test_util.h"
 #include "core/sampling.h"
 #include "texgen/stone/eroded_mesh.h"
+#include "texgen/stone/live_rows.h"
 #include "texgen/stone/volume_export.h"
 
 #include <gtest/gtest.h>
@@ -206,6 +207,39 @@ TEST(StoneVolume, FreshSandstoneShowsItsIronRichBeddingPlanes)
     std::printf("iron channel of fresh sandstone: %.3f (matrix) to %.3f (planes)\n", lo, hi);
     EXPECT_LT(lo, 0.15f); // matrix: 0.01 / 0.1
     EXPECT_GT(hi, 0.45f); // plane centres: 0.06 / 0.1
+}
+
+TEST(StoneSimulation, LiveRowsHoldAMoistVoxelOrASurfaceVoxelWhenAsked)
+{
+    auto sc = sandstone_box(no_erosion());
+    StoneState& st = sc->st;
+    const SlabGrid& g = st.lattice->grid();
+    const int s = 0, last = g.n_d - 1;
+    for (int k = -1; k <= g.n_d; ++k)
+        for (int j = -1; j <= g.n_t; ++j)
+            for (int i = -1; i <= g.n_t; ++i)
+                st.moisture[g.index(s, i, j, k)] = 0.0f;
+    LiveRows with_surface, moist_only;
+    with_surface.scan(st, s, last);
+    moist_only.scan(st, s, last, false);
+    int surface_rows = 0;
+    for (int k = 0; k <= last; ++k)
+        for (int j = 0; j < g.n_t; ++j) {
+            bool surface = false;
+            for (int i = 0; i < g.n_t; ++i)
+                surface |= (st.flags[g.index(s, i, j, k)] & kSurface) != 0;
+            EXPECT_EQ(surface, with_surface.live(j, k)) << j << ' ' << k;
+            EXPECT_FALSE(moist_only.live(j, k)) << j << ' ' << k;
+            surface_rows += surface;
+        }
+    EXPECT_GT(surface_rows, 0);
+    // One moist voxel (at the row's last cell, which a vector loop reaches last) makes its
+    // row live, and only that row.
+    st.moisture[g.index(s, g.n_t - 1, 2, 1)] = 0.5f;
+    moist_only.scan(st, s, last, false);
+    for (int k = 0; k <= last; ++k)
+        for (int j = 0; j < g.n_t; ++j)
+            EXPECT_EQ(j == 2 && k == 1, moist_only.live(j, k)) << j << ' ' << k;
 }
 
 TEST(StoneSimulation, SameBitsForAnyThreadCount)

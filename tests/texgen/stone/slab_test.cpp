@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstring>
 
 namespace patina::texgen::stone {
@@ -153,8 +154,11 @@ TEST(SlabLattice, HaloFillThatSkipsUnchangedGhostsMatchesAFullFill)
     auto randomise = [&](int s, int j, int k, HaloChanges* changes) {
         for (int i = 0; i < g.n_t; ++i)
             f[g.index(s, i, j, k)] = rng.uniform_float();
-        if (changes)
+        // Both ways of marking a row (a cell of it, or the row itself) are exercised.
+        if (changes && (j + k) % 2)
             changes->mark(g.index(s, 0, j, k), g);
+        else if (changes)
+            changes->mark_row(s, j, k, g);
     };
     for (int s = 0; s < g.slab_count; ++s)
         for (int k = 0; k < g.n_d; ++k)
@@ -235,6 +239,28 @@ TEST(SlabLattice, GhostSourcesAreTheVoxelsThatFeedTheGhost)
                     ++checked;
                 }
     EXPECT_GT(checked, g.slab_count * 4 * g.n_t * g.n_d / 2);
+}
+
+TEST(SlabLattice, MarkingARowMarksWhatMarkingAnyOfItsCellsMarks)
+{
+    const SlabGrid g(5, 4, 3);
+    HaloChanges by_cell, by_row;
+    const size_t rows = g.cell_count() / size_t(g.sx);
+    for (HaloChanges* h : {&by_cell, &by_row}) {
+        h->row_changed.assign(rows, 0);
+        h->layer_changed.assign(rows / size_t(g.sy), 0);
+    }
+    for (int s = 0; s < g.slab_count; ++s)
+        for (int k = 0; k < g.n_d; ++k)
+            for (int j = 0; j < g.n_t; ++j) {
+                if ((s + 2 * j + 3 * k) % 4)  // leave some rows unmarked
+                    continue;
+                by_row.mark_row(s, j, k, g);
+                by_cell.mark(g.index(s, (j + k) % g.n_t, j, k), g);
+            }
+    EXPECT_EQ(by_cell.row_changed, by_row.row_changed);
+    EXPECT_EQ(by_cell.layer_changed, by_row.layer_changed);
+    EXPECT_GT(std::count(by_row.row_changed.begin(), by_row.row_changed.end(), 1), 10);
 }
 
 } // namespace
