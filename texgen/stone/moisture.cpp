@@ -90,11 +90,21 @@ namespace {
         const SlabGrid& g = lat.grid();
         float* p = st.pressure.data();
         // Dirichlet values: the surface and the air above it carry the surface pressure.
-        // Below the active layers the stone is dry and p = 0 is never read.
+        // Below the active layers the stone is dry and p = 0 is never read. They stay in
+        // place from step to step of a phase until the surface moves (StoneState::
+        // pressure_preset_depth): only layers that became active since are set then.
         std::vector<char> changed(size_t(g.slab_count), 0);
         const float surface_p = float(st.params.surface_pressure);
+        if (st.pressure_preset_depth.size() != size_t(g.slab_count) ||
+            st.pressure_preset_wet != wet) {
+            st.pressure_preset_depth.assign(size_t(g.slab_count), 0);
+            st.pressure_preset_wet = wet;
+        }
         tbb::parallel_for(0, g.slab_count, [&](int s) {
-            for (int k = 0; k < st.active_depth[size_t(s)]; ++k)
+            int& preset = st.pressure_preset_depth[size_t(s)];
+            const int from = preset;
+            preset = std::max(preset, st.active_depth[size_t(s)]);
+            for (int k = from; k < st.active_depth[size_t(s)]; ++k)
                 for (int j = 0; j < g.n_t; ++j) {
                     const size_t row = g.index(s, 0, j, k);
                     const uint8_t* f = st.flags.data() + row;

@@ -140,6 +140,7 @@ void initialise_state(StoneState& st, const SlabLattice& lattice, const Triangle
 
 void update_flags(StoneState& st)
 {
+    st.pressure_preset_depth.clear();  // the surface moves: its Dirichlet values too
     const SlabLattice& lat = *st.lattice;
     const SlabGrid& g = lat.grid();
     const size_t layers = size_t(g.slab_count) * size_t(g.n_d);

@@ -95,6 +95,12 @@ struct StoneState {
     /// skipped, which is most of the shell while the front is shallow.
     std::vector<int> active_depth;
     std::vector<int> surface_depth;  ///< per slab: deepest surface voxel layer + 1
+    /// The pressure's Dirichlet values (air and surface voxels, moisture.cpp) are in place in
+    /// layers [0, pressure_preset_depth[s]) of slab s for the phase pressure_preset_wet
+    /// (nothing else writes them). update_flags empties it, as the surface moved; so must a
+    /// caller that changes column_wetness or surface_pressure between steps.
+    std::vector<int> pressure_preset_depth;
+    bool pressure_preset_wet = false;
     std::vector<uint8_t> surface_layer;  ///< per slab and layer: holds a surface voxel
     std::vector<Imath::V3f> colour;        ///< fresh stone albedo
     std::vector<ColumnSurface> columns;

@@ -242,6 +242,55 @@ TEST(StoneSimulation, LiveRowsHoldAMoistVoxelOrASurfaceVoxelWhenAsked)
             EXPECT_EQ(j == 2 && k == 1, moist_only.live(j, k)) << j << ' ' << k;
 }
 
+// The pressure's Dirichlet values (moisture.cpp) are set once per phase and kept while the
+// surface stays where it is: after every step, erosion and a deepening moist zone included,
+// each air or surface voxel of the active layers holds its phase's value (erosion events
+// within a wet phase move the surface under it).
+TEST(StoneSimulation, AirAndSurfaceVoxelsHoldTheirPhasesPressureAfterEveryStep)
+{
+    StoneParameters p;
+    p.erosion_events = 0.3;  // the surface moves every cycle
+    p.erosion_amount = 0.8;
+    auto sc = sandstone_box(p);
+    StoneState& st = sc->st;
+    const SlabGrid& g = st.lattice->grid();
+    for (size_t c = 0; c < st.column_wetness.size(); ++c)
+        st.column_wetness[c] = 0.25f + 0.5f * float(c % 3);
+    st.pressure_preset_depth.clear();  // the wetness changed (StoneState's contract)
+    int checked = 0, eroded = 0;
+    for (int cycle = 0; cycle < 6; ++cycle) {
+        for (int step = 0; step < 2 * st.params.wet_steps; ++step) {
+            const bool wet = step < st.params.wet_steps;
+            moisture_step(st, wet);
+            for (int s = 0; s < g.slab_count; ++s)
+                for (int k = 0; k < st.active_depth[size_t(s)]; ++k)
+                    for (int j = 0; j < g.n_t; ++j)
+                        for (int i = 0; i < g.n_t; ++i) {
+                            const size_t c = g.index(s, i, j, k);
+                            if ((st.flags[c] & kStone) && !(st.flags[c] & kSurface))
+                                continue;
+                            const float expected =
+                                wet ? float(st.params.surface_pressure) *
+                                          st.column_wetness[column_index(g, s, i, j)]
+                                    : 0.0f;
+                            ASSERT_EQ(expected, st.pressure[c])
+                                << "cycle " << cycle << " step " << step << " slab " << s
+                                << " voxel " << i << ' ' << j << ' ' << k;
+                            ++checked;
+                        }
+            transport_step(st, wet, 1);  // the decay index that erosion events follow
+            if (step == 3) {  // within a phase, as well as between cycles
+                const std::vector<uint8_t> before = st.flags;
+                erosion_events(st);
+                eroded += st.flags != before;
+            }
+        }
+        erosion_events(st);
+    }
+    EXPECT_GT(checked, 1000);
+    EXPECT_GT(eroded, 0);
+}
+
 TEST(StoneSimulation, SameBitsForAnyThreadCount)
 {
     std::vector<float> density[2], moisture[2], iron[2];
