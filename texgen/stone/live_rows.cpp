@@ -5,8 +5,9 @@ namespace patina::texgen::stone {
 namespace {
 
     /// Per row of `rows` rows of `length` cells from `theta` and `flags`: whether it holds a
-    /// moist cell or one with a flag of `surface` (kSurface or none). A branch-free reduction over each row, so that it vectorises
-    /// (in AVX2 where the processor has it: the steps scan their active layers each time).
+    /// moist cell or one with a flag of `surface` (kSurface or none). A branch-free
+    /// reduction over each row, so that it vectorises (in AVX2 where the processor has it:
+    /// the steps scan their active layers each time).
     [[gnu::target_clones("avx2", "default")]]
     void scan_rows(const float* theta, const uint8_t* flags, int rows, int length,
                    uint8_t surface, uint8_t* live)

@@ -37,6 +37,10 @@ struct SlabGrid {
     {
         return size_t(s) * slab_size + (size_t(k + 1) * sy + size_t(j + 1)) * sx + size_t(i + 1);
     }
+    /// Layer k of slab s among the layers of the haloed grid (cell / (sx sy)), and row (j, k)
+    /// among its rows (cell / sx), without dividing.
+    size_t layer(int s, int k) const { return size_t(s) * size_t(sz) + size_t(k + 1); }
+    size_t row(int s, int j, int k) const { return layer(s, k) * size_t(sy) + size_t(j + 1); }
     size_t cell_count() const { return slab_size * size_t(slab_count); }
     size_t voxel_count() const { return size_t(n_t) * n_t * n_d * slab_count; }
     /// Slab coordinates of the centre of voxel (i, j, k) (outside [0,1] for halo cells).
@@ -70,9 +74,8 @@ struct HaloChanges {
     {
         if (row_changed.empty())
             return;
-        const size_t layer = size_t(s) * size_t(g.sz) + size_t(k + 1);
-        row_changed[layer * size_t(g.sy) + size_t(j + 1)] = 1;
-        layer_changed[layer] = 1;
+        row_changed[g.row(s, j, k)] = 1;
+        layer_changed[g.layer(s, k)] = 1;
     }
 };
 

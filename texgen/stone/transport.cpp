@@ -73,11 +73,9 @@ void transport_step(StoneState& st, bool wet, int steps)
         const int s = sk / g.n_d, k = sk % g.n_d;
         if (k > st.active_depth[size_t(s)])
             return;
-        // Rows of the haloed grid are numbered (slab, layer, j) = index / sx.
-        const size_t first_row = (size_t(s) * size_t(g.sz) + size_t(k + 1)) * size_t(g.sy) + 1;
         for (int j = 0; j < g.n_t; ++j) {
             const size_t row = g.index(s, 0, j, k);
-            uint8_t& zero = st.concentration_zero[first_row + size_t(j)];
+            uint8_t& zero = st.concentration_zero[g.row(s, j, k)];
             for (size_t m = 0; m < kSpecies; ++m) {
                 const uint8_t bit = uint8_t(1u << m);
                 const auto done = rows.concentration_row(row, m, (zero & bit) != 0);
