@@ -1,6 +1,8 @@
 // Set-up and the cycle driver of the weathering simulation (Dorsey et al. 1999 §4.3).
 #include "texgen/stone/stone_state.h"
 
+#include "core/huge_pages.h"
+
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
@@ -101,6 +103,15 @@ void initialise_state(StoneState& st, const SlabLattice& lattice, const Triangle
     });
     for (std::vector<float>* f : {&st.porosity, &st.permeability, &st.head})
         lattice.fill_halo(f->data());
+    // The steps read these at a layer's distance apart (core/huge_pages.h).
+    for (std::vector<float>* f : {&st.density, &st.porosity, &st.permeability, &st.head,
+                                  &st.moisture, &st.pressure, &st.black, &st.decay,
+                                  &st.wet_time})
+        advise_huge_pages(*f);
+    for (int i = 0; i < kSpecies; ++i)
+        for (auto* f : {&st.solid[i], &st.dissolved[i], &st.crust[i], &st.concentration[i]})
+            advise_huge_pages(*f);
+    advise_huge_pages(st.flags);
     update_flags(st);
 
     // dt: forward Euler is stable for dt <= 2 / rho(L); Gershgorin bounds rho(L) by

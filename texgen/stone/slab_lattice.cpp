@@ -1,5 +1,7 @@
 #include "texgen/stone/slab_lattice.h"
 
+#include "core/huge_pages.h"
+
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
 
@@ -185,6 +187,16 @@ SlabLattice::SlabLattice(const SlabShell& shell, int n_t, int n_d)
                 const uint32_t cell = ghost_sources_[g].base + block_offset_[c];
                 feeds_[fill[cell]++] = Feed{ghost_cell_[g], ghost_sources_[g].weight[c]};
             }
+    // Every step reads these at a layer's distance apart (core/huge_pages.h).
+    for (auto& w : weights_)
+        advise_huge_pages(w);
+    advise_huge_pages(volume_);
+    advise_huge_pages(flux_partner_);
+    advise_huge_pages(feed_begin_);
+    advise_huge_pages(feeds_);
+    advise_huge_pages(ghost_sources_);
+    advise_huge_pages(ghost_cell_);
+    advise_huge_pages(ghost_source_row_);
 }
 
 void SlabLattice::fill_halo(float* field, const std::vector<int>* active,

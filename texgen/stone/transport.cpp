@@ -31,6 +31,7 @@
 // crust (efflorescence for salts, yellowing for iron, case hardening for the binder); in wet
 // phases deposits (the deposit map: soot, sulphur) turn the binder at the surface into a
 // black crust, and salt may be brought in from the atmosphere.
+#include "core/huge_pages.h"
 #include "texgen/stone/live_rows.h"
 #include "texgen/stone/stone_state.h"
 #include "texgen/stone/transport_rows.h"
@@ -50,15 +51,21 @@ void transport_step(StoneState& st, bool wet, int steps)
     const SlabGrid& g = lat.grid();
     const auto& vol = lat.volume();
     const float dt = float(st.dt * steps);
-    if (st.full_stencil.size() != g.cell_count())
+    if (st.full_stencil.size() != g.cell_count()) {
         st.full_stencil.assign(g.cell_count(), 0);
+        advise_huge_pages(st.full_stencil);
+    }
     // Fluxes handed to ghosts (per species; one slab's halo is written by its own task only).
     for (int m = 0; m < kSpecies; ++m)
-        if (st.ghost_flux[m].size() != g.cell_count())
+        if (st.ghost_flux[m].size() != g.cell_count()) {
             st.ghost_flux[m].assign(g.cell_count(), 0.0f);
+            advise_huge_pages(st.ghost_flux[m]);
+        }
     if (st.ghost_hit.size() != g.cell_count()) {
         st.ghost_hit.assign(g.cell_count(), 0);
         st.seam_mark.assign(g.cell_count(), 0);
+        advise_huge_pages(st.ghost_hit);
+        advise_huge_pages(st.seam_mark);
         st.ghost_hits.assign(size_t(g.slab_count), {});
         st.seam_due.assign(size_t(g.slab_count), {});
     }
