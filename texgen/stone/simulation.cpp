@@ -74,14 +74,21 @@ void initialise_state(StoneState& st, const SlabLattice& lattice, const Triangle
     st.column_wetness = std::move(wetness);
     st.column_deposit = std::move(deposit);
 
+    // The steps read the fields at a layer's distance apart: huge pages (core/huge_pages.h).
+    advise_huge_pages(st.density);
     for (std::vector<float>* f : {&st.porosity, &st.permeability, &st.head, &st.moisture,
-                                  &st.pressure, &st.black, &st.decay, &st.wet_time})
+                                  &st.pressure, &st.black, &st.decay, &st.wet_time}) {
         f->assign(cells, 0.0f);
+        advise_huge_pages(*f);
+    }
     for (int i = 0; i < kSpecies; ++i)
-        for (auto* f : {&st.solid[i], &st.dissolved[i], &st.crust[i], &st.concentration[i]})
+        for (auto* f : {&st.solid[i], &st.dissolved[i], &st.crust[i], &st.concentration[i]}) {
             f->assign(cells, 0.0f);
+            advise_huge_pages(*f);
+        }
     st.colour.assign(cells, Imath::V3f(0.0f));
     st.flags.assign(cells, 0);
+    advise_huge_pages(st.flags);
 
     // The quarry at every voxel centre; the head rho g (up . x) for Darcy's gravity term.
     const V3d up = params.up.normalized();
@@ -103,15 +110,6 @@ void initialise_state(StoneState& st, const SlabLattice& lattice, const Triangle
     });
     for (std::vector<float>* f : {&st.porosity, &st.permeability, &st.head})
         lattice.fill_halo(f->data());
-    // The steps read these at a layer's distance apart (core/huge_pages.h).
-    for (std::vector<float>* f : {&st.density, &st.porosity, &st.permeability, &st.head,
-                                  &st.moisture, &st.pressure, &st.black, &st.decay,
-                                  &st.wet_time})
-        advise_huge_pages(*f);
-    for (int i = 0; i < kSpecies; ++i)
-        for (auto* f : {&st.solid[i], &st.dissolved[i], &st.crust[i], &st.concentration[i]})
-            advise_huge_pages(*f);
-    advise_huge_pages(st.flags);
     update_flags(st);
 
     // dt: forward Euler is stable for dt <= 2 / rho(L); Gershgorin bounds rho(L) by
