@@ -6,6 +6,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <bit>
 #include <cassert>
 #include <cmath>
 #include <stdexcept>
@@ -105,6 +106,7 @@ SlabLattice::SlabLattice(const SlabShell& shell, int n_t, int n_d)
                     if (i < 0 || j < 0 || i >= n_t || j >= n_t)
                         ghost_cell_.push_back(uint32_t(grid_.index(s, i, j, k)));
     ghost_sources_.resize(ghost_cell_.size());
+    ghost_weights_used_.resize(ghost_cell_.size());
     for (uint32_t c = 0; c < 8; ++c)
         block_offset_[c] = (c & 1) + ((c >> 1) & 1) * uint32_t(grid_.sx) +
                            ((c >> 2) & 1) * uint32_t(grid_.sx * grid_.sy);
@@ -137,10 +139,13 @@ SlabLattice::SlabLattice(const SlabShell& shell, int n_t, int n_d)
         const std::array<GhostSource, 8> sources = trilinear_sources(grid_, *at, true);
         GhostBlock& block = ghost_sources_[g];
         block.base = sources[0].cell;
+        uint8_t used = 0;
         for (size_t c = 0; c < 8; ++c) {
             assert(sources[c].cell == block.base + block_offset_[c]);
             block.weight[c] = sources[c].weight;
+            used |= uint8_t(uint8_t(sources[c].weight != 0.0f) << c);
         }
+        ghost_weights_used_[g] = used;
     });
     unconnected_ = size_t(std::count(connected.begin(), connected.end(), 0));
     ghost_source_row_.resize(ghost_sources_.size());
@@ -246,12 +251,18 @@ void SlabLattice::fill_halo(std::span<float* const> fields, const std::vector<in
         const int current = changes ? std::min(layers, changes->filled_layers[size_t(slab)]) : 0;
         // The field count as a constant, so the sums stay in registers.
         auto fill = [&]<size_t N>(std::integral_constant<size_t, N>) {
+            // Only the sources of nonzero weight: w x = +-0 for w = 0 (the fields are
+            // finite), and a sum that starts at +0 is never -0, so adding +-0 leaves it as
+            // it is. Where slabs meet edge to edge most weights are 0, and their sources
+            // would be a cache line each.
             auto interpolate = [&](size_t g) {
                 const GhostBlock& block = ghost_sources_[g];
                 std::array<float, N> v{};
-                for (size_t c = 0; c < 8; ++c)
+                for (uint32_t used = ghost_weights_used_[g]; used; used &= used - 1) {
+                    const size_t c = size_t(std::countr_zero(used));
                     for (size_t f = 0; f < N; ++f)
                         v[f] += block.weight[c] * fields[f][block.base + block_offset_[c]];
+                }
                 for (size_t f = 0; f < N; ++f)
                     fields[f][ghost_cell_[g]] = v[f];
             };
