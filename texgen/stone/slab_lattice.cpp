@@ -175,12 +175,15 @@ SlabLattice::SlabLattice(const SlabShell& shell, int n_t, int n_d)
             for (int j = 0; j < n_t; ++j)
                 for (int i = 0; i < n_t; ++i)
                     flux_partner_[grid_.index(s, i, j, k)] = 1;
+    // A source of weight 0 gets nothing back from its ghost (w x f = +-0 leaves a sum that
+    // starts at +0 as it is, see transport.cpp): only sources of nonzero weight are fed.
     feed_begin_.assign(cells + 1, 0);
     for (size_t g = 0; g < ghost_cell_.size(); ++g)
         if (connected[g]) {
             flux_partner_[ghost_cell_[g]] = 1;
-            for (uint32_t offset : block_offset_)
-                ++feed_begin_[ghost_sources_[g].base + offset + 1];
+            for (size_t c = 0; c < 8; ++c)
+                if (ghost_weights_used_[g] >> c & 1u)
+                    ++feed_begin_[ghost_sources_[g].base + block_offset_[c] + 1];
         }
     for (size_t c = 0; c < cells; ++c)
         feed_begin_[c + 1] += feed_begin_[c];
@@ -189,6 +192,8 @@ SlabLattice::SlabLattice(const SlabShell& shell, int n_t, int n_d)
     for (size_t g = 0; g < ghost_cell_.size(); ++g)
         if (connected[g])
             for (size_t c = 0; c < 8; ++c) {
+                if (!(ghost_weights_used_[g] >> c & 1u))
+                    continue;
                 const uint32_t cell = ghost_sources_[g].base + block_offset_[c];
                 feeds_[fill[cell]++] = Feed{ghost_cell_[g], ghost_sources_[g].weight[c]};
             }
@@ -200,6 +205,7 @@ SlabLattice::SlabLattice(const SlabShell& shell, int n_t, int n_d)
     advise_huge_pages(feed_begin_);
     advise_huge_pages(feeds_);
     advise_huge_pages(ghost_sources_);
+    advise_huge_pages(ghost_weights_used_);
     advise_huge_pages(ghost_cell_);
     advise_huge_pages(ghost_source_row_);
 }
@@ -278,8 +284,14 @@ void SlabLattice::fill_halo(std::span<float* const> fields, const std::vector<in
                 if (!ghost_sources_changed(slab, k, *changes))
                     continue;
                 for (size_t g = first; g < last; ++g) {
+                    // Sources 0-1 lie in row r, 2-3 in r + 1, 4-5 in r + sy, 6-7 in
+                    // r + sy + 1: only the rows of the sources it uses.
                     const size_t r = ghost_source_row_[g];
-                    if (changed[r] | changed[r + 1] | changed[r + sy] | changed[r + sy + 1])
+                    const uint32_t used = ghost_weights_used_[g];
+                    if ((changed[r] & int((used & 0x03u) != 0)) |
+                        (changed[r + 1] & int((used & 0x0cu) != 0)) |
+                        (changed[r + sy] & int((used & 0x30u) != 0)) |
+                        (changed[r + sy + 1] & int((used & 0xc0u) != 0)))
                         interpolate(g);
                 }
             }

@@ -128,7 +128,8 @@ public:
     bool flux_partner(size_t cell) const { return flux_partner_[cell] != 0; }
     const uint8_t* flux_partner_data() const { return flux_partner_.data(); }
     /// The ghosts a voxel feeds (CSR by cell): what a flux into a ghost delivers to its
-    /// sources, so fluxes across slab seams conserve mass (transport.cpp).
+    /// sources, so fluxes across slab seams conserve mass (transport.cpp). Only the ghosts
+    /// it is a source of nonzero weight of: the others would hand it +-0.
     struct Feed {
         uint32_t ghost;
         float weight;

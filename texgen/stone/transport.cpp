@@ -141,10 +141,11 @@ void transport_step(StoneState& st, bool wet, int steps)
                     due.push_back(source.cell);
     });
     tbb::parallel_for(0, g.slab_count, [&](int s) {
-        // Each voxel sums over the ghosts it feeds that received, in order. The others hold
-        // +0, and adding w x +0 (w >= 0) or 0 x f = +-0 leaves a sum that starts at +0 as it
-        // is: it is never -0, as x + y is +0 when x = -y; and a voxel whose sum stays +0
-        // would keep its amount. In cell order, which walks the neighbour slabs' arrays
+        // Each voxel sums over the ghosts it feeds (SlabLattice::feeds: those it is a source
+        // of nonzero weight of) that received, in order. The others hold +0, and adding
+        // w x +0 (w >= 0) or 0 x f = +-0 leaves a sum that starts at +0 as it is: it is
+        // never -0, as x + y is +0 when x = -y; and a voxel whose sum stays +0 would keep
+        // its amount. In cell order, which walks the neighbour slabs' arrays
         // forwards rather than at random.
         std::vector<uint32_t>& due = st.seam_due[size_t(s)];
         std::sort(due.begin(), due.end());

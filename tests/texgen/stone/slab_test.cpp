@@ -207,9 +207,9 @@ TEST(SlabLattice, HaloFillThatSkipsUnchangedGhostsMatchesAFullFill)
 TEST(SlabLattice, GhostSourcesAreTheVoxelsThatFeedTheGhost)
 {
     // ghost_sources(cell) finds a ghost's block from its cell (the seam pass of transport.cpp
-    // goes from the ghosts that received back to their sources): each source of a connected
-    // ghost must list that ghost among its feeds, with the same weight, and the weights of a
-    // ghost sum to 1 (trilinear).
+    // goes from the ghosts that received back to their sources): each source of nonzero
+    // weight of a connected ghost must list that ghost among its feeds, with the same weight
+    // (and no source of weight 0 may), and the weights of a ghost sum to 1 (trilinear).
     const TriangleMesh box = make_box(Imath::V3f(0.0f), Imath::V3f(1.0f));
     const auto t = test::make_lattice(box, 5, 3, 0.2);
     const SlabLattice& lat = *t.lattice;
@@ -232,8 +232,9 @@ TEST(SlabLattice, GhostSourcesAreTheVoxelsThatFeedTheGhost)
                         bool listed = false;
                         for (uint32_t e = begin[source.cell]; e < begin[source.cell + 1]; ++e)
                             listed |= feeds[e].ghost == ghost && feeds[e].weight == source.weight;
-                        ASSERT_TRUE(listed) << "slab " << s << " ghost " << i << ' ' << j << ' '
-                                            << k << ": source " << source.cell;
+                        ASSERT_EQ(listed, source.weight != 0.0f)
+                            << "slab " << s << " ghost " << i << ' ' << j << ' ' << k
+                            << ": source " << source.cell << " of weight " << source.weight;
                     }
                     EXPECT_NEAR(sum, 1.0f, 1e-5f);
                     ++checked;
