@@ -23,26 +23,44 @@ void erosion_events(StoneState& st)
     const SlabLattice& lat = *st.lattice;
     const SlabGrid& g = lat.grid();
 
-    // Surface voxels and the running sum of their decay (serial: deterministic), in cell
-    // order; surface voxels lie above each slab's surface depth (the halo has no flags).
-    std::vector<uint32_t> cells;
-    std::vector<double> cdf;
-    double total = 0.0;
-    size_t n_surface = 0;
-    for (int s = 0; s < g.slab_count; ++s)
-        for (int k = 0; k < st.surface_depth[size_t(s)]; ++k)
+    // Surface voxels and the running sum of their decay, in cell order. Each slab lists its
+    // own (surface voxels lie in the layers marked in surface_layer, above the surface depth;
+    // the halo has no flags), then one serial pass sums them in order: deterministic, and the
+    // same sums as a single walk over the cells.
+    struct Decaying {
+        uint32_t cell;
+        float decay;
+    };
+    std::vector<std::vector<Decaying>> listed(size_t(g.slab_count));
+    std::vector<size_t> surface_count(size_t(g.slab_count), 0);
+    tbb::parallel_for(0, g.slab_count, [&](int s) {
+        std::vector<Decaying>& list = listed[size_t(s)];
+        for (int k = 0; k < st.surface_depth[size_t(s)]; ++k) {
+            if (!st.surface_layer[size_t(s) * size_t(g.n_d) + size_t(k)])
+                continue;
             for (int j = 0; j < g.n_t; ++j)
                 for (int i = 0; i < g.n_t; ++i) {
                     const size_t c = g.index(s, i, j, k);
                     if (!(st.flags[c] & kSurface))
                         continue;
-                    ++n_surface;
-                    if (st.decay[c] > 0.0f) {
-                        total += st.decay[c];
-                        cells.push_back(uint32_t(c));
-                        cdf.push_back(total);
-                    }
+                    ++surface_count[size_t(s)];
+                    if (st.decay[c] > 0.0f)
+                        list.push_back({uint32_t(c), st.decay[c]});
                 }
+        }
+    });
+    std::vector<uint32_t> cells;
+    std::vector<double> cdf;
+    double total = 0.0;
+    size_t n_surface = 0;
+    for (int s = 0; s < g.slab_count; ++s) {
+        n_surface += surface_count[size_t(s)];
+        for (const Decaying& d : listed[size_t(s)]) {
+            total += d.decay;
+            cells.push_back(d.cell);
+            cdf.push_back(total);
+        }
+    }
     if (cells.empty() || !(total > 0.0))
         return;
     Pcg32 rng(hash_values(prm.seed, 0xe705, uint64_t(st.cycles_done)));

@@ -249,6 +249,9 @@ void SlabLattice::fill_halo(std::span<float* const> fields, const std::vector<in
     // A ghost's sources lie in 4 rows: (j, k), (j + 1, k), (j, k + 1) and (j + 1, k + 1).
     const size_t sy = size_t(grid_.sy);
     const uint8_t* changed = changes ? changes->row_changed.data() : nullptr;
+    // Per slab: whether a ghost of its first layer got a new value (the halo above copies
+    // the whole first layer, ghosts included).
+    std::vector<uint8_t> first_layer_filled(size_t(grid_.slab_count), 0);
     tbb::parallel_for(0, grid_.slab_count, [&](int slab) {
         const int layers =
             active ? std::clamp((*active)[size_t(slab)] + 1, 0, grid_.n_d) : grid_.n_d;
@@ -277,6 +280,7 @@ void SlabLattice::fill_halo(std::span<float* const> fields, const std::vector<in
                 if (k >= current) {
                     for (size_t g = first; g < last; ++g)
                         interpolate(g);
+                    first_layer_filled[size_t(slab)] |= uint8_t(k == 0);
                     continue;
                 }
                 // A current ghost layer whose source layers are all unchanged stays; in the
@@ -291,8 +295,10 @@ void SlabLattice::fill_halo(std::span<float* const> fields, const std::vector<in
                     if ((changed[r] & int((used & 0x03u) != 0)) |
                         (changed[r + 1] & int((used & 0x0cu) != 0)) |
                         (changed[r + sy] & int((used & 0x30u) != 0)) |
-                        (changed[r + sy + 1] & int((used & 0xc0u) != 0)))
+                        (changed[r + sy + 1] & int((used & 0xc0u) != 0))) {
                         interpolate(g);
+                        first_layer_filled[size_t(slab)] |= uint8_t(k == 0);
+                    }
                 }
             }
         };
@@ -305,20 +311,33 @@ void SlabLattice::fill_halo(std::span<float* const> fields, const std::vector<in
         if (changes)
             changes->filled_layers[size_t(slab)] = layers;
     });
-    if (changes) {
-        std::fill(changes->row_changed.begin(), changes->row_changed.end(), 0);
-        std::fill(changes->layer_changed.begin(), changes->layer_changed.end(), 0);
-    }
     const SlabGrid& g = grid_;
     tbb::parallel_for(0, g.slab_count, [&](int s) {
+        // The halo above copies the first layer: unless it or its ghosts changed (every
+        // change of it is marked and seen here: the first layer is always filled), the copy
+        // is already there. The halo below is copied only while the layers reach it.
+        const bool top = !changes || first_layer_filled[size_t(s)] ||
+                         changes->layer_changed[g.layer(s, 0)];
         const bool bottom = !active || (*active)[size_t(s)] >= g.n_d - 1;
         for (float* field : fields)
             for (int j = -1; j <= g.n_t; ++j)
                 for (int i = -1; i <= g.n_t; ++i) {
-                    field[g.index(s, i, j, -1)] = field[g.index(s, i, j, 0)];
+                    if (top)
+                        field[g.index(s, i, j, -1)] = field[g.index(s, i, j, 0)];
                     if (bottom)
                         field[g.index(s, i, j, g.n_d)] = field[g.index(s, i, j, g.n_d - 1)];
                 }
+        // The marks this fill has seen: a marked row's layer is marked too, so only the rows
+        // of marked layers are cleared.
+        if (changes)
+            for (int k = -1; k <= g.n_d; ++k) {
+                uint8_t& layer = changes->layer_changed[g.layer(s, k)];
+                if (!layer)
+                    continue;
+                layer = 0;
+                uint8_t* rows = changes->row_changed.data() + g.row(s, -1, k);
+                std::fill(rows, rows + g.sy, uint8_t(0));
+            }
     });
 }
 
