@@ -175,8 +175,8 @@ SlabLattice::SlabLattice(const SlabShell& shell, int n_t, int n_d)
             for (int j = 0; j < n_t; ++j)
                 for (int i = 0; i < n_t; ++i)
                     flux_partner_[grid_.index(s, i, j, k)] = 1;
-    // A source of weight 0 gets nothing back from its ghost (w x f = +-0 leaves a sum that
-    // starts at +0 as it is, see transport.cpp): only sources of nonzero weight are fed.
+    // Only sources of nonzero weight are fed: one of weight 0 would get +-0 back, which
+    // leaves its sum as it is (see fill_halo and transport.cpp).
     feed_begin_.assign(cells + 1, 0);
     for (size_t g = 0; g < ghost_cell_.size(); ++g)
         if (connected[g]) {
@@ -262,8 +262,7 @@ void SlabLattice::fill_halo(std::span<float* const> fields, const std::vector<in
         auto fill = [&]<size_t N>(std::integral_constant<size_t, N>) {
             // Only the sources of nonzero weight: w x = +-0 for w = 0 (the fields are
             // finite), and a sum that starts at +0 is never -0, so adding +-0 leaves it as
-            // it is. Where slabs meet edge to edge most weights are 0, and their sources
-            // would be a cache line each.
+            // it is. (A third of the weights are 0, each source another cache line.)
             auto interpolate = [&](size_t g) {
                 const GhostBlock& block = ghost_sources_[g];
                 std::array<float, N> v{};
