@@ -143,6 +143,10 @@ double moist_depth(const StoneState& st, const std::vector<char>* column_selecto
 void moisture_step(StoneState& st, bool wet);   // moisture.cpp: pressure and front
 /// transport.cpp: dissolution, transport and crusts over `steps` x dt.
 void transport_step(StoneState& st, bool wet, int steps = 1);
+/// transport.cpp: how many moisture steps dt one transport step may span and keep 0.8 of
+/// its stability limit, from a bound on every voxel's couplings over the whole run (at
+/// least 1). Needs the lattice, flags, porosity (halo filled) and dt of `st`.
+int transport_interval_limit(const StoneState& st);
 void erosion_events(StoneState& st);            // erosion.cpp: events from the decay index
 
 /// One wet/dry cycle: wet_steps wet steps, dry_steps dry ones (a transport step after every

@@ -37,13 +37,116 @@
 #include "texgen/stone/transport_rows.h"
 
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
 
 #include <algorithm>
 #include <array>
 #include <atomic>
+#include <cmath>
 
 namespace patina::texgen::stone {
 
+int transport_interval_limit(const StoneState& st)
+{
+    // The diffusive part of a transport step, in the concentrations C (amount / water), is
+    // C' = C - span L C with L = V^-1 K: K the couplings kappa, V the water volumes (phi rho
+    // vol). Forward Euler is stable when span (L_cc + sum_y |L_cy|) <= 2 for every voxel c
+    // (Gershgorin; kappa >= 0 at cut stencils makes the rows diagonally dominant), and the
+    // step keeps 0.8 of that, as before. Bounding each row once for the whole run, with
+    // kappa = alpha D_i / 2 (w_c + w_y) min(phi) min(V_c, V_y) (transport_rows.cpp):
+    // - a partner y in the slab: 2 |kappa| / V_c <= 2 h |w_c + w_y| min(phi_c, phi_y);
+    // - a ghost partner g (each end takes half): |kappa| (1 + sum |omega|) / (2 V_c), with
+    //   the ghost's pair weight 2 w_c;
+    // - the other side of a seam: a voxel x whose ghost g' has c as a source of weight omega
+    //   hands c omega/2 of its exchange kappa' (C_g' - C_x), a row sum of |omega| |kappa'|
+    //   (1 + sum |omega_i|) / (2 V_c) with kappa' <= h |2 w_x| min(phi_x, phi_g')^2 vol_x
+    //   (density <= 1) and V_c >= phi_c vol_c / 2 (a moist voxel has density >= 1/2).
+    // Advection is capped per step at a tenth of the smaller water volume (transport_rows.cpp),
+    // whatever the span. The global bound this replaces, 2 alpha D_max phi_max g_max (twice
+    // the pressure's Gershgorin bound), is about twice these rows on a smooth lattice.
+    const SlabLattice& lat = *st.lattice;
+    const SlabGrid& g = lat.grid();
+    double d_max = 0.0;
+    for (double d : st.params.diffusivity)
+        d_max = std::max(d_max, d);
+    if (!(d_max > 0.0))
+        return 1;
+    const double h = 0.5 * st.params.pressure_diffusivity * d_max;
+    const auto& w = lat.weights();
+    const auto& vol = lat.volume();
+    const std::vector<float>& phi = st.porosity;
+    // Calls f(c, d, y, ghost) for every flux partner y of stone voxel c (entry direction d)
+    // of slab s; with `sides_only`, only for the voxels on the slab's sides, the only ones
+    // whose partners can be ghosts.
+    auto for_each_voxel = [&](int s, bool sides_only, auto&& voxel, auto&& partner) {
+        const auto& offset = lat.offsets(s);
+        const StencilSigns& sg = lat.signs(s);
+        const std::array<int, 6> dk = {0, 0, 1, 0, sg.s[1], sg.s[2]};
+        const int last = g.n_t - 1;
+        for (int k = 0; k < g.n_d; ++k)
+            for (int j = 0; j < g.n_t; ++j)
+                for (int i = 0; i < g.n_t; ++i) {
+                    if (sides_only && j != 0 && j != last && i != 0 && i != last)
+                        continue;
+                    const size_t c = g.index(s, i, j, k);
+                    if (!(st.flags[c] & kStone))
+                        continue;
+                    for (size_t d = 0; d < 6; ++d)
+                        for (int sign = -1; sign <= 1; sign += 2) {
+                            const int ky = k + sign * dk[d];
+                            const size_t y = size_t(long(c) + sign * offset[d]);
+                            if (ky >= 0 && ky < g.n_d && lat.flux_partner(y))
+                                partner(c, d, y, vol[y] == 0.0f);
+                        }
+                    voxel(c);
+                }
+    };
+    // (1 + sum |omega|) / 2 of a ghost: 1 where its sources interpolate.
+    auto half_spread = [&](size_t ghost) {
+        double sum = 0.0;
+        for (const GhostSource& source : lat.ghost_sources(ghost))
+            sum += std::abs(double(source.weight));
+        return 0.5 * (1.0 + sum);
+    };
+    // Per ghost: the seam terms of the voxels that have it as a partner, without omega and
+    // V_c. A slab's ghosts are partners of its own voxels only, so slabs run in parallel.
+    std::vector<float> seam(g.cell_count(), 0.0f);
+    tbb::parallel_for(0, g.slab_count, [&](int s) {
+        for_each_voxel(s, true, [](size_t) {}, [&](size_t c, size_t d, size_t y, bool ghost) {
+            if (!ghost)
+                return;
+            const double p = std::min(phi[c], phi[y]);
+            seam[y] += float(std::abs(2.0 * w[d][c]) * p * p * vol[c] * half_spread(y));
+        });
+    });
+    // Every voxel's row: its own partners, then the seams it feeds.
+    const auto& begin = lat.feed_begin();
+    const auto& feeds = lat.feeds();
+    const double row_max = tbb::parallel_reduce(
+        tbb::blocked_range<int>(0, g.slab_count), 0.0,
+        [&](const tbb::blocked_range<int>& r, double worst) {
+            for (int s = r.begin(); s < r.end(); ++s) {
+                double row = 0.0;
+                auto partner = [&](size_t c, size_t d, size_t y, bool ghost) {
+                    const double p = std::min(phi[c], phi[y]);
+                    row += ghost ? std::abs(2.0 * w[d][c]) * p * half_spread(y)
+                                 : 2.0 * std::abs(double(w[d][c]) + w[d][y]) * p;
+                };
+                auto voxel = [&](size_t c) {
+                    double other = 0.0;
+                    for (uint32_t e = begin[c]; e < begin[c + 1]; ++e)
+                        other += std::abs(double(feeds[e].weight)) * seam[feeds[e].ghost];
+                    worst = std::max(worst, row + other / (0.5 * phi[c] * vol[c]));
+                    row = 0.0;
+                };
+                for_each_voxel(s, false, voxel, partner);
+            }
+            return worst;
+        },
+        [](double a, double b) { return std::max(a, b); });
+    const double span = 1.6 / (h * row_max);  // 0.8 of the limit 2 / (h row_max)
+    return std::max(1, int(std::min(span / st.dt, 1e6)));
+}
 
 void transport_step(StoneState& st, bool wet, int steps)
 {
