@@ -59,8 +59,8 @@ struct StoneState {
     const SlabLattice* lattice = nullptr;
     StoneParameters params;
     double dt = 0.0;      ///< explicit step (stability limit of the pressure diffusion)
-    /// Moisture steps per transport step: the solutes diffuse slower than the pressure, so
-    /// one transport step spans this many dt (its own stability limit, simulation.cpp).
+    /// Moisture steps per transport step: one transport step spans this many dt, its own
+    /// stability limit (transport_interval_limit).
     int transport_interval = 1;
     double time = 0.0;
     int cycles_done = 0;

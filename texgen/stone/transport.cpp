@@ -50,9 +50,10 @@ int transport_interval_limit(const StoneState& st)
 {
     // The diffusive part of a transport step, in the concentrations C (amount / water), is
     // C' = C - span L C with L = V^-1 K: K the couplings kappa, V the water volumes (phi rho
-    // vol). Forward Euler is stable when span (L_cc + sum_y |L_cy|) <= 2 for every voxel c
-    // (Gershgorin; kappa >= 0 at cut stencils makes the rows diagonally dominant), and the
-    // step keeps 0.8 of that, as before. Bounding each row once for the whole run, with
+    // vol). L diffuses (its eigenvalues are >= 0), and Gershgorin bounds the largest by the
+    // largest row sum L_cc + sum_y |L_cy|: forward Euler is stable when span times every
+    // row sum is <= 2, and the step keeps 0.8 of that, as before. Bounding each row once
+    // for the whole run, with
     // kappa = alpha D_i / 2 (w_c + w_y) min(phi) min(V_c, V_y) (transport_rows.cpp):
     // - a partner y in the slab: 2 |kappa| / V_c <= 2 h |w_c + w_y| min(phi_c, phi_y);
     // - a ghost partner g (each end takes half): |kappa| (1 + sum |omega|) / (2 V_c), with
@@ -63,7 +64,8 @@ int transport_interval_limit(const StoneState& st)
     //   (density <= 1) and V_c >= phi_c vol_c / 2 (a moist voxel has density >= 1/2).
     // Advection is capped per step at a tenth of the smaller water volume (transport_rows.cpp),
     // whatever the span. The global bound this replaces, 2 alpha D_max phi_max g_max (twice
-    // the pressure's Gershgorin bound), is about twice these rows on a smooth lattice.
+    // the pressure's Gershgorin bound), is 2.5-3.5 times the largest of these rows on the
+    // benchmark's lattices (bench/README.md).
     const SlabLattice& lat = *st.lattice;
     const SlabGrid& g = lat.grid();
     double d_max = 0.0;
