@@ -77,9 +77,9 @@ int transport_interval_limit(const StoneState& st)
     const auto& w = lat.weights();
     const auto& vol = lat.volume();
     const std::vector<float>& phi = st.porosity;
-    // Calls f(c, d, y, ghost) for every flux partner y of stone voxel c (entry direction d)
-    // of slab s; with `sides_only`, only for the voxels on the slab's sides, the only ones
-    // whose partners can be ghosts.
+    // For every stone voxel c of slab s: partner(c, d, y, ghost) for each of its flux
+    // partners y (direction d), then voxel(c). With `sides_only`, only the voxels on the
+    // slab's sides, the only ones whose partners can be ghosts.
     auto for_each_voxel = [&](int s, bool sides_only, auto&& voxel, auto&& partner) {
         const auto& offset = lat.offsets(s);
         const StencilSigns& sg = lat.signs(s);

@@ -46,6 +46,21 @@ StoneParameters no_erosion()
     return p;
 }
 
+/// `mesh` in stone of `kind` (feature size 5 cm) on a lattice of n_t x n_t x n_d voxels per
+/// slab in a shell `depth` deep.
+std::unique_ptr<Scene> stone_scene(TriangleMesh mesh, StoneKind kind, int n_t, int n_d,
+                                   double depth, const StoneParameters& params)
+{
+    auto s = std::make_unique<Scene>();
+    s->mesh = std::move(mesh);
+    s->lat = test::make_lattice(s->mesh, n_t, n_d, depth);
+    QuarryOptions q;
+    q.kind = kind;
+    q.feature_size = 0.05;
+    initialise_state(s->st, *s->lat.lattice, s->mesh, Quarry(q), params);
+    return s;
+}
+
 TEST(StoneSimulation, DissolvedMineralsPlusCrustConserveMass)
 {
     auto s = sandstone_box(no_erosion());
@@ -133,15 +148,11 @@ TEST(StoneSimulation, HorizontalSurfaceUnderRainErodesMoreThanAVerticalOne)
 // the marble statue's salt grew to 1e38 and then NaN after 20 cycles.
 TEST(StoneSimulation, TransportStaysBoundedInMarbleWithARaggedMoistZone)
 {
-    auto s = std::make_unique<Scene>();
-    s->mesh = make_box(Imath::V3f(0.0f), Imath::V3f(0.4f, 0.3f, 0.4f));
-    s->lat = test::make_lattice(s->mesh, 6, 6, 0.1);
-    QuarryOptions q;
-    q.kind = StoneKind::marble; // porosity 0.01-0.04
-    q.feature_size = 0.05;
     StoneParameters p = no_erosion();
     p.solubility = {0.0, 0.0, 0.0}; // transport only: nothing dissolves
-    initialise_state(s->st, *s->lat.lattice, s->mesh, Quarry(q), p);
+    // Marble: porosity 0.01-0.04.
+    auto s = stone_scene(make_box(Imath::V3f(0.0f), Imath::V3f(0.4f, 0.3f, 0.4f)),
+                         StoneKind::marble, 6, 6, 0.1, p);
     StoneState& st = s->st;
     // A random moist mask (30 %: small clusters, some joined only by a negative stencil
     // weight) and random dissolved salt, concentration in [0, 1].
@@ -240,28 +251,16 @@ TEST(StoneSimulation, TransportIntervalKeepsTheStepWithinItsStabilityLimit)
         bool ragged;
     };
     std::vector<Case> cases;
-    {
-        // The benchmark's blob (bench/stone_sim.cpp) at a small resolution: slabs of every
-        // shape meet at its seams.
-        auto s = std::make_unique<Scene>();
-        s->mesh = make_uv_sphere(Imath::V3f(0.0f), 0.5f, 7, 8);
-        s->lat = test::make_lattice(s->mesh, 4, 6, 0.15);
-        QuarryOptions q;
-        q.kind = StoneKind::sandstone;
-        q.feature_size = 0.05;
-        initialise_state(s->st, *s->lat.lattice, s->mesh, Quarry(q), no_erosion());
-        cases.push_back({"sandstone blob, all stone moist", std::move(s), false});
-    }
-    {
-        auto s = std::make_unique<Scene>();
-        s->mesh = make_box(Imath::V3f(0.0f), Imath::V3f(0.4f, 0.3f, 0.4f));
-        s->lat = test::make_lattice(s->mesh, 6, 6, 0.1);
-        QuarryOptions q;
-        q.kind = StoneKind::marble;
-        q.feature_size = 0.05;
-        initialise_state(s->st, *s->lat.lattice, s->mesh, Quarry(q), no_erosion());
-        cases.push_back({"marble box, ragged moist zone", std::move(s), true});
-    }
+    // The benchmark's blob (bench/stone_sim.cpp) at a small resolution: slabs of every shape
+    // meet at its seams.
+    cases.push_back({"sandstone blob, all stone moist",
+                     stone_scene(make_uv_sphere(Imath::V3f(0.0f), 0.5f, 7, 8),
+                                 StoneKind::sandstone, 4, 6, 0.15, no_erosion()),
+                     false});
+    cases.push_back({"marble box, ragged moist zone",
+                     stone_scene(make_box(Imath::V3f(0.0f), Imath::V3f(0.4f, 0.3f, 0.4f)),
+                                 StoneKind::marble, 6, 6, 0.1, no_erosion()),
+                     true});
     for (Case& cs : cases) {
         StoneState& st = cs.scene->st;
         // The bound this replaced, 2 alpha D_max phi_max g_max, allowed 2 steps of dt for the
