@@ -81,11 +81,9 @@ int transport_interval_limit(const StoneState& st)
     // partners y (direction d), then voxel(c). With `sides_only`, only the voxels on the
     // slab's sides, the only ones whose partners can be ghosts.
     auto for_each_voxel = [&](int s, bool sides_only, auto&& voxel, auto&& partner) {
-        const auto& offset = lat.offsets(s);
-        const StencilSigns& sg = lat.signs(s);
-        const std::array<int, 6> dk = {0, 0, 1, 0, sg.s[1], sg.s[2]};
         const int last = g.n_t - 1;
-        for (int k = 0; k < g.n_d; ++k)
+        for (int k = 0; k < g.n_d; ++k) {
+            const Partners pt(lat, s, k);  // as the transport kernel sees them
             for (int j = 0; j < g.n_t; ++j)
                 for (int i = 0; i < g.n_t; ++i) {
                     if (sides_only && j != 0 && j != last && i != 0 && i != last)
@@ -93,15 +91,14 @@ int transport_interval_limit(const StoneState& st)
                     const size_t c = g.index(s, i, j, k);
                     if (!(st.flags[c] & kStone))
                         continue;
-                    for (size_t d = 0; d < 6; ++d)
-                        for (int sign = -1; sign <= 1; sign += 2) {
-                            const int ky = k + sign * dk[d];
-                            const size_t y = size_t(long(c) + sign * offset[d]);
-                            if (ky >= 0 && ky < g.n_d && lat.flux_partner(y))
-                                partner(c, d, y, vol[y] == 0.0f);
-                        }
+                    for (size_t e = 0; e < 12; ++e) {
+                        const size_t y = size_t(long(c) + pt.offset[e]);
+                        if (pt.inside[e] && lat.flux_partner(y))
+                            partner(c, e / 2, y, vol[y] == 0.0f);
+                    }
                     voxel(c);
                 }
+        }
     };
     // (1 + sum |omega|) / 2 of a ghost: 1 where its sources interpolate.
     auto half_spread = [&](size_t ghost) {

@@ -15,29 +15,6 @@ using namespace lanes;
 
 namespace {
 
-    /// The 12 stencil partners of the voxels of a row: entry e = 2 d + (sign > 0), at
-    /// offset[e], and whether the partner's layer lies inside the shell (the halo above and
-    /// below it is no-flux).
-    struct Partners {
-        std::array<long, 12> offset{};
-        std::array<bool, 12> inside{};
-        int slab = 0;
-
-        Partners(const SlabLattice& lat, int s, int k) : slab(s)
-        {
-            const auto& o = lat.offsets(s);
-            const StencilSigns& sg = lat.signs(s);
-            const std::array<int, 6> dk = {0, 0, 1, 0, sg.s[1], sg.s[2]};
-            for (int d = 0; d < 6; ++d)
-                for (int sign = -1; sign <= 1; sign += 2) {
-                    const size_t e = size_t(2 * d + (sign > 0));
-                    offset[e] = sign * o[size_t(d)];
-                    const int ky = k + sign * dk[size_t(d)];
-                    inside[e] = ky >= 0 && ky < lat.grid().n_d;
-                }
-        }
-    };
-
     /// Moist voxels (as transport.cpp's moist()), and those that are solute partners.
     [[gnu::always_inline]] inline VI moist(const TransportRows& t, size_t at, int n)
     {
@@ -306,6 +283,20 @@ namespace {
     }
 
 } // namespace
+
+Partners::Partners(const SlabLattice& lat, int s, int k) : slab(s)
+{
+    const auto& o = lat.offsets(s);
+    const StencilSigns& sg = lat.signs(s);
+    const std::array<int, 6> dk = {0, 0, 1, 0, sg.s[1], sg.s[2]};
+    for (int d = 0; d < 6; ++d)
+        for (int sign = -1; sign <= 1; sign += 2) {
+            const size_t e = size_t(2 * d + (sign > 0));
+            offset[e] = sign * o[size_t(d)];
+            const int ky = k + sign * dk[size_t(d)];
+            inside[e] = ky >= 0 && ky < lat.grid().n_d;
+        }
+}
 
 TransportRows::TransportRows(StoneState& s, bool is_wet, float step)
     : RowFields(s), st(&s), wet(is_wet), dt(step)

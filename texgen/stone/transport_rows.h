@@ -15,6 +15,17 @@
 
 namespace patina::texgen::stone {
 
+/// The 12 stencil partners of the voxels of layer k of slab s: entry e = 2 d + (sign > 0)
+/// of direction d, at offset[e], and whether the partner's layer lies inside the shell (the
+/// halo above and below it is no-flux).
+struct Partners {
+    std::array<long, 12> offset{};
+    std::array<bool, 12> inside{};
+    int slab = 0;
+
+    Partners(const SlabLattice& lat, int s, int k);
+};
+
 /// The fields a transport step reads and writes, and its per-step constants.
 struct TransportRows : RowFields {
     using Fields = std::array<float*, kSpecies>;
