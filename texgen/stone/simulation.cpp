@@ -136,10 +136,11 @@ void initialise_state(StoneState& st, const SlabLattice& lattice, const Triangle
     for (double d : params.diffusivity)
         d_max = std::max(d_max, d);
     st.dt = 0.4 * 2.0 / (params.pressure_diffusivity * d_max * phi_max * g_max);
-    // The solutes' own limit (transport.cpp): a transport step spans as many moisture steps
-    // as a bound on every voxel's couplings allows (5 on the benchmark's paper-size grid
-    // with the default D_i = 0.5; the transport, most of a step's cost, runs that much less
-    // often). The dt above keeps even a single step stable: d_max covers D_i > 1.
+    // The solutes' own limit (transport_bound.cpp): a transport step spans as many moisture
+    // steps as a bound on its operator's spectral radius allows (8 on the benchmark's
+    // paper-size grid with the default D_i = 0.5: once per phase; the transport, most of a
+    // step's cost, runs that much less often). The dt above keeps even a single step
+    // stable: d_max covers D_i > 1.
     st.transport_interval = transport_interval_limit(st);
 }
 

@@ -143,9 +143,16 @@ double moist_depth(const StoneState& st, const std::vector<char>* column_selecto
 void moisture_step(StoneState& st, bool wet);   // moisture.cpp: pressure and front
 /// transport.cpp: dissolution, transport and crusts over `steps` x dt.
 void transport_step(StoneState& st, bool wet, int steps = 1);
-/// transport.cpp: how many moisture steps dt one transport step may span and keep 0.8 of
-/// its stability limit, from a bound on every voxel's couplings over the whole run (at
-/// least 1). Needs the lattice, flags, porosity (halo filled) and dt of `st`.
+/// transport_bound.cpp: a bound on the spectral radius of the transport's diffusion
+/// operator in every state of the run, from `products` products of a majorant of it with a
+/// vector (1: the largest Gershgorin row; each more is sharper). Needs the lattice, flags
+/// and porosity (halo filled) of `st`.
+double transport_rate_bound(const StoneState& st, int products);
+/// The products transport_interval_limit uses.
+inline constexpr int kTransportBoundProducts = 6;
+/// transport_bound.cpp: how many moisture steps dt one transport step may span and keep 0.8
+/// of its stability limit over the whole run (at least 1), from transport_rate_bound. Needs
+/// dt too.
 int transport_interval_limit(const StoneState& st);
 void erosion_events(StoneState& st);            // erosion.cpp: events from the decay index
 
