@@ -6,7 +6,10 @@
 // is C' = C - span L C with L = V^-1 K: K the couplings kappa, V the water volumes
 // (phi rho vol). L diffuses (its eigenvalues are real and >= 0 away from the seams, where it
 // is symmetric in the water-weighted product), and forward Euler is stable when
-// span rho(L) <= 2; the step keeps 0.8 of that. rho(L) <= rho(|L|) <= rho(M) for any matrix
+// span rho(L) <= 2. The step keeps 0.9 of that on a bound that is itself 1.3-1.4 times
+// rho(L) where all the stone is moist (the test), so every mode's factor 1 - span lambda
+// stays in [-0.8, 1] (the largest Gershgorin row, 1.9 times rho on the paper-size grid, was
+// kept at 0.8 of the limit). rho(L) <= rho(|L|) <= rho(M) for any matrix
 // M >= |L| entry by entry (Perron-Frobenius), and for any positive vector d
 // rho(M) <= max_c (M d)_c / d_c (Collatz-Wielandt). M here bounds |L| in every state, with
 // kappa = alpha D_i / 2 (w_c + w_y) min(phi) min(V_c, V_y) (transport_rows.cpp) and h the
@@ -20,7 +23,8 @@
 //   kappa' <= h |2 w_x| min(phi_x, phi_g')^2 vol_x (density <= 1) and V_c >= phi_c vol_c / 2
 //   (a moist voxel has density >= 1/2), in x's column and, times |omega_j|, in those of g''s
 //   sources j.
-// Only stone voxels can be moist, so only their columns count.
+// Only stone voxels (density >= 1/2) can be moist, and density only falls, so only the
+// columns of the voxels that are stone at the start count.
 //
 // d = 1 gives the largest row sum of M (Gershgorin). Each product with M smooths d over the
 // stencil, so that max (M d)_c / d_c falls towards rho(M) (it never rises: Collatz-Wielandt's
