@@ -55,13 +55,12 @@ namespace {
         {
         }
 
-        /// out = M d / h on the stone voxels.
+        /// out = M d / h on the stone voxels (the other cells of `out` are left as they are).
         void apply(const std::vector<double>& d, std::vector<double>& out) const
         {
-            // Per ghost: the seam terms of the voxels that have it as a partner, without
-            // omega and V_c. A slab's ghosts are partners of its own voxels only, so slabs run
-            // in parallel.
-            // Also sum |omega_i| d_i over each ghost's sources, for the rows.
+            // Per ghost: sum |omega_i| d_i over its sources, and the seam terms of the voxels
+            // that have it as a partner, without omega and V_c. A slab's ghosts are partners
+            // of its own voxels only (those on its sides), so slabs run in parallel.
             std::vector<double> seam(g_.cell_count(), 0.0), spread(g_.cell_count(), -1.0);
             tbb::parallel_for(0, g_.slab_count, [&](int s) {
                 for_each_voxel(s, true, [](size_t) {},
@@ -172,8 +171,8 @@ double transport_rate_bound(const StoneState& st, int products)
         if (it + 1 >= products || !(ratio > 0.0))
             break;
         // d <- (M + sigma) d, scaled to a largest entry of 1: the shift keeps every stone
-        // voxel's entry positive (a voxel without partners has a zero row), and moves no
-        // ratio but its own.
+        // voxel's entry positive (a voxel without partners has a zero row); the ratios are
+        // taken with M itself.
         const double sigma = 0.01 * ratio;
         double top = 0.0;
         for (size_t c = 0; c < n; ++c)
