@@ -301,8 +301,9 @@ TEST(StoneSimulation, TransportIntervalKeepsTheStepWithinItsStabilityLimit)
         // limit rho(M) is 1.36 times rho at 8^3 and 12^3 per slab: |L| against L, the
         // densities at their worst across seams); the largest Gershgorin row is 1.9 times
         // rho on the paper-size grid.
-        if (!cs.ragged)
+        if (!cs.ragged) {
             EXPECT_LE(sharper, 1.5 * rho) << cs.name;
+        }
         EXPECT_LE(span * rho, 1.8) << cs.name;
         // Beyond the limit: a step of 2.4 / rho takes the mode to -1.4 times itself.
         const int beyond = int(std::ceil(2.4 / (rho * st.dt)));
