@@ -150,7 +150,7 @@ void transport_step(StoneState& st, bool wet, int steps = 1);
 double transport_rate_bound(const StoneState& st, int products);
 /// The products transport_interval_limit uses.
 inline constexpr int kTransportBoundProducts = 6;
-/// transport_bound.cpp: how many moisture steps dt one transport step may span and keep 0.8
+/// transport_bound.cpp: how many moisture steps dt one transport step may span and keep 0.9
 /// of its stability limit over the whole run (at least 1), from transport_rate_bound. Needs
 /// dt too.
 int transport_interval_limit(const StoneState& st);

@@ -37,7 +37,6 @@
 #include "texgen/stone/transport_rows.h"
 
 #include <tbb/parallel_for.h>
-#include <tbb/parallel_reduce.h>
 
 #include <algorithm>
 #include <array>
