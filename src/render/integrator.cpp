@@ -137,7 +137,7 @@ SampledSpectrum trace_path(const Scene& scene, Ray ray, const std::optional<Hit>
                 mctx.P = to_abi(P);
                 const PatinaVec3 wo = to_abi(-ray.dir);
                 const Scatterer phase{medium, &mctx, nullptr, wo};
-                if (scene.film.mis)
+                if (scene.film.mis && scene.lights.has_sampled_lights())
                     L += beta * sample_direct(scene, phase, P, nullptr, nullptr, ray.dir, medium,
                                               wl, sky, rng);
                 PatinaVec3 wi{};
@@ -209,7 +209,7 @@ SampledSpectrum trace_path(const Scene& scene, Ray ray, const std::optional<Hit>
 
         // Light sampling at this vertex. The shadow ray leaves on the light's side: the
         // medium there is this one unless it crosses into the object's interior.
-        if (scene.film.mis) {
+        if (scene.film.mis && scene.lights.has_sampled_lights()) {
             const Scatterer surface{obj.bsdf.get(), &frame.ctx, &frame, wo};
             L += beta * sample_direct(scene, surface, sp.P, &sp, &obj, ray.dir, medium, wl, sky,
                                       rng);

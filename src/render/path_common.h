@@ -34,7 +34,9 @@ struct PrevVertex {
 
 inline float emission_mis_weight(const Scene& scene, const PrevVertex& prev, float light_pdf)
 {
-    if (prev.specular || !scene.film.mis)
+    // light_pdf 0: no light sampling competed (a light left to BSDF sampling, such as the
+    // uniform sky); the power heuristic would give 1 too, but 0 once prev.pdf² underflows.
+    if (prev.specular || !scene.film.mis || light_pdf == 0.0f)
         return 1.0f;
     return power_heuristic(1, prev.pdf, 1, light_pdf);
 }
@@ -66,7 +68,8 @@ struct Scatterer {
 };
 
 // A constant environment's radiance at the path's wavelengths, evaluated once per path
-// (it is the same for every direction and every vertex), with its selection probability.
+// (it is the same for every direction and every vertex), with its selection probability
+// (0 when it is left to BSDF sampling, the default: light_sampler.h).
 struct UniformSky {
     const EnvironmentLight* light = nullptr;
     SampledSpectrum L;

@@ -103,10 +103,13 @@ Scene build_scene(const SceneFile& file, const PluginRegistry& registry, const H
         }
     }
 
-    // Ray tracing: Embree's robust traversal (the default) or its faster one.
+    // Ray tracing: Embree's robust traversal (the default) or its faster one; whether a
+    // uniform sky is light-sampled as well as found by BSDF sampling.
     const toml::table& render = w.table(root, "render") ? *w.table(root, "render") : kEmpty;
-    w.check_keys(render, "render", {"robust"});
+    w.check_keys(render, "render", {"robust", "sample_uniform_sky"});
     scene.robust_traversal = w.boolean(render, "robust", scene.robust_traversal, "render");
+    scene.sample_uniform_sky =
+        w.boolean(render, "sample_uniform_sky", scene.sample_uniform_sky, "render");
 
     // Output
     const toml::table& out = w.table(root, "output") ? *w.table(root, "output") : kEmpty;
@@ -184,7 +187,7 @@ Scene build_scene(const SceneFile& file, const PluginRegistry& registry, const H
             lights.push_back(std::make_unique<AreaLight>(*scene.geometry, static_cast<int>(id),
                                                          obj.emitter, host.c_host()));
     }
-    scene.lights = LightSampler(std::move(lights));
+    scene.lights = LightSampler(std::move(lights), scene.sample_uniform_sky);
     return scene;
 }
 

@@ -75,6 +75,9 @@ struct Scene {
     bool has_media = false;            ///< some object has an interior medium
     /// [render] robust: Embree's RTC_SCENE_FLAG_ROBUST (see EmbreeScene's constructor).
     bool robust_traversal = true;
+    /// [render] sample_uniform_sky: light-sample a constant environment too (over the
+    /// sphere, with MIS); by default BSDF sampling alone finds it (light_sampler.h).
+    bool sample_uniform_sky = false;
 };
 
 /// Second phase: bind shaders through `registry`, build meshes and the Embree scene.

@@ -72,7 +72,7 @@ namespace {
 
         // Light sampling (sample_direct without media): the value is worked out now, the
         // shadow ray traced with the batch's others; L gets beta * (value or 0) then.
-        if (scene.film.mis) {
+        if (scene.film.mis && scene.lights.has_sampled_lights()) {
             nee = LightSampleState::zero;
             p.nee_beta = p.beta;
             p.nee_value = SampledSpectrum(wl.count, 0.0f);

@@ -511,3 +511,56 @@ TEST(LightSampler, OneLightAndTheUniformSky)
     const pr::LightSampler sampler(std::move(lights));
     EXPECT_EQ(sampler.uniform_sky(), sky);
 }
+
+// A uniform sky is left to BSDF sampling by default (pbrt-v4 §12.5.1, UniformInfiniteLight
+// under MIS): the other lights share the whole choice, the sky's pmf is 0, and a sky alone
+// leaves nothing to sample. With sample_uniform_sky it is chosen by power like the rest.
+TEST(LightSampler, UniformSkyLeftToBsdfSamplingUnlessAsked)
+{
+    auto sun_and_sky = [] {
+        std::vector<std::unique_ptr<pr::Light>> lights;
+        lights.push_back(
+            std::make_unique<pr::DistantLight>(V3f(0, 0, 1), 0.0f, sun_colour(), 1.0f));
+        lights.push_back(std::make_unique<pr::EnvironmentLight>(
+            patina::default_host(), std::array<float, 3>{1, 1, 1}, 1.0f));
+        return lights;
+    };
+    {
+        auto lights = sun_and_sky();
+        const pr::Light* sun = lights[0].get();
+        const pr::Light* sky = lights[1].get();
+        const pr::LightSampler sampler(std::move(lights));
+        EXPECT_EQ(sampler.uniform_sky(), sky);
+        EXPECT_TRUE(sampler.has_sampled_lights());
+        for (float u : {0.0f, 0.5f, 0x1.fffffep-1f}) {
+            ASSERT_TRUE(sampler.sample(u));
+            EXPECT_EQ(sampler.sample(u)->light, sun);
+            EXPECT_EQ(sampler.sample(u)->pmf, 1.0f);
+        }
+        EXPECT_EQ(sampler.pmf(sun), 1.0f);
+        EXPECT_EQ(sampler.pmf(sky), 0.0f);
+        EXPECT_EQ(sampler.uniform_sky_pmf(), 0.0f);
+        // Rays escaping to the sky still find it.
+        EXPECT_EQ(sampler.infinite_lights().size(), 2u);
+    }
+    {
+        // Both powers are positive: both lights are chosen, in proportion to them.
+        const pr::LightSampler sampler(sun_and_sky(), true);
+        const pr::Light* sun = sampler.lights()[0].get();
+        const pr::Light* sky = sampler.lights()[1].get();
+        EXPECT_GT(sampler.pmf(sun), 0.0f);
+        EXPECT_GT(sampler.pmf(sky), 0.0f);
+        EXPECT_FLOAT_EQ(sampler.pmf(sun) + sampler.pmf(sky), 1.0f);
+        EXPECT_EQ(sampler.uniform_sky_pmf(), sampler.pmf(sky));
+    }
+    {
+        std::vector<std::unique_ptr<pr::Light>> lights;
+        lights.push_back(std::make_unique<pr::EnvironmentLight>(
+            patina::default_host(), std::array<float, 3>{1, 1, 1}, 1.0f));
+        const pr::LightSampler alone(std::move(lights));
+        EXPECT_FALSE(alone.has_sampled_lights());
+        EXPECT_FALSE(alone.sample(0.5f));
+        EXPECT_EQ(alone.pmf(alone.uniform_sky()), 0.0f);
+        EXPECT_EQ(alone.infinite_lights().size(), 1u);
+    }
+}
