@@ -522,19 +522,18 @@ CieAtWavelengths cie_at_wavelengths(const PatinaWavelengths& wl)
 // AVX2 and baseline clones, chosen at load time (VEX encoding: fewer register copies). No
 // FMA in either, so both round alike: the same bits.
 [[gnu::target_clones("avx2", "default")]]
-PatinaWavelengths sample_wavelengths_tabulated(float u, int count, SampledSpectrum& pdf,
-                                               CieAtWavelengths& cie)
+void sample_wavelengths_tabulated(float u, int count, PatinaWavelengths& wl,
+                                  SampledSpectrum& pdf, CieAtWavelengths& cie)
 {
     if (count != 4) {
-        const PatinaWavelengths wl = sample_wavelengths_tabulated(u, count, pdf);
+        wl = sample_wavelengths_tabulated(u, count, pdf);
         cie = cie_at_wavelengths(wl);
-        return wl;
+        return;
     }
     // Four wavelengths, the renderer's usual count: one block, straight through, every
     // lane inside the tables (the table's λ stay in 360-830 nm).
     Float4 l, density;
     tabulated_block(u, 0, static_cast<float>(kWavelengthTableSize) / 4.0f, l, density);
-    PatinaWavelengths wl;
     wl.count = 4;
     const Float4 zero = {};
     std::memcpy(wl.lambda_nm, &l, sizeof l);
@@ -547,7 +546,6 @@ PatinaWavelengths sample_wavelengths_tabulated(float u, int count, SampledSpectr
     store_first_block(cie.y, 4, y);
     store_first_block(cie.z, 4, z);
     store_first_block(cie.d65, 4, d);
-    return wl;
 }
 
 [[gnu::target_clones("avx2", "default")]]  // as sample_wavelengths_tabulated

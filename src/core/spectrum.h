@@ -284,8 +284,18 @@ CieAtWavelengths cie_at_wavelengths(const PatinaWavelengths& wl);
 /// The renderer's per-sample spectral set-up in one pass: sample_wavelengths_tabulated(u,
 /// count, pdf) and cie_at_wavelengths of its wavelengths into `cie` (the same values as the
 /// two calls; one straight pass for count 4).
-PatinaWavelengths sample_wavelengths_tabulated(float u, int count, SampledSpectrum& pdf,
-                                               CieAtWavelengths& cie);
+void sample_wavelengths_tabulated(float u, int count, PatinaWavelengths& wl,
+                                  SampledSpectrum& pdf, CieAtWavelengths& cie);
+/// The same, returning the wavelengths. The renderer uses the form above, which writes them
+/// in place: a returned copy is read back as one vector from pieces written apart, which
+/// no store forwards to (a stall per sample).
+inline PatinaWavelengths sample_wavelengths_tabulated(float u, int count, SampledSpectrum& pdf,
+                                                      CieAtWavelengths& cie)
+{
+    PatinaWavelengths wl;
+    sample_wavelengths_tabulated(u, count, wl, pdf, cie);
+    return wl;
+}
 /// xyz_from_samples with the matching functions already looked up for L's wavelengths.
 Xyz xyz_from_samples(const SampledSpectrum& L, const CieAtWavelengths& cie,
                      const SampledSpectrum& pdf);

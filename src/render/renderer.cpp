@@ -196,8 +196,8 @@ namespace {
                     for (int s = g0; s < g1; ++s, ++n, ++np) {
                         WavefrontPath& p = wt.paths[np];
                         p.hit = batch.hits[n];
-                        p.wl = sample_wavelengths_tabulated(wt.u_wavelengths[n], film.wavelengths,
-                                                            p.pdf, p.cie);
+                        sample_wavelengths_tabulated(wt.u_wavelengths[n], film.wavelengths, p.wl,
+                                                     p.pdf, p.cie);
                         wt.pixel[np] = static_cast<uint32_t>(ly * w + lx);
                     }
                 }

@@ -23,16 +23,16 @@ namespace {
     // needed, its value in p.nee_*), the BSDF sample and roulette. True if the path goes
     // on with p.ray; false when it ended (a light sample may still wait for its shadow ray).
     [[gnu::target_clones("avx2", "default")]]  // as trace_path: same bits on either
-    bool shade(const Scene& scene, WavefrontPath& p, bool want_aovs, ShadowRay& shadow,
-               LightSampleState& nee)
+    bool shade(const Scene& scene, WavefrontPath& p, const std::optional<Hit>& found,
+               bool want_aovs, ShadowRay& shadow, LightSampleState& nee)
     {
         nee = LightSampleState::none;
         const PatinaWavelengths& wl = p.wl;
-        if (!p.hit) {
+        if (!found) {
             p.L += p.beta * escaped(scene, p.ray, p.prev, wl, p.sky);
             return false;
         }
-        const Hit& hit = *p.hit;
+        const Hit& hit = *found;
         SurfacePoint sp;
         const bool orthonormal = scene.geometry->interpolate_shading(hit, p.ray.dir, sp);
         const SceneObject& obj =
@@ -176,15 +176,18 @@ void trace_wavefront(const Scene& scene, std::span<WavefrontPath> paths, bool wa
     s.hits.resize(n);
     s.next.resize(n);
     size_t nlive = n;
-    while (nlive > 0) {
+    for (bool camera_hits = true; nlive > 0; camera_hits = false) {
         // Shade every live path's hit; collect the shadow rays, and the paths that go on
         // with their next rays (written while the path is at hand, not in a pass of its own).
+        // After the camera's hits, the k-th live path's hit is hits[k], where the last
+        // stream left it: read there, not copied into the (cold) path state first.
         size_t nshadow = 0, m = 0;
         for (size_t k = 0; k < nlive; ++k) {
             const uint32_t i = s.live[k];
             WavefrontPath& p = paths[i];
             LightSampleState nee;
-            if (shade(scene, p, want_aovs, s.shadows[nshadow], nee)) {
+            const std::optional<Hit>& hit = camera_hits ? p.hit : s.hits[k];
+            if (shade(scene, p, hit, want_aovs, s.shadows[nshadow], nee)) {
                 s.queries[m] = {p.ray.origin, p.ray.dir, 0.0f, kInf};
                 s.next[m++] = i;
             }
@@ -200,8 +203,6 @@ void trace_wavefront(const Scene& scene, std::span<WavefrontPath> paths, bool wa
         // Trace the next closest-hit rays of the paths that go on.
         scene.geometry->intersect_incoherent(std::span(s.queries.data(), m),
                                              std::span(s.hits.data(), m));
-        for (size_t k = 0; k < m; ++k)
-            paths[s.next[k]].hit = s.hits[k];
         std::swap(s.live, s.next);
         nlive = m;
     }

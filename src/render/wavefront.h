@@ -22,7 +22,7 @@ struct WavefrontPath {
     // Inputs.
     Pcg32 rng;
     Ray ray;
-    std::optional<Hit> hit;  ///< the camera ray's closest hit
+    std::optional<Hit> hit;  ///< the camera ray's closest hit (later hits stay in the scratch)
     PatinaWavelengths wl;
     SampledSpectrum pdf;     ///< wavelength pdf; secondaries zeroed on dispersion
     CieAtWavelengths cie;
