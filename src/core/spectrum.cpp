@@ -521,6 +521,31 @@ CieAtWavelengths cie_at_wavelengths(const PatinaWavelengths& wl)
 
 // AVX2 and baseline clones, chosen at load time (VEX encoding: fewer register copies). No
 // FMA in either, so both round alike: the same bits.
+namespace {
+
+    // Four wavelengths, the renderer's usual count: one block, straight through, every
+    // lane inside the tables (the table's λ stay in 360-830 nm).
+    [[gnu::always_inline]] inline void set_up_four(float u, PatinaWavelengths& wl,
+                                                   SampledSpectrum& pdf, CieAtWavelengths& cie)
+    {
+        Float4 l, density;
+        tabulated_block(u, 0, static_cast<float>(kWavelengthTableSize) / 4.0f, l, density);
+        wl.count = 4;
+        const Float4 zero = {};
+        std::memcpy(wl.lambda_nm, &l, sizeof l);
+        for (int b = 4; b < PATINA_MAX_WAVELENGTHS; b += 4)
+            std::memcpy(wl.lambda_nm + b, &zero, sizeof zero);
+        store_first_block(pdf, 4, density);
+        Float4 x, y, z, d;
+        cie_block(l, l >= kLambdaMinNm, x, y, z, d);
+        store_first_block(cie.x, 4, x);
+        store_first_block(cie.y, 4, y);
+        store_first_block(cie.z, 4, z);
+        store_first_block(cie.d65, 4, d);
+    }
+
+} // namespace
+
 [[gnu::target_clones("avx2", "default")]]
 void sample_wavelengths_tabulated(float u, int count, PatinaWavelengths& wl,
                                   SampledSpectrum& pdf, CieAtWavelengths& cie)
@@ -530,22 +555,23 @@ void sample_wavelengths_tabulated(float u, int count, PatinaWavelengths& wl,
         cie = cie_at_wavelengths(wl);
         return;
     }
-    // Four wavelengths, the renderer's usual count: one block, straight through, every
-    // lane inside the tables (the table's λ stay in 360-830 nm).
-    Float4 l, density;
-    tabulated_block(u, 0, static_cast<float>(kWavelengthTableSize) / 4.0f, l, density);
-    wl.count = 4;
-    const Float4 zero = {};
-    std::memcpy(wl.lambda_nm, &l, sizeof l);
-    for (int b = 4; b < PATINA_MAX_WAVELENGTHS; b += 4)
-        std::memcpy(wl.lambda_nm + b, &zero, sizeof zero);
-    store_first_block(pdf, 4, density);
-    Float4 x, y, z, d;
-    cie_block(l, l >= kLambdaMinNm, x, y, z, d);
-    store_first_block(cie.x, 4, x);
-    store_first_block(cie.y, 4, y);
-    store_first_block(cie.z, 4, z);
-    store_first_block(cie.d65, 4, d);
+    set_up_four(u, wl, pdf, cie);
+}
+
+[[gnu::target_clones("avx2", "default")]]  // as sample_wavelengths_tabulated
+void sample_wavelengths_tabulated4(std::span<const float> u, std::span<const SpectralSetUp> out)
+{
+    assert(u.size() == out.size());
+    // Two samples per turn, written one after the other in one block: each is a chain of
+    // dependent look-ups (table step, then the CIE nodes at its λ), and two independent
+    // chains side by side keep the core busy while either waits.
+    size_t i = 0;
+    for (; i + 2 <= u.size(); i += 2) {
+        set_up_four(u[i], *out[i].wl, *out[i].pdf, *out[i].cie);
+        set_up_four(u[i + 1], *out[i + 1].wl, *out[i + 1].pdf, *out[i + 1].cie);
+    }
+    if (i < u.size())
+        set_up_four(u[i], *out[i].wl, *out[i].pdf, *out[i].cie);
 }
 
 [[gnu::target_clones("avx2", "default")]]  // as sample_wavelengths_tabulated

@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <cstring>
 #include <functional>
+#include <span>
 
 namespace patina {
 
@@ -296,6 +297,16 @@ inline PatinaWavelengths sample_wavelengths_tabulated(float u, int count, Sample
     sample_wavelengths_tabulated(u, count, wl, pdf, cie);
     return wl;
 }
+/// Where the per-sample spectral set-up of one sample goes.
+struct SpectralSetUp {
+    PatinaWavelengths* wl;
+    SampledSpectrum* pdf;
+    CieAtWavelengths* cie;
+};
+/// The set-up of several samples of 4 wavelengths each: out[i] gets bit for bit what
+/// sample_wavelengths_tabulated(u[i], 4, ...) gives, with the samples' look-ups interleaved
+/// so that their latencies overlap (one call for a whole batch of camera samples).
+void sample_wavelengths_tabulated4(std::span<const float> u, std::span<const SpectralSetUp> out);
 /// xyz_from_samples with the matching functions already looked up for L's wavelengths.
 Xyz xyz_from_samples(const SampledSpectrum& L, const CieAtWavelengths& cie,
                      const SampledSpectrum& pdf);

@@ -138,6 +138,7 @@ namespace {
     struct WaveTile {
         CameraBatch batch;  // its queries and hits (the paths hold the rest)
         std::array<float, kBatchRays> u_wavelengths;
+        std::array<SpectralSetUp, kBatchRays> set_up;  // where each sample's wavelengths go
         std::vector<WavefrontPath> paths;
         std::vector<uint32_t> pixel;  // the region's pixel index of each path
         WavefrontScratch scratch;
@@ -191,14 +192,26 @@ namespace {
                 }
                 scene.geometry->intersect_coherent(std::span(batch.queries.data(), n),
                                                    std::span(batch.hits.data(), n));
+                // The batch's wavelengths: for 4 (the usual count) in one call for all its
+                // samples, whose look-ups then overlap.
+                const size_t first = np;
                 n = 0;
                 for (int lx = tx0; lx < tx1; ++lx) {
                     for (int s = g0; s < g1; ++s, ++n, ++np) {
                         WavefrontPath& p = wt.paths[np];
                         p.hit = batch.hits[n];
-                        sample_wavelengths_tabulated(wt.u_wavelengths[n], film.wavelengths, p.wl,
-                                                     p.pdf, p.cie);
+                        wt.set_up[n] = {&p.wl, &p.pdf, &p.cie};
                         wt.pixel[np] = static_cast<uint32_t>(ly * w + lx);
+                    }
+                }
+                if (film.wavelengths == 4) {
+                    sample_wavelengths_tabulated4(std::span(wt.u_wavelengths.data(), n),
+                                                  std::span(wt.set_up.data(), n));
+                } else {
+                    for (size_t k = 0; k < n; ++k) {
+                        WavefrontPath& p = wt.paths[first + k];
+                        sample_wavelengths_tabulated(wt.u_wavelengths[k], film.wavelengths, p.wl,
+                                                     p.pdf, p.cie);
                     }
                 }
             }

@@ -146,5 +146,44 @@ namespace {
             }
     }
 
+    // The batched set-up (two samples interleaved, an odd one last) gives each sample what
+    // the one-sample call gives, bit for bit; the outputs' other lanes end at 0 whatever
+    // they held.
+    TEST(WavelengthTableTest, BatchedSetUpMatchesOneSampleAtATime)
+    {
+        for (size_t n : {size_t{1}, size_t{2}, size_t{7}, size_t{64}}) {
+            std::vector<float> u(n);
+            for (size_t k = 0; k < n; ++k)
+                u[k] = std::fmod(0.6180339f * static_cast<float>(k) + 0.01f, 1.0f);
+            u[0] = 0x1.fffffep-1f;
+            std::vector<PatinaWavelengths> wl(n);
+            std::vector<SampledSpectrum> pdf(n, SampledSpectrum(8, 7.0f));
+            std::vector<CieAtWavelengths> cie(n);
+            std::vector<SpectralSetUp> out(n);
+            for (size_t k = 0; k < n; ++k) {
+                std::fill(std::begin(wl[k].lambda_nm), std::end(wl[k].lambda_nm), 9.0f);
+                cie[k].x = cie[k].y = cie[k].z = cie[k].d65 = SampledSpectrum(8, 5.0f);
+                out[k] = {&wl[k], &pdf[k], &cie[k]};
+            }
+            sample_wavelengths_tabulated4(u, out);
+            for (size_t k = 0; k < n; ++k) {
+                SampledSpectrum pdf_1;
+                CieAtWavelengths cie_1;
+                const PatinaWavelengths wl_1 = sample_wavelengths_tabulated(u[k], 4, pdf_1, cie_1);
+                ASSERT_EQ(wl[k].count, 4);
+                ASSERT_EQ(pdf[k].count, 4);
+                ASSERT_EQ(cie[k].z.count, 4);
+                for (int i = 0; i < SampledSpectrum::kLanes; ++i) {
+                    EXPECT_EQ(wl[k].lambda_nm[i], wl_1.lambda_nm[i]) << n << " " << k << " " << i;
+                    EXPECT_EQ(pdf[k][i], pdf_1[i]);
+                    EXPECT_EQ(cie[k].x[i], cie_1.x[i]);
+                    EXPECT_EQ(cie[k].y[i], cie_1.y[i]);
+                    EXPECT_EQ(cie[k].z[i], cie_1.z[i]);
+                    EXPECT_EQ(cie[k].d65[i], cie_1.d65[i]);
+                }
+            }
+        }
+    }
+
 }  // namespace
 }  // namespace patina
