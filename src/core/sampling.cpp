@@ -76,11 +76,6 @@ uint64_t pixel_stream(uint64_t seed, int x, int y)
     return hash_values(seed, static_cast<uint32_t>(x), static_cast<uint32_t>(y));
 }
 
-Pcg32 sample_rng(uint64_t stream, uint64_t seed, uint64_t sample_index)
-{
-    return Pcg32(stream, mix_bits(sample_index ^ (seed * 0x9E3779B97F4A7C15ull)));
-}
-
 Distribution1D::Distribution1D(std::span<const float> f, float min, float max)
     : func_(f.begin(), f.end()), min_(min), max_(max)
 {

@@ -94,7 +94,12 @@ Pcg32 pixel_sample_rng(uint64_t seed, int x, int y, uint64_t sample_index);
 /// stream (hashed once per pixel) and the generator of one of its samples;
 /// pixel_sample_rng(seed, x, y, s) == sample_rng(pixel_stream(seed, x, y), seed, s).
 uint64_t pixel_stream(uint64_t seed, int x, int y);
-Pcg32 sample_rng(uint64_t stream, uint64_t seed, uint64_t sample_index);
+/// Inline: it runs once per camera sample, and the renderer's loop overlaps its arithmetic
+/// with the neighbouring samples' when it can see it.
+inline Pcg32 sample_rng(uint64_t stream, uint64_t seed, uint64_t sample_index)
+{
+    return Pcg32(stream, mix_bits(sample_index ^ (seed * 0x9E3779B97F4A7C15ull)));
+}
 
 /// A piecewise-constant density over [min, max] proportional to |f| (pbrt-v4's
 /// PiecewiseConstant1D). An all-zero (or empty) f is treated as constant.
