@@ -3,7 +3,8 @@
 # embree-tools) on the same OBJ scene in one run: a ~69k-triangle statue on a ground plane
 # (written by bench_make_bench_scene), diffuse (albedo 0.8), a uniform white environment,
 # 512x512, the same samples per pixel and the same maximum path length. Each renderer runs
-# RUNS times (default 2); the fastest render counts. Prints seconds and samples/s
+# RUNS times (default 5: the host's noise moves single runs by 10-20 %); the fastest render
+# counts. Prints seconds and samples/s
 # (width * height * spp / render seconds) of both and the ratio patina / embree, and for
 # reference Patina with [render] sample_uniform_sky = true (the uniform sky light-sampled
 # as well, a shadow ray per hit like the tutorial's loop; patina-render's default leaves
@@ -18,7 +19,7 @@
 #   --keep DIR   copy the scene, Patina's EXR and PNG and one Embree frame (PPM) into DIR
 #
 # Environment: PATINA_BUILD_DIR (default build/, as made by ./test.sh; nothing is built
-# here), SPP (16), SIZE (512), MAX_DEPTH (8), THREADS (2), RUNS (2), PATHTRACER (the
+# here), SPP (16), SIZE (512), MAX_DEPTH (8), THREADS (2), RUNS (5), PATHTRACER (the
 # embree-tools binary, default `pathtracer` on PATH).
 #
 # What is timed (render only, for both; scene loading and BVH builds are excluded):
@@ -47,7 +48,7 @@ spp=${SPP:-16}
 size=${SIZE:-512}
 max_depth=${MAX_DEPTH:-8}
 threads=${THREADS:-2}
-runs=${RUNS:-2}
+runs=${RUNS:-5}
 pathtracer=${PATHTRACER:-pathtracer}
 count_rays=0
 keep=""
