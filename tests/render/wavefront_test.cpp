@@ -172,6 +172,25 @@ TEST(Wavefront, RenderBitwiseAsThePerPathLoop)
     EXPECT_EQ(differing, 0);
 }
 
+// Other counts of hero wavelengths than 4 take the one-sample set-up in the wavefront's
+// camera batches (4 takes the batched one): still bitwise the per-path loop.
+TEST(Wavefront, OtherWavelengthCountsBitwiseAsThePerPathLoop)
+{
+    auto l = load(write_scene("wavefront_mixed", kMixedScene));
+    const pr::Region full{0, 0, l->scene.film.width, l->scene.film.height};
+    for (int count : {3, 8}) {
+        l->scene.film.wavelengths = count;
+        const pr::FilmResult wave = pr::render_region(l->scene, full, {2, true, std::nullopt});
+        pr::FilmResult per_path;
+        {
+            PerPathLoop force;
+            per_path = pr::render_region(l->scene, full, {2, true, std::nullopt});
+        }
+        EXPECT_TRUE(same_bits(wave.xyz, per_path.xyz)) << count << " wavelengths";
+        EXPECT_GT(mean_y(wave.xyz), 0.01);
+    }
+}
+
 TEST(Wavefront, BsdfOnlyIntegratorBitwiseAsThePerPathLoop)
 {
     std::string text = kMixedScene;
