@@ -16,6 +16,8 @@
 #include <fstream>
 #include <set>
 
+#include <unistd.h>
+
 namespace fs = std::filesystem;
 namespace pr = patina::render;
 
@@ -26,7 +28,11 @@ inline fs::path write_scene(const std::string& name, const std::string& text)
     const fs::path dir = fs::path(PATINA_TEST_BUILD_DIR) / "render_scenes";
     fs::create_directories(dir);
     const fs::path p = dir / (name + ".toml");
-    std::ofstream(p) << text;
+    // Under a name of this process's own, then renamed: tests that run side by side (ctest
+    // -j) write the same scene, and one must never read another's half-written file.
+    const fs::path tmp = dir / (name + ".tmp" + std::to_string(::getpid()) + ".toml");
+    std::ofstream(tmp) << text;
+    fs::rename(tmp, p);
     return p;
 }
 

@@ -19,6 +19,8 @@
 #include <stdexcept>
 #include <string>
 
+#include <unistd.h>
+
 namespace slab_test {
 
 namespace fs = std::filesystem;
@@ -71,14 +73,18 @@ inline fs::path write_volume(const std::string& name, int nx, int ny, int nz, Ve
     const float* c = counts_override ? counts_override : n;
     const float b[9] = {lo.x, lo.y, lo.z, hi.x, hi.y, hi.z, c[0], c[1], c[2]};
 
-    auto out = OIIO::ImageOutput::create(path.string());
+    // Written under a name of this process's own, then renamed: tests that run side by side
+    // (ctest -j) write the same volume, and one must never read another's half-written file.
+    const fs::path tmp = scratch_dir() / (name + ".tmp" + std::to_string(::getpid()) + ".exr");
+    auto out = OIIO::ImageOutput::create(tmp.string());
     const OIIO::ImageSpec specs[2] = {voxels, bounds};
-    if (!out || !out->open(path.string(), 2, specs) ||
+    if (!out || !out->open(tmp.string(), 2, specs) ||
         !out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()) ||
-        !out->open(path.string(), bounds, OIIO::ImageOutput::AppendSubimage) ||
+        !out->open(tmp.string(), bounds, OIIO::ImageOutput::AppendSubimage) ||
         !out->write_image(OIIO::TypeDesc::FLOAT, b) || !out->close())
-        throw std::runtime_error("cannot write test volume " + path.string() + ": " +
+        throw std::runtime_error("cannot write test volume " + tmp.string() + ": " +
                                  (out ? out->geterror() : OIIO::geterror()));
+    fs::rename(tmp, path);
     return path;
 }
 
