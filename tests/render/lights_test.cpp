@@ -485,6 +485,17 @@ TEST(LightSampler, UniformWhenAllPowersAreZero)
     EXPECT_EQ(pr::LightSampler().pmf(first), 0.0f);
 }
 
+// Every u chooses `light`, with probability 1.
+static void expect_always_chosen(const pr::LightSampler& sampler, const pr::Light* light)
+{
+    for (float u : {0.0f, 0.5f, 0x1.fffffep-1f}) {
+        ASSERT_TRUE(sampler.sample(u));
+        EXPECT_EQ(sampler.sample(u)->light, light);
+        EXPECT_EQ(sampler.sample(u)->pmf, 1.0f);
+    }
+    EXPECT_EQ(sampler.pmf(light), 1.0f);
+}
+
 // One light is chosen with probability 1 whatever its power; a constant environment is the
 // uniform sky the integrator evaluates once per path, a map or a sun is not.
 TEST(LightSampler, OneLightAndTheUniformSky)
@@ -494,12 +505,7 @@ TEST(LightSampler, OneLightAndTheUniformSky)
         lights.push_back(std::make_unique<pr::DistantLight>(V3f(0, 0, 1), 0.0f, sun_colour(), power));
         const pr::Light* sun = lights[0].get();
         const pr::LightSampler sampler(std::move(lights));
-        for (float u : {0.0f, 0.5f, 0x1.fffffep-1f}) {
-            ASSERT_TRUE(sampler.sample(u));
-            EXPECT_EQ(sampler.sample(u)->light, sun);
-            EXPECT_EQ(sampler.sample(u)->pmf, 1.0f);
-        }
-        EXPECT_EQ(sampler.pmf(sun), 1.0f);
+        expect_always_chosen(sampler, sun);
         EXPECT_EQ(sampler.pmf(nullptr), 0.0f);
         EXPECT_EQ(sampler.uniform_sky(), nullptr);
     }
@@ -532,12 +538,7 @@ TEST(LightSampler, UniformSkyLeftToBsdfSamplingUnlessAsked)
         const pr::LightSampler sampler(std::move(lights));
         EXPECT_EQ(sampler.uniform_sky(), sky);
         EXPECT_TRUE(sampler.has_sampled_lights());
-        for (float u : {0.0f, 0.5f, 0x1.fffffep-1f}) {
-            ASSERT_TRUE(sampler.sample(u));
-            EXPECT_EQ(sampler.sample(u)->light, sun);
-            EXPECT_EQ(sampler.sample(u)->pmf, 1.0f);
-        }
-        EXPECT_EQ(sampler.pmf(sun), 1.0f);
+        expect_always_chosen(sampler, sun);
         EXPECT_EQ(sampler.pmf(sky), 0.0f);
         EXPECT_EQ(sampler.uniform_sky_pmf(), 0.0f);
         // Rays escaping to the sky still find it.
