@@ -3,6 +3,7 @@
 #include "texgen/cli/commands.h"
 
 #include "core/cancel.h"
+#include "core/output_transaction.h"
 #include "texgen/patina/script_error.h"
 
 #include <CLI/CLI.hpp>
@@ -33,7 +34,12 @@ int main(int argc, char** argv)
 
     patina::install_cancel_handler();
     try {
+        // Every file the command writes is staged, and moves into place only when the
+        // command has finished without error: all of its outputs, or none.
+        patina::OutputTransaction outputs;
+        const patina::CurrentOutputs current(outputs);
         app.parse(argc, argv);
+        outputs.commit();
         return 0;
     } catch (const CLI::ParseError& e) {
         return app.exit(e);

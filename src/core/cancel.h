@@ -13,8 +13,9 @@ public:
     Cancelled() : std::runtime_error("cancelled (interrupt or terminate signal)") {}
 };
 
-/// Route SIGINT and SIGTERM to the cancellation flag (a second signal of the same kind
-/// terminates at once, for a process stuck outside a polling loop).
+/// Route SIGINT and SIGTERM to the cancellation flag. A second signal terminates at once,
+/// for a process stuck outside a polling loop; one within 0.25 s of the first is taken for
+/// the same signal delivered twice (timeout(1) signals the process, then its group).
 void install_cancel_handler();
 /// True once a signal arrived (or request_cancel was called).
 bool cancel_requested();
@@ -24,5 +25,22 @@ void request_cancel();
 void reset_cancel();
 /// Throw Cancelled if the flag is set.
 void throw_if_cancelled();
+
+/// Fault injection for the interruption tests: when $PATINA_TEST_SIGNAL_AT names `phase`,
+/// the process sends itself SIGTERM here, once, exactly as a farm's kill would arrive.
+/// The phases: "setup" (inputs loaded, compute about to start: Progress is made), "compute"
+/// (half of a Progress done), "write" (the first output file is staged).
+void signal_point(const char* phase);
+
+/// While one lives, a second SIGINT/SIGTERM does not terminate the process at once: it is
+/// held until the last HoldTermination ends, then carried out. A commit's renames are never
+/// cut half-way. (The first signal only sets the flag, as always.)
+class HoldTermination {
+public:
+    HoldTermination();
+    ~HoldTermination();
+    HoldTermination(const HoldTermination&) = delete;
+    HoldTermination& operator=(const HoldTermination&) = delete;
+};
 
 }  // namespace patina

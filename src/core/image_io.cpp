@@ -1,5 +1,7 @@
 #include "core/image_io.h"
 
+#include "core/output_transaction.h"
+
 #include <fstream>
 
 #include <OpenImageIO/imagebufalgo.h>
@@ -8,9 +10,6 @@
 
 #include <cmath>
 
-#include <unistd.h>
-
-#include <atomic>
 #include <sstream>
 #include <stdexcept>
 
@@ -25,35 +24,6 @@ namespace {
             text.pop_back();
         return text.empty() ? std::string("unknown OpenImageIO error") : text;
     }
-
-    /// Removes the temporary file unless disarmed: every early exit (error or exception)
-    /// cleans up.
-    class TemporaryFile {
-    public:
-        explicit TemporaryFile(std::filesystem::path p) : path_(std::move(p)) {}
-        ~TemporaryFile()
-        {
-            std::error_code ec;
-            if (!path_.empty())
-                std::filesystem::remove(path_, ec);
-        }
-        TemporaryFile(const TemporaryFile&) = delete;
-        TemporaryFile& operator=(const TemporaryFile&) = delete;
-        const std::filesystem::path& path() const { return path_; }
-        /// Rename over `target` (atomic within one file system) and forget the temporary.
-        void commit(const std::filesystem::path& target)
-        {
-            std::error_code ec;
-            std::filesystem::rename(path_, target, ec);
-            if (ec)
-                throw std::runtime_error(fmt::format("cannot write image '{}': renaming {} failed: {}",
-                                                     target.string(), path_.string(), ec.message()));
-            path_.clear();
-        }
-
-    private:
-        std::filesystem::path path_;
-    };
 
     void check_format(const std::filesystem::path& path, OIIO::TypeDesc format)
     {
@@ -88,19 +58,13 @@ namespace {
 
 }  // namespace
 
-std::filesystem::path temporary_path_for(const std::filesystem::path& path)
-{
-    static std::atomic<unsigned> counter{0};
-    return fmt::format("{}.tmp-{}-{}", path.string(), static_cast<long>(::getpid()), counter++);
-}
-
 void write_file_atomic(const std::filesystem::path& path,
                        std::initializer_list<std::string_view> parts, std::string_view what)
 {
-    const std::filesystem::path tmp = temporary_path_for(path);
+    StagedOutput staged(path);
     bool ok = false;
     {
-        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+        std::ofstream out(staged.path(), std::ios::binary | std::ios::trunc);
         if (out) {
             for (const std::string_view part : parts)
                 out.write(part.data(), static_cast<std::streamsize>(part.size()));
@@ -108,14 +72,9 @@ void write_file_atomic(const std::filesystem::path& path,
             ok = static_cast<bool>(out);
         }
     }
-    std::error_code ec;
-    if (ok)
-        std::filesystem::rename(tmp, path, ec);
-    if (!ok || ec) {
-        std::filesystem::remove(tmp, ec);
-        throw std::runtime_error(fmt::format("cannot write {} '{}': {}", what, path.string(),
-                                             ok ? "rename failed" : "write failed"));
-    }
+    if (!ok)
+        throw std::runtime_error(fmt::format("cannot write {} '{}': write failed", what, path.string()));
+    staged.done();
 }
 
 void write_image_atomic(const std::filesystem::path& path, const float* pixels, int width,
@@ -143,15 +102,15 @@ void write_image_atomic(const std::filesystem::path& path, const float* pixels, 
     auto out = OIIO::ImageOutput::create(path.string());
     if (!out)
         throw std::runtime_error(fmt::format("cannot write image '{}': {}", path.string(), oiio_error("")));
-    TemporaryFile tmp(temporary_path_for(path));
-    bool ok = out->open(tmp.path().string(), spec) &&
+    StagedOutput staged(path);
+    bool ok = out->open(staged.path().string(), spec) &&
               out->write_image(OIIO::TypeDesc::FLOAT, pixels);
     ok = out->close() && ok;
     if (!ok)
         throw std::runtime_error(fmt::format("cannot write image '{}': {}", path.string(),
                                              oiio_error(out->geterror())));
     out.reset();
-    tmp.commit(path);
+    staged.done();
 }
 
 void make_texture_atomic(const std::filesystem::path& path, const OIIO::ImageBuf& image,
@@ -179,16 +138,16 @@ void make_texture_atomic(const std::filesystem::path& path, const OIIO::ImageBuf
         config.attribute("maketx:filtername", options.mip_filter);
     add_metadata(config, options.metadata);
 
-    TemporaryFile tmp(temporary_path_for(path));
+    StagedOutput staged(path, options.outside_the_run);
     std::ostringstream log;
     if (!OIIO::ImageBufAlgo::make_texture(OIIO::ImageBufAlgo::MakeTxTexture, image,
-                                          tmp.path().string(), config, &log)) {
+                                          staged.path().string(), config, &log)) {
         std::string text = oiio_error("");
         if (text == "unknown OpenImageIO error" && !log.str().empty())
             text = log.str();
         throw std::runtime_error(fmt::format("cannot make texture '{}': {}", path.string(), text));
     }
-    tmp.commit(path);
+    staged.done();
 }
 
 void make_texture_atomic(const std::filesystem::path& path, const float* pixels, int width,

@@ -1,6 +1,7 @@
-// Image files through OpenImageIO only: atomic writes (temporary name + rename, so a failed
-// or cancelled write never leaves a half-written file nor replaces a good one), tiled
-// mip-mapped textures (ImageBufAlgo::make_texture) with the same rule, and plain reads.
+// Image files through OpenImageIO only: atomic writes (staged in the run's output transaction,
+// output_transaction.h, so a failed or cancelled run never leaves a half-written file nor
+// replaces a good one), tiled mip-mapped textures (ImageBufAlgo::make_texture) with the same
+// rule, and plain reads.
 #pragma once
 
 #include <OpenImageIO/imagebuf.h>
@@ -54,12 +55,9 @@ struct ImageWindow {
     int full_width = 0, full_height = 0;
 };
 
-/// The temporary name a write goes to before the rename: `<path>.tmp-<pid>-<n>`, in the
-/// same folder (so the rename is atomic), `n` unique within the process.
-std::filesystem::path temporary_path_for(const std::filesystem::path& path);
-
-/// Write the concatenation of `parts` to `path` as bytes, under a temporary name renamed
-/// when complete (a text manifest, a PLY): a failed write leaves `path` as it was. Throws
+/// Write the concatenation of `parts` to `path` as bytes (a text manifest, a PLY), staged in
+/// the current output transaction (or one of its own, committed at once): a failed write
+/// or run leaves `path` as it was. Throws
 /// std::runtime_error "cannot write <what> '<path>': ...".
 void write_file_atomic(const std::filesystem::path& path,
                        std::initializer_list<std::string_view> parts, std::string_view what);
@@ -69,9 +67,8 @@ void write_file_atomic(const std::filesystem::path& path,
 /// file: TypeDesc::HALF, FLOAT or UINT8 (UINT8 maps [0,1] to [0,255], clamped).
 /// `channel_names` may be empty (R, G, B, A, then channelN) or name every channel (an
 /// OpenEXR file keeps them sorted by name; readers must look channels up by name).
-/// Writes `<path>.tmp-<pid>-<n>` and renames it over `path` only when complete; on any
-/// failure the temporary file is removed, `path` is untouched, and std::runtime_error names
-/// the file with OIIO's error text.
+/// Staged like write_file_atomic: on any failure `path` is untouched and std::runtime_error
+/// names the file with OIIO's error text.
 void write_image_atomic(const std::filesystem::path& path, const float* pixels, int width,
                         int height, int channels,
                         const std::vector<std::string>& channel_names,
@@ -87,11 +84,13 @@ struct TextureOptions {
     /// Mip-level filter ("" = OIIO's default box/bilinear; "lanczos3" sharper, rings).
     std::string mip_filter;
     Metadata metadata;                 ///< written into the header (bake parameters)
+    /// Commit this file at once, outside the current output transaction (a cache that the
+    /// run reads back by its final name).
+    bool outside_the_run = false;
 };
 
 /// Turn `image` into a tiled, mip-mapped OpenEXR texture at `path`
-/// (ImageBufAlgo::make_texture), with the same temporary-name + rename rule and errors as
-/// write_image_atomic.
+/// (ImageBufAlgo::make_texture), staged and reported as write_image_atomic.
 void make_texture_atomic(const std::filesystem::path& path, const OIIO::ImageBuf& image,
                          const TextureOptions& options = {});
 /// The same from interleaved float pixels.

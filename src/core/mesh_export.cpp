@@ -1,6 +1,7 @@
 #include "core/mesh_export.h"
 
 #include "core/image_io.h"
+#include "core/output_transaction.h"
 
 #include <assimp/Exporter.hpp>
 #include <assimp/scene.h>
@@ -86,15 +87,12 @@ void save_mesh(const std::filesystem::path& path, const TriangleMesh& mesh)
     validate_mesh(mesh, fmt::format("cannot write mesh '{}'", path.string()));
     const std::string format = format_id_for(path);
     const std::unique_ptr<aiScene> scene = make_scene(mesh);
-    const std::filesystem::path tmp = temporary_path_for(path);
+    StagedOutput staged(path);
     Assimp::Exporter exporter;
-    if (exporter.Export(scene.get(), format, tmp.string()) != aiReturn_SUCCESS) {
-        std::error_code ec;
-        std::filesystem::remove(tmp, ec);
+    if (exporter.Export(scene.get(), format, staged.path().string()) != aiReturn_SUCCESS)
         throw std::runtime_error(fmt::format("cannot write mesh '{}': {}", path.string(),
                                              exporter.GetErrorString()));
-    }
-    std::filesystem::rename(tmp, path);
+    staged.done();
 }
 
 }  // namespace patina

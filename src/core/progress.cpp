@@ -1,5 +1,7 @@
 #include "core/progress.h"
 
+#include "core/cancel.h"
+
 #include <algorithm>
 #include <cstdio>
 
@@ -8,11 +10,14 @@ namespace patina {
 Progress::Progress(size_t total, bool quiet, std::string label)
     : total_(total), quiet_(quiet), label_(std::move(label)), start_(clock::now())
 {
+    signal_point("setup");
 }
 
 void Progress::step(size_t units)
 {
     const size_t done = done_ += units;
+    if (const size_t half = (total_ + 1) / 2; done - units < half && done >= half)
+        signal_point("compute");
     if (quiet_ || total_ == 0)
         return;
     std::lock_guard lock(mutex_);

@@ -72,6 +72,7 @@ fs::path converted_texture(const fs::path& file, std::string_view colorspace,
             image.pixels[i * nc + k] = rgb[i * 3 + k];
     TextureOptions opt;
     opt.format = OIIO::TypeDesc::FLOAT;  // half would round converted 8-bit values by ~5e-4
+    opt.outside_the_run = true;           // read back by its name below, in this run
     opt.metadata = {{"patina:source", source.string()},
                     {"patina:source_colorspace", std::string(colorspace)},
                     {"oiio:ColorSpace", colors.working_space()}};

@@ -19,6 +19,14 @@ void check_output_path(const fs::path& exr)
             fmt::format("output folder '{}' does not exist", exr.parent_path().string()));
 }
 
+std::vector<fs::path> film_files(const Scene& scene, const fs::path& exr)
+{
+    std::vector<fs::path> files{exr};
+    if (scene.output.png)
+        files.push_back(fs::path(exr).replace_extension(".png"));
+    return files;
+}
+
 void write_film(const Scene& scene, const FilmResult& film, const fs::path& exr,
                 const fs::path& scene_file, const ColorManager& colors)
 {
@@ -76,12 +84,9 @@ void write_film(const Scene& scene, const FilmResult& film, const fs::path& exr,
                        static_cast<int>(nc), names,
                        scene.output.half ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT, meta,
                        &window);
-    if (scene.output.png) {
-        fs::path png = exr;
-        png.replace_extension(".png");
-        write_image_atomic(png, display.data(), film.region.width(), film.region.height(), 3, {},
-                           OIIO::TypeDesc::UINT8);
-    }
+    if (scene.output.png)
+        write_image_atomic(film_files(scene, exr).back(), display.data(), film.region.width(),
+                           film.region.height(), 3, {}, OIIO::TypeDesc::UINT8);
 }
 
 }  // namespace patina::render

@@ -8,11 +8,16 @@
 #include "core/color_management.h"
 
 #include <filesystem>
+#include <vector>
 
 namespace patina::render {
 
 /// Throws when `exr` is not an .exr path in an existing folder.
 void check_output_path(const std::filesystem::path& exr);
+
+/// The files write_film writes for `exr`: the EXR, and the PNG beside it when the scene
+/// asks for one.
+std::vector<std::filesystem::path> film_files(const Scene& scene, const std::filesystem::path& exr);
 
 /// Convert the film's XYZ to the working space, write `exr` (and `<stem>.png` when the scene
 /// asks), each through a temporary name.

@@ -2,6 +2,7 @@
 #include "render/plugin_setup.h"
 #include "render/renderer.h"
 
+#include "core/cancel.h"
 #include "core/host.h"
 
 #include <CLI/CLI.hpp>
@@ -60,6 +61,7 @@ int main(int argc, char** argv)
         return 2;
     }
 
+    patina::install_cancel_handler();
     try {
         search.bundled = !no_bundled;
         search.command_line.assign(plugin_paths.begin(), plugin_paths.end());
@@ -71,6 +73,10 @@ int main(int argc, char** argv)
         }
         pr::render_scene_file(scene_file, search, options);
         return 0;
+    } catch (const patina::Cancelled& e) {
+        std::fprintf(stderr, "\npatina-render: %s; the interrupted frame's outputs were not "
+                             "written, earlier files are as they were\n", e.what());
+        return 130;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "patina-render: error: %s\n", e.what());
         return 1;

@@ -6,7 +6,9 @@
 #include "core/progress.h"
 #include "render/scene.h"
 
+#include "core/cancel.h"
 #include "core/host.h"
+#include "core/output_transaction.h"
 
 #include <fmt/format.h>
 #include <tbb/global_control.h>
@@ -161,6 +163,8 @@ namespace {
             streams[static_cast<size_t>(lx - tx0)] = pixel_stream(film.seed, region.x0 + lx, y);
         CameraBatch& batch = wt.batch;
         for (int c0 = s0, c1 = 0; c0 < s1; c0 = c1) {
+            if (cancel_requested())
+                return;  // the pass is thrown away (render_region)
             c1 = std::min(s1, (c0 / kWaveSamples + 1) * kWaveSamples);
             wt.paths.resize(static_cast<size_t>(tx1 - tx0) * static_cast<size_t>(c1 - c0));
             wt.pixel.resize(wt.paths.size());
@@ -317,6 +321,8 @@ FilmResult render_region(const Scene& scene, const Region& region, const RenderC
     for (int pass = 0; pass < passes; ++pass) {
         const int s0 = pass * pass_spp, s1 = std::min(film.spp, s0 + pass_spp);
         tbb::parallel_for(0, tiles_x * tiles_y, [&](int tile) {
+            if (cancel_requested())
+                return;  // a signal: the remaining tiles are skipped, the pass is thrown away
             const DenormalsAreZero daz;
             const int tx0 = (tile % tiles_x) * kTileSize, ty0 = (tile / tiles_x) * kTileSize;
             const int tx1 = std::min(tx0 + kTileSize, w);
@@ -343,6 +349,8 @@ FilmResult render_region(const Scene& scene, const Region& region, const RenderC
                 // Samples in groups aligned to multiples of kBatchSamples, whatever the pass
                 // size, so that a batch holds the same rays in every render of the pixel.
                 for (int g0 = s0; g0 < s1; g0 = std::min(s1, (g0 / kBatchSamples + 1) * kBatchSamples)) {
+                    if (cancel_requested())
+                        return;  // the pass is thrown away below
                     const int g1 = std::min(s1, (g0 / kBatchSamples + 1) * kBatchSamples);
                     // The camera rays of the row's pixels and these samples, traced as one
                     // coherent stream; each sample keeps its own generator for its path.
@@ -393,6 +401,7 @@ FilmResult render_region(const Scene& scene, const Region& region, const RenderC
             }
             progress.step();
         });
+        throw_if_cancelled();
         spp_done = s1;
         if (control.time_limit && progress.seconds() > *control.time_limit)
             break;
@@ -469,11 +478,18 @@ namespace {
             throw std::runtime_error(fmt::format(
                 "{}: no output file: set [output] file or pass --output", scene_file.string()));
         check_output_path(exr);
+        // The EXR and the PNG move into place together, after both are complete; their
+        // locations are checked before the render starts.
+        OutputTransaction outputs;
+        const CurrentOutputs current(outputs);
+        for (const fs::path& file : film_files(scene, exr))
+            outputs.reserve(file);
 
         const Region region = region_for(scene, options);
         const FilmResult film = render_region(scene, region, {options.threads, options.quiet,
                                                              options.time_limit});
         write_film(scene, film, exr, scene_file, host.colors());
+        outputs.commit();
     }
 
 }  // namespace
@@ -494,7 +510,15 @@ void render_scene_file(const fs::path& scene_file, PluginSearch search, const Re
         if (!fs::exists(scene_path))
             throw std::runtime_error(fmt::format("frame {}: scene file '{}' does not exist", frame,
                                                  scene_path.string()));
-        render_frame(scene_path, search, options, out);
+        try {
+            render_frame(scene_path, search, options, out);
+        } catch (const Cancelled&) {
+            // Each frame is committed on its own: say which ones are complete.
+            if (frame > first)
+                std::fprintf(stderr, "patina-render: frames %d-%d were written before the "
+                                     "stop; frame %d was not\n", first, frame - 1, frame);
+            throw;
+        }
     }
 }
 

@@ -35,12 +35,14 @@ namespace {
         return p;
     }
 
-    /// Files in `dir` whose name contains ".tmp-" (left-over temporaries).
+    /// Left-over staging folders (".patina-staging-*") or old-style temporaries in `dir`.
     int temporaries_in(const std::filesystem::path& dir)
     {
         int n = 0;
-        for (const auto& e : std::filesystem::directory_iterator(dir))
-            n += e.path().filename().string().find(".tmp-") != std::string::npos;
+        for (const auto& e : std::filesystem::directory_iterator(dir)) {
+            const std::string name = e.path().filename().string();
+            n += name.find(".tmp-") != std::string::npos || name.starts_with(".patina-staging-");
+        }
         return n;
     }
 
@@ -115,8 +117,10 @@ TEST(ImageIo, UnwritableFolderThrowsNamingFileAndLeavesNothing)
     const auto dir = scratch("locked");
     std::filesystem::create_directories(dir);
     const auto pixels = gradient(4, 4, 3);
-    // A folder that does not exist cannot be written by anyone, root included.
-    const auto missing = dir / "no_such_folder" / "out.exr";
+    // A folder that is a file cannot be written by anyone, root included (a missing folder
+    // is made when the output moves into place).
+    { std::ofstream(dir / "not_a_folder") << "x"; }
+    const auto missing = dir / "not_a_folder" / "out.exr";
     const std::string msg = message_of(
         [&] { write_image_atomic(missing, pixels.data(), 4, 4, 3, {}, OIIO::TypeDesc::HALF); });
     EXPECT_NE(msg.find(missing.string()), std::string::npos) << msg;

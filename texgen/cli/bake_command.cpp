@@ -1,6 +1,8 @@
 #include "texgen/cli/bake_command.h"
 
+#include "core/output_transaction.h"
 #include "core/progress.h"
+#include "texgen/stack/manifest.h"
 #include "texgen/bake/bake_driver.h"
 #include "texgen/texels/mesh_merge.h"
 #include "texgen/texels/texel_grid.h"
@@ -66,6 +68,13 @@ void run_bake(const CommonBakeOptions& options, const BakerFactory& make_baker, 
     if (options.threads > 0)
         threads.emplace(tbb::global_control::max_allowed_parallelism,
                         static_cast<size_t>(options.threads));
+
+    // Outputs first: a location that cannot be written, or a manifest that cannot be
+    // updated, fails before the bake.
+    if (!options.per_vertex.empty())
+        reserve_output(options.per_vertex);
+    else
+        check_manifest_can_be_updated(options.out_dir);
 
     const TriangleMesh target = load_merged_mesh(options.mesh);
     EmbreeScene scene;
@@ -138,7 +147,6 @@ void run_bake(const CommonBakeOptions& options, const BakerFactory& make_baker, 
         MapOutputOptions output;
         output.padding = options.padding;
         output.format = options.half ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT;
-        std::filesystem::create_directories(options.out_dir);
         const auto files = write_texel_map(options.out_dir, map, tiles, values, output);
         record_in_manifest(options.out_dir, map, files, tiles);
         written = files.size() == 1 ? files.front().string()

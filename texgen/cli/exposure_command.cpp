@@ -107,12 +107,13 @@ void run_exposure(const ExposureArguments& a)
     AccumulationOptions accumulation;
     accumulation.sun_bin_deg = a.sun_bins_deg;
     accumulation.sky_cells = a.sky_samples;
+    accumulation.progress = !a.common.quiet;
     const ExposureSky sky = accumulate_exposure(period, sky_model, accumulation);
     if (!a.common.quiet)
         std::fprintf(stderr,
                      "exposure: %zu time steps, %.4g MJ/m^2 direct normal, %.4g MJ/m^2 diffuse "
                      "horizontal -> %zu sun bins + %d sky cells (at most %zu rays per sample)\n",
-                     period.steps.size(), sky.direct_normal * 1e-6,
+                     sky.steps, sky.direct_normal * 1e-6,
                      sky.diffuse_horizontal * 1e-6, sky.sun_bins.size(),
                      sky.non_empty_sky_cells,
                      sky.sun_bins.size() + static_cast<size_t>(sky.non_empty_sky_cells));

@@ -4,6 +4,7 @@
 #include "texgen/cli/commands.h"
 
 #include "core/cancel.h"
+#include "core/output_transaction.h"
 #include "core/progress.h"
 #include "texgen/fade/dose_table.h"
 #include "texgen/fade/fade_map.h"
@@ -197,6 +198,10 @@ void run_fade(const FadeOptions& o)
                                      material.name + "'s colorants");
         material = fade::with_rates(material, rates);
     }
+    // Output locations, before any work.
+    reserve_output(o.out_dir / fade::kFadeToml);
+    if (!o.plot.empty())
+        reserve_output(o.plot);
     const fade::WavelengthGrid grid = parse_grid(o.wavelengths);
     const double duration_s = parse_duration(o.duration);
     const Doses doses = gather_doses(o, duration_s);

@@ -52,8 +52,6 @@ void write_mesh(const MeshOptions& o)
         throw std::runtime_error("mesh: unknown kind '" + o.kind +
                                  "' (statue, sphere, tower, plane)");
     }
-    if (o.out.has_parent_path())
-        std::filesystem::create_directories(o.out.parent_path());
     save_mesh(o.out, mesh);
     std::fprintf(stderr, "mesh: %s, %zu triangles, %zu vertices -> %s\n", o.kind.c_str(),
                  mesh.triangle_count(), mesh.positions.size(), o.out.string().c_str());

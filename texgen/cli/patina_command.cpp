@@ -4,6 +4,7 @@
 
 #include "core/cancel.h"
 #include "core/color_management.h"
+#include "core/output_transaction.h"
 #include "core/progress.h"
 #include "texgen/patina/interpreter.h"
 #include "texgen/patina/material_library.h"
@@ -62,6 +63,7 @@ void run_patina(const PatinaOptions& o)
         threads.emplace(tbb::global_control::max_allowed_parallelism, o.threads);
     const auto start = std::chrono::steady_clock::now();
 
+    reserve_output(o.out_dir / "series.toml");  // a bad output folder fails before the run
     ColorManager colors(ColorManager::default_config_path());
     MaterialLibrary library;
     std::vector<fs::path> library_files = MaterialLibrary::default_files();

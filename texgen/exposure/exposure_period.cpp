@@ -62,20 +62,33 @@ ExposurePeriod clear_sky_period(const ClearSkyPeriodOptions& o)
     ExposurePeriod period;
     period.duration_s = (jd_end - jd_start) * 86400.0;
     const double step_days = o.step_minutes / kMinutesPerDay;
-    const auto count = static_cast<long long>(std::ceil((jd_end - jd_start) / step_days - 1e-9));
-    for (long long i = 0; i < count; ++i) {
-        // Midpoint rule; the last step ends at jd_end.
-        const double t0 = jd_start + static_cast<double>(i) * step_days;
-        const double t1 = std::min(jd_end, t0 + step_days);
-        const double mid = 0.5 * (t0 + t1);
-        const SolarPosition sun = solar_position(mid, o.site);
-        const ClearSkyIrradiance c = ineichen_perez(
-            sun.zenith_deg, extraterrestrial_normal_irradiance(sun.earth_radius_vector_au), sky);
-        if (c.ghi <= 0.0)
-            continue;
-        period.steps.push_back({mid, (t1 - t0) * 86400.0,
-                                sun_direction(sun.zenith_deg, sun.azimuth_deg), c.dni, c.dhi});
-    }
+    const double steps = std::ceil((jd_end - jd_start) / step_days - 1e-9);
+    if (steps > kMaxPeriodSteps)
+        throw std::runtime_error(fmt::format(
+            "--step-minutes {}: the period from {} to {} would have {:.3g} steps, more than "
+            "the limit of {:.0e}; take a longer step",
+            number(o.step_minutes), format_date_time(o.start), format_date_time(o.end), steps,
+            kMaxPeriodSteps));
+    const auto count = static_cast<long long>(steps);
+    period.step_bound = static_cast<size_t>(count);
+    const SolarSite site = o.site;
+    period.for_each_step = [=](const StepSink& sink) {
+        for (long long i = 0; i < count; ++i) {
+            // Midpoint rule; the last step ends at jd_end.
+            const double t0 = jd_start + static_cast<double>(i) * step_days;
+            const double t1 = std::min(jd_end, t0 + step_days);
+            const double mid = 0.5 * (t0 + t1);
+            const SolarPosition sun = solar_position(mid, site);
+            const ClearSkyIrradiance c = ineichen_perez(
+                sun.zenith_deg, extraterrestrial_normal_irradiance(sun.earth_radius_vector_au),
+                sky);
+            // A step without light is visited too (its irradiance 0), so that a consumer
+            // polls for cancellation through a polar night as well.
+            const bool lit = c.ghi > 0.0;
+            sink({mid, (t1 - t0) * 86400.0, sun_direction(sun.zenith_deg, sun.azimuth_deg),
+                  lit ? c.dni : 0.0, lit ? c.dhi : 0.0});
+        }
+    };
 
     Metadata& m = period.parameters;
     m.push_back({"source", std::string("clear-sky model")});
@@ -113,7 +126,9 @@ ExposurePeriod epw_period(const EpwFile& file, const EpwPeriodOptions& o)
     const int substeps = std::max(1, static_cast<int>(std::lround(interval / o.step_minutes)));
     const double sub_days = interval / substeps / kMinutesPerDay;
 
+    // A weather file's steps are bounded by the file (8760 rows a year): kept in memory.
     ExposurePeriod period;
+    std::vector<IrradianceStep> all_steps;
     size_t rows = 0;
     std::vector<SolarPosition> suns(substeps);
     for (const EpwRecord& r : file.records) {
@@ -157,11 +172,16 @@ ExposurePeriod epw_period(const EpwFile& file, const EpwPeriodOptions& o)
             step.dni = sun_up ? direct_j / (up * sub_s) : 0.0;
             step.dhi = diffuse_j / (substeps * sub_s);
             if (step.dni > 0.0 || step.dhi > 0.0)
-                period.steps.push_back(step);
+                all_steps.push_back(step);
         }
     }
     if (rows == 0)
         throw std::runtime_error(file.path + ": no data row lies in the requested date range");
+    period.step_bound = all_steps.size();
+    period.for_each_step = [steps = std::move(all_steps)](const StepSink& sink) {
+        for (const IrradianceStep& step : steps)
+            sink(step);
+    };
 
     Metadata& m = period.parameters;
     m.push_back({"source", std::string("EPW weather file")});

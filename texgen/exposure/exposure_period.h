@@ -1,7 +1,8 @@
-// The period an exposure map integrates over, as a list of time steps, each with the sun's
-// direction and the direct-normal and diffuse-horizontal irradiance during the step: from
-// the clear-sky model at a site (NREL SPA + Ineichen-Perez) or from the rows of an
-// EnergyPlus weather file.
+// The period an exposure map integrates over, as a sequence of time steps, each with the
+// sun's direction and the direct-normal and diffuse-horizontal irradiance during the step:
+// from the clear-sky model at a site (NREL SPA + Ineichen-Perez) or from the rows of an
+// EnergyPlus weather file. A clear-sky period computes its steps as they are consumed, so
+// that neither memory nor anything but the consumer's time grows with its length.
 #pragma once
 
 #include "core/image_io.h"
@@ -12,6 +13,8 @@
 
 #include <Imath/ImathVec.h>
 
+#include <cstddef>
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -25,9 +28,14 @@ struct IrradianceStep {
     double dhi = 0;         ///< diffuse horizontal irradiance, W/m^2
 };
 
+/// Receives the steps of a period, one at a time, in time order.
+using StepSink = std::function<void(const IrradianceStep&)>;
+
 struct ExposurePeriod {
-    std::vector<IrradianceStep> steps;  ///< only steps with some irradiance
-    double duration_s = 0;              ///< the whole period (for average irradiance)
+    /// Hands the steps to the sink, in time order; a step may have no irradiance at all.
+    std::function<void(const StepSink&)> for_each_step;
+    size_t step_bound = 0;   ///< steps for_each_step visits (for progress)
+    double duration_s = 0;   ///< the whole period (for average irradiance)
     /// EPW direct-normal energy (J/m^2) of intervals during which the sun never rose above
     /// the horizon at any sub-step (sunrise/sunset rows), which no direction can carry.
     double dropped_direct = 0;
@@ -46,9 +54,14 @@ struct ClearSkyPeriodOptions {
     ClearSkyParameters clear_sky;  ///< its elevation_m is taken from `site`
 };
 
+/// Largest number of steps of a clear-sky period: 10^8 (1900 years at the default
+/// 10-minute step, 190 years at 1 minute); each step is one evaluation of the SPA.
+inline constexpr double kMaxPeriodSteps = 1e8;
+
 /// Midpoint steps of `step_minutes` (the last one shortened to end at `end`) with the
-/// sun from the SPA and the irradiance from ineichen_perez(). Throws if end <= start or
-/// the step is not positive.
+/// sun from the SPA and the irradiance from ineichen_perez(), computed as for_each_step
+/// visits them. Throws if end <= start, the step is not positive, or the period has more
+/// than kMaxPeriodSteps steps (naming --step-minutes and the limit).
 ExposurePeriod clear_sky_period(const ClearSkyPeriodOptions& options);
 
 struct EpwPeriodOptions {

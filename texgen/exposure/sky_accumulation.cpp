@@ -1,5 +1,8 @@
 #include "texgen/exposure/sky_accumulation.h"
 
+#include "core/cancel.h"
+#include "core/progress.h"
+
 #include <patina/shading/sampling.h>
 
 #include <cmath>
@@ -81,7 +84,14 @@ ExposureSky accumulate_exposure(const ExposurePeriod& period, const CieSky& sky,
     const DirectionBinning sun_binning{options.sun_bin_deg};
     const DirectionBinning sky_binning{kSkySunBinDeg};
     std::map<int64_t, WeightedDirection> sun_bins, sky_bins;
-    for (const IrradianceStep& step : period.steps) {
+    Progress progress(period.step_bound, !options.progress, "exposure: sun path");
+    size_t visited = 0;
+    period.for_each_step([&](const IrradianceStep& step) {
+        if ((++visited & 4095) == 0) {
+            progress.step(4096);
+            throw_if_cancelled();
+        }
+        out.steps += step.dni > 0.0 || step.dhi > 0.0;
         if (step.dni > 0.0) {
             const double e = step.dni * step.duration_s;
             WeightedDirection& b = sun_bins[sun_binning.key(step.sun)];
@@ -96,7 +106,8 @@ ExposureSky accumulate_exposure(const ExposurePeriod& period, const CieSky& sky,
             b.sum += step.sun * e;
             out.diffuse_horizontal += e;
         }
-    }
+    });
+    progress.finish();
     for (const auto& [key, b] : sun_bins) {
         SunBin bin;
         bin.weighted = b.sum;

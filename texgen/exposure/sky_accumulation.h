@@ -39,6 +39,7 @@ struct ExposureSky {
     double direct_normal = 0;     ///< sum of DNI dt, J/m^2
     double diffuse_horizontal = 0;  ///< sum of DHI dt, J/m^2
     int non_empty_sky_cells = 0;
+    size_t steps = 0;             ///< the period's steps with some irradiance
 };
 
 /// The unit direction (+y up) of the point (u, v) in [0, 1]^2 of the equal-area
@@ -48,12 +49,14 @@ Imath::V3d hemisphere_direction(double u, double v);
 struct AccumulationOptions {
     double sun_bin_deg = 0.5;  ///< angular size of a sun bin
     int sky_cells = 256;       ///< about this many sky cells (n = round(sqrt))
+    bool progress = false;     ///< progress of the period's steps on stderr
 };
 
-/// Accumulate `period` under `sky`. Sky radiance uses 4 x 4 points per cell, and the sky
-/// distribution is evaluated once per 2-degree bin of sun directions (a clear sky changes
-/// little over 2 degrees of sun motion). Throws on a bin size outside (0, 10] degrees or
-/// fewer than 4 sky cells.
+/// Accumulate `period` under `sky`, one step at a time as the period computes them (no step
+/// is kept: memory does not grow with the period), polling for cancellation. Sky radiance
+/// uses 4 x 4 points per cell, and the sky distribution is evaluated once per 2-degree bin
+/// of sun directions (a clear sky changes little over 2 degrees of sun motion). Throws on a
+/// bin size outside (0, 10] degrees or fewer than 4 sky cells.
 ExposureSky accumulate_exposure(const ExposurePeriod& period, const CieSky& sky,
                                 const AccumulationOptions& options);
 

@@ -102,11 +102,6 @@ void write_fade_stack(const fs::path& dir, const DoseTable& table, const FadeSta
         throw std::runtime_error(fmt::format("fade stack '{}': {} substrate values for {} "
                                              "wavelengths",
                                              dir.string(), info.substrate.size(), columns));
-    std::error_code ec;
-    fs::create_directories(dir, ec);
-    if (ec)
-        throw std::runtime_error("cannot create the fade stack folder '" + dir.string() +
-                                 "': " + ec.message());
 
     // fade_table.exr: rows = doses, columns = wavelengths, channels in stored (sorted) order
     std::vector<float> pixels(rows * columns * 4);

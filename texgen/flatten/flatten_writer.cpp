@@ -1,6 +1,7 @@
 // write_flattened (flatten_stack.h): the flattened maps as EXR textures and their manifest.
 #include "texgen/flatten/flatten_stack.h"
 
+#include "core/output_transaction.h"
 #include "core/cancel.h"
 #include "core/image_io.h"
 #include "texgen/stack/manifest.h"
@@ -34,15 +35,16 @@ namespace {
 
     toml::table read_or_new_manifest(const fs::path& path)
     {
+        const fs::path file = output_to_read(path);  // this run's own version, if any
         std::error_code ec;
-        if (!fs::exists(path, ec)) {
+        if (!fs::exists(file, ec)) {
             toml::table root;
             root.insert_or_assign("stack", toml::table{{"format", kStackFormatVersion},
                                                        {"generator", "patina-texgen flatten"}});
             return root;
         }
         try {
-            return toml::parse_file(path.string());
+            return toml::parse_file(file.string());
         } catch (const toml::parse_error& e) {
             throw std::runtime_error(fmt::format("cannot update manifest '{}': line {}: {}",
                                                  path.string(), e.source().begin.line,
@@ -70,14 +72,9 @@ std::vector<fs::path> write_flattened(const fs::path& out_dir, const FlattenedSt
                         map.channels[i % map.channels.size()]));
                 }
 
-    std::error_code ec;
-    fs::create_directories(out_dir, ec);
-    if (ec)
-        throw std::runtime_error(fmt::format("flatten: cannot create folder '{}': {}",
-                                             out_dir.string(), ec.message()));
     // An earlier flatten into this folder: its entries go, and its files where not rewritten.
     for (const std::string& file : forget_maps_of(out_dir, kBaker, "flatten"))
-        fs::remove(out_dir / file, ec);
+        remove_output(out_dir / file);
 
     const std::string source = relative_text(stack.manifest, out_dir);
     const bool lone = flat.udims.size() == 1 && flat.udims[0] == 1001;

@@ -1,5 +1,6 @@
 #include "texgen/patina/stack_writer.h"
 
+#include "core/output_transaction.h"
 #include "core/image_io.h"
 #include "texgen/patina/stack_materials.h"
 #include "texgen/patina/stack_preview.h"
@@ -36,9 +37,8 @@ namespace {
     /// stack of fewer layers does not list stale ones.
     void forget_earlier_run(const fs::path& out_dir)
     {
-        std::error_code ec;
         for (const std::string& file : forget_maps_of(out_dir, kBaker, "patina"))
-            fs::remove(out_dir / file, ec);
+            remove_output(out_dir / file);
     }
 
     struct LayerStats {
@@ -71,7 +71,7 @@ namespace {
                              const ColorManager& colors)
     {
         const fs::path path = manifest_path(out_dir);
-        toml::table root = toml::parse_file(path.string());
+        toml::table root = toml::parse_file(output_to_read(path).string());  // as just recorded
         toml::table patina;
         patina.insert_or_assign("script", options.script);
         patina.insert_or_assign("time_years", step.time_years);
@@ -136,7 +136,6 @@ std::vector<fs::path> write_patina_step(const fs::path& out_dir, const PatinaSte
                                         const PatinaOutputOptions& options,
                                         const ColorManager& colors)
 {
-    fs::create_directories(out_dir);
     forget_earlier_run(out_dir);
     std::vector<fs::path> written;
     Metadata parameters = options.parameters;

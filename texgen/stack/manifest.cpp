@@ -1,5 +1,6 @@
 #include "texgen/stack/manifest.h"
 
+#include "core/output_transaction.h"
 #include "texgen/stack/map_output.h"
 
 #include "core/cancel.h"
@@ -82,14 +83,16 @@ namespace {
     /// not parse is an error: rewriting it would lose the entries of other maps.
     toml::table read_manifest(const fs::path& path)
     {
+        // This run's own version when it wrote one already (two maps recorded in one run).
+        const fs::path file = output_to_read(path);
         std::error_code ec;
-        if (!fs::exists(path, ec))
+        if (!fs::exists(file, ec))
             return {};
-        if (!fs::is_regular_file(path, ec))
+        if (!fs::is_regular_file(file, ec))
             throw std::runtime_error(fmt::format("manifest '{}' is not a file", path.string()));
         toml::table root;
         try {
-            root = toml::parse_file(path.string());
+            root = toml::parse_file(file.string());
         } catch (const toml::parse_error& e) {
             throw std::runtime_error(fmt::format("cannot update manifest {}:{}:{}: {} (fix or "
                                                  "remove the file; it was left unchanged)",
@@ -213,20 +216,24 @@ void record_in_manifest(const fs::path& out_dir, const MapDescription& map,
         text << toml::table{{"stack", stack}} << "\n\n" << rest << "\n";
     else
         text << root << "\n";
-    std::error_code ec;
-    fs::create_directories(out_dir, ec);
     throw_if_cancelled();
     write_file_atomic(path, {text.str()}, "manifest");
+}
+
+void check_manifest_can_be_updated(const fs::path& out_dir)
+{
+    const fs::path path = manifest_path(out_dir);
+    reserve_output(path);
+    read_manifest(path);
 }
 
 std::vector<std::string> forget_maps_of(const fs::path& out_dir, const std::string& baker,
                                         const std::string& table)
 {
     const fs::path path = manifest_path(out_dir);
-    std::error_code ec;
-    if (!fs::exists(path, ec))
-        return {};
     toml::table root = read_manifest(path);
+    if (root.empty())
+        return {};
     bool changed = !table.empty() && root.erase(table) > 0;
     std::vector<std::string> files;
     if (toml::table* maps = root["maps"].as_table()) {

@@ -37,6 +37,10 @@ std::string map_file_name(const std::string& name, int udim, bool lone_1001_tile
 /// The UDIM file pattern of a map, as renderers spell it: "<name>.<UDIM>.exr".
 std::string map_file_pattern(const std::string& name);
 
+/// Read and check `<out_dir>/stack.toml` as record_in_manifest would, and reserve it in the
+/// current output transaction: a manifest that cannot be updated fails before the bake.
+void check_manifest_can_be_updated(const std::filesystem::path& out_dir);
+
 /// Drop from `<out_dir>/stack.toml` every map whose baker is `baker` and, when `table` is
 /// not empty, the top-level table of that name; returns the files of the dropped maps
 /// (relative to out_dir). Nothing happens without a manifest; one that does not parse

@@ -113,11 +113,6 @@ std::vector<fs::path> write_texel_map(const fs::path& out_dir, const MapDescript
         }
     }
 
-    std::error_code ec;
-    fs::create_directories(out_dir, ec);
-    if (ec)
-        throw std::runtime_error(fmt::format("cannot write map '{}': cannot create folder '{}': {}",
-                                             map.name, out_dir.string(), ec.message()));
 
     TextureOptions texture;
     texture.format = options.format;

@@ -2,6 +2,7 @@
 
 #include "core/cancel.h"
 #include "core/mesh_export.h"
+#include "core/output_transaction.h"
 #include "core/progress.h"
 #include "texgen/stack/surface_map.h"
 #include "texgen/stone/eroded_mesh.h"
@@ -51,7 +52,6 @@ void write_stone_outputs(const fs::path& dir, const StoneState& st, const Triang
                          const StoneJobOptions& o)
 {
     check_state_finite(st);
-    fs::create_directories(dir);
     const Metadata meta = job_metadata(o, st);
     const Quarry quarry(o.quarry);
     const WorldVolume world = resample_to_world(st, mesh, o.grid_resolution, &quarry);
@@ -66,6 +66,7 @@ void write_stone_outputs(const fs::path& dir, const StoneState& st, const Triang
 void run_stone_job(const StoneJobOptions& o)
 {
     const auto start = std::chrono::steady_clock::now();
+    reserve_output(o.out_dir / "volume.exr");  // a bad output folder fails before the run
     const TriangleMesh mesh = load_merged_mesh(o.mesh);
     const TriangleMesh base = o.slab_mesh.empty() ? mesh : load_merged_mesh(o.slab_mesh);
     if (o.cycles < 0 || o.snapshots < 0)

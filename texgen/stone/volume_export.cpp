@@ -2,6 +2,7 @@
 
 #include "core/embree_scene.h"
 #include "core/image_io.h"
+#include "core/output_transaction.h"
 
 #include <OpenImageIO/imageio.h>
 #include <fmt/format.h>
@@ -128,20 +129,15 @@ namespace {
         }
     }
 
-    /// Write two float parts to `path` through a temporary name.
+    /// Write two float parts to `path`, staged in the run's output transaction.
     void write_two_parts(const fs::path& path, OIIO::ImageSpec a, const std::vector<float>& pa,
                          OIIO::ImageSpec b, const std::vector<float>& pb, const char* what)
     {
-        const fs::path tmp = temporary_path_for(path);
+        StagedOutput staged(path);
+        const std::string tmp = staged.path().string();
         auto fail = [&](const std::string& msg) {
-            std::error_code ec;
-            fs::remove(tmp, ec);
             throw std::runtime_error(fmt::format("cannot write {} '{}': {}", what, path.string(), msg));
         };
-        if (!path.parent_path().empty()) {
-            std::error_code ec;
-            fs::create_directories(path.parent_path(), ec);
-        }
         // Every part shares part 0's display window.
         b.full_x = a.full_x;
         b.full_y = a.full_y;
@@ -153,20 +149,17 @@ namespace {
         if (!out->supports("multiimage"))
             fail("the EXR writer does not support multi-part files");
         OIIO::ImageSpec specs[2] = {a, b};
-        if (!out->open(tmp.string(), 2, specs))
+        if (!out->open(tmp, 2, specs))
             fail(out->geterror());
         if (!out->write_image(OIIO::TypeDesc::FLOAT, pa.data()))
             fail(out->geterror());
-        if (!out->open(tmp.string(), specs[1], OIIO::ImageOutput::AppendSubimage))
+        if (!out->open(tmp, specs[1], OIIO::ImageOutput::AppendSubimage))
             fail(out->geterror());
         if (!out->write_image(OIIO::TypeDesc::FLOAT, pb.data()))
             fail(out->geterror());
         if (!out->close())
             fail(out->geterror());
-        std::error_code ec;
-        fs::rename(tmp, path, ec);
-        if (ec)
-            fail(ec.message());
+        staged.done();
     }
 
 } // namespace

@@ -150,9 +150,12 @@ namespace {
         // A lone tile other than 1001 keeps its number in the name.
         const auto lone = write_texel_map(dir, map, {tiles[1]}, {values[1]}, {});
         EXPECT_EQ(lone.at(0), dir / "ao.1002.exr");
-        // No temporary files are left behind.
-        for (const auto& entry : fs::directory_iterator(dir))
+        // No staging folders or temporary files are left behind.
+        for (const auto& entry : fs::directory_iterator(dir)) {
             EXPECT_EQ(entry.path().string().find(".tmp-"), std::string::npos) << entry.path();
+            EXPECT_EQ(entry.path().string().find(".patina-staging-"), std::string::npos)
+                << entry.path();
+        }
     }
 
     TEST(WriteTexelMap, NonFiniteValueIsRefusedNamingMapAndTexel)
