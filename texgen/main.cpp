@@ -3,6 +3,7 @@
 #include "texgen/cli/commands.h"
 
 #include "core/cancel.h"
+#include "core/cli_errors.h"
 #include "core/output_transaction.h"
 #include "texgen/patina/script_error.h"
 
@@ -42,7 +43,7 @@ int main(int argc, char** argv)
         outputs.commit();
         return 0;
     } catch (const CLI::ParseError& e) {
-        return app.exit(e);
+        return patina::report_parse_error(app, e, "patina-texgen", argc, argv);
     } catch (const patina::Cancelled& e) {
         std::fprintf(stderr, "\npatina-texgen: %s; no output was written\n", e.what());
         return 130;

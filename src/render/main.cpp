@@ -3,6 +3,7 @@
 #include "render/renderer.h"
 
 #include "core/cancel.h"
+#include "core/cli_errors.h"
 #include "core/host.h"
 
 #include <CLI/CLI.hpp>
@@ -32,12 +33,13 @@ int main(int argc, char** argv)
     app.add_option("-o,--output", options.output,
                    "output EXR (a display PNG is written beside it); default from the scene");
     app.add_option("--spp", options.spp, "samples per pixel (overrides the scene)")
-        ->check(CLI::PositiveNumber);
+        ->check(patina::positive);
     app.add_option("--seed", options.seed, "random seed (overrides the scene)");
     app.add_option("--threads", options.threads, "worker threads (0 = all cores)")
-        ->check(CLI::NonNegativeNumber);
-    app.add_option("--resolution", options.resolution, "width and height (overrides the scene)")
-        ->expected(2)->check(CLI::PositiveNumber);
+        ->check(patina::non_negative);
+    app.add_option("--resolution", options.resolution,
+                   "width and height, 1 to 32768 each, as in the scene (overrides the scene)")
+        ->expected(2)->check(CLI::Range(1, 1 << 15));
     app.add_option("--crop", options.crop, "render only pixels [x0, x1) x [y0, y1) of the frame")
         ->expected(4);
     app.add_option("--tile", options.tile,
@@ -48,13 +50,13 @@ int main(int argc, char** argv)
                    "the zero-padded frame number");
     app.add_option("--time-limit", options.time_limit,
                    "seconds; stop after the sample pass that crosses it (spp in the EXR header)")
-        ->check(CLI::PositiveNumber);
+        ->check(patina::positive);
     app.add_flag("--quiet", options.quiet, "no progress on stderr");
 
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
-        return app.exit(e);
+        return patina::report_parse_error(app, e, "patina-render", argc, argv);
     }
     if (!list && scene_file.empty()) {
         std::fprintf(stderr, "patina-render: error: give a scene file or --list-shaders (see --help)\n");

@@ -8,6 +8,7 @@
 
 #include "core/cancel.h"
 #include "core/host.h"
+#include "core/limits.h"
 #include "core/output_transaction.h"
 
 #include <fmt/format.h>
@@ -472,6 +473,18 @@ namespace {
             scene.film.width = options.resolution[0];
             scene.film.height = options.resolution[1];
             scene.camera.set_aspect(static_cast<float>(scene.film.width) / scene.film.height);
+        }
+        {
+            // The film's sums (doubles) and the written pixels, before they are allocated.
+            const FilmSettings& f = scene.film;
+            const double per_pixel = 8.0 * (3 + 3 * f.aov_albedo + 3 * f.aov_normal + f.aov_depth) +
+                                     4.0 * (3 + 3 * f.aov_albedo + 3 * f.aov_normal + f.aov_depth) +
+                                     4.0 * 9;  // working-space, display and albedo copies
+            check_memory(options.resolution.size() == 2
+                             ? std::string("--resolution")
+                             : scene_file.string() + ": [film] width and height",
+                         per_pixel * f.width * f.height,
+                         fmt::format("a {}x{} film", f.width, f.height));
         }
         fs::path exr = output.empty() ? scene.output.exr : output;
         if (exr.empty())

@@ -1,5 +1,6 @@
 #include "texgen/cli/bake_command.h"
 
+#include "core/cli_errors.h"
 #include "core/output_transaction.h"
 #include "core/progress.h"
 #include "texgen/stack/manifest.h"
@@ -39,7 +40,7 @@ void add_common_bake_options(CLI::App& command, CommonBakeOptions& o)
     command.add_option("--seed", o.seed, "random seed (same seed, same bits)")
         ->capture_default_str();
     command.add_option("--threads", o.threads, "worker threads (0 = all cores)")
-        ->check(CLI::NonNegativeNumber);
+        ->check(patina::non_negative);
     command.add_option("--per-vertex", o.per_vertex,
                        "bake at the mesh's vertices and write this PLY (with a vertex "
                        "property per channel) instead of texture maps");

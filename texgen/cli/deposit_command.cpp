@@ -3,6 +3,7 @@
 // texgen/deposit/deposit_baker.h, the source syntax in texgen/deposit/deposit_sources.h.
 #include "texgen/cli/commands.h"
 
+#include "core/cli_errors.h"
 #include "texgen/cli/bake_command.h"
 #include "texgen/deposit/deposit_baker.h"
 
@@ -98,7 +99,7 @@ void register_deposit_command(CLI::App& app)
         ->check(CLI::Range(1, 1 << 20));
     cmd->add_option("--max-distance", p.max_distance,
                     "shadow-ray length for directional sources (m; default: no limit)")
-        ->check(CLI::PositiveNumber);
+        ->check(patina::positive);
     cmd->add_option("--accessibility", p.accessibility_map,
                     "accessibility map from `patina-texgen accessibility` (EXR; "
                     "NAME.<UDIM>.exr for tile sets); without it accessibility is estimated "

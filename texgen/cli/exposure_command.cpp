@@ -3,6 +3,7 @@
 // or from an EnergyPlus weather file.
 #include "texgen/cli/commands.h"
 
+#include "core/cli_errors.h"
 #include "core/spectrum.h"
 #include "texgen/cli/bake_command.h"
 #include "texgen/exposure/exposure_baker.h"
@@ -203,7 +204,7 @@ void register_exposure_command(CLI::App& app)
         ->capture_default_str()->check(CLI::Range(4, 65536));
     cmd->add_option("--max-distance", a->max_distance,
                     "ignore occluders farther than this along a shadow ray (m; default: no limit)")
-        ->check(CLI::PositiveNumber);
+        ->check(patina::positive);
     cmd->add_option("--linke-turbidity", a->linke_turbidity,
                     "clear-sky Linke turbidity (2 very clean, 3 typical, 5+ hazy)")
         ->capture_default_str()->check(CLI::Range(1.0, 10.0));

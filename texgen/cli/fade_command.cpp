@@ -4,6 +4,7 @@
 #include "texgen/cli/commands.h"
 
 #include "core/cancel.h"
+#include "core/limits.h"
 #include "core/output_transaction.h"
 #include "core/progress.h"
 #include "texgen/fade/dose_table.h"
@@ -86,6 +87,8 @@ fade::WavelengthGrid parse_grid(const std::string& text)
         c1 != ':' || c2 != ':' || !(step > 0.0) || !(last > first))
         throw std::runtime_error("--wavelengths '" + text +
                                  "': expected FIRST:LAST:STEP in nm, e.g. 300:830:5");
+    check_limit("--wavelengths '" + text + "'", std::floor((last - first) / step + 1e-9) + 1,
+                fade::WavelengthGrid::kMaxWavelengths, "wavelengths");
     return fade::WavelengthGrid::uniform(first, last, step);
 }
 

@@ -3,6 +3,7 @@
 // colour and roughness, height, normal, and a two-lobe glTF (clearcoat) reduction.
 #include "texgen/cli/commands.h"
 
+#include "core/cli_errors.h"
 #include "core/color_management.h"
 #include "texgen/flatten/flatten_stack.h"
 #include "texgen/flatten/patina_stack_files.h"
@@ -78,10 +79,10 @@ void register_flatten_command(CLI::App& app)
         ->check(CLI::Range(8, 16384));
     cmd->add_option("--texel-size", o->flatten.texel_size_m,
                     "metres per texel for the normal map (default: a strip's size / resolution; "
-                    "required for a mesh)")->check(CLI::PositiveNumber);
+                    "required for a mesh)")->check(patina::positive);
     cmd->add_option("--normal-scale", o->flatten.normal_scale,
                     "height exaggeration of the normal map (1: true relief)")
-        ->capture_default_str()->check(CLI::PositiveNumber);
+        ->capture_default_str()->check(patina::positive);
     cmd->add_option("--materials", o->materials, "more material library files (TOML), as given "
                                                  "to `patina-texgen patina`")
         ->check(CLI::ExistingFile);

@@ -2,6 +2,7 @@
 // samples and users have something to bake without a modelling package.
 #include "texgen/cli/commands.h"
 
+#include "core/cli_errors.h"
 #include "core/mesh_export.h"
 #include "core/statue_mesh.h"
 #include "core/tower_mesh.h"
@@ -71,11 +72,11 @@ void register_mesh_command(CLI::App& app)
     cmd->add_option("-o,--out", options->out, "output file (.obj, .ply, .glb, .gltf, .stl)")
         ->required();
     cmd->add_option("--size", options->size, "height of the statue, sphere or tower, side of the plane (m)")
-        ->capture_default_str()->check(CLI::PositiveNumber);
+        ->capture_default_str()->check(patina::positive);
     cmd->add_option("--resolution", options->resolution,
                     "rings of the statue or sphere, cells per side of a tower face or of the "
                     "plane (0: default)")
-        ->check(CLI::NonNegativeNumber);
+        ->check(patina::non_negative);
     cmd->callback([options] { write_mesh(*options); });
 }
 

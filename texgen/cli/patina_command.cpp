@@ -2,8 +2,10 @@
 // mesh's texels or on a flat strip and writes a thickness stack per time step.
 #include "texgen/cli/commands.h"
 
+#include "core/cli_errors.h"
 #include "core/cancel.h"
 #include "core/color_management.h"
+#include "core/limits.h"
 #include "core/output_transaction.h"
 #include "core/progress.h"
 #include "texgen/patina/interpreter.h"
@@ -75,6 +77,14 @@ void run_patina(const PatinaOptions& o)
         library.load(f, colors);
 
     const Script script = parse_script_file(o.script, library.names());
+    // Every step's stack is kept until the series is written: at least one layer of floats
+    // per texel and step.
+    {
+        const double side = o.width > 0 ? o.width : (o.mesh.empty() ? 512 : 1024);
+        const double texels = side * (o.height > 0 ? o.height : side);
+        check_memory("--times, --resolution", 4.0 * texels * static_cast<double>(o.times.size()),
+                     fmt::format("{} steps of {:.0f} texels", o.times.size(), texels));
+    }
 
     TriangleMesh mesh;
     PatinaDomain domain;
@@ -143,12 +153,16 @@ void run_patina(const PatinaOptions& o)
     }
 }
 
+/// Most steps of one patina run (each is a stack folder of maps).
+constexpr double kMaxTimeSteps = 1000;
+
 std::vector<double> parse_times(const std::string& text)
 {
     std::vector<double> times;
     std::stringstream in(text);
     std::string item;
     while (std::getline(in, item, ',')) {
+        check_limit("--times", static_cast<double>(times.size() + 1), kMaxTimeSteps, "times");
         size_t used = 0;
         double v = 0;
         try {
@@ -189,16 +203,16 @@ void register_patina_command(CLI::App& app)
                     "years to compute, ascending, e.g. 0,6,12,18,24,30 (default 30); the script "
                     "describes the last one");
     cmd->add_option("--end-time", o->end_time, "years the script describes (default: the last "
-                                               "of --times)")->check(CLI::PositiveNumber);
+                                               "of --times)")->check(patina::positive);
     cmd->add_option("--resolution", o->width, "texels per side (strip default 512, mesh 1024)")
         ->check(CLI::Range(8, 16384));
     cmd->add_option("--strip-size", o->strip_size, "width of the strip in metres")
-        ->capture_default_str()->check(CLI::PositiveNumber);
+        ->capture_default_str()->check(patina::positive);
     cmd->add_option("--supersampling", o->supersampling, "sub-samples per texel side (mesh)")
         ->capture_default_str()->check(CLI::Range(1, 8));
     cmd->add_option("--seed", o->seed, "random seed of the growth models")->capture_default_str();
     cmd->add_option("--threads", o->threads, "worker threads (0: all cores)")
-        ->capture_default_str()->check(CLI::NonNegativeNumber);
+        ->capture_default_str()->check(patina::non_negative);
     cmd->add_option("--materials", o->materials, "more material library files (TOML)")
         ->check(CLI::ExistingFile);
     cmd->add_option("--padding", o->padding, "texels of push-pull padding (-1: all)")

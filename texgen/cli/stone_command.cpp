@@ -4,6 +4,7 @@
 // surface maps, once or as a time series. The work is in texgen/stone/stone_job.h.
 #include "texgen/cli/commands.h"
 
+#include "core/cli_errors.h"
 #include "texgen/stone/stone_job.h"
 
 #include <fmt/format.h>
@@ -93,11 +94,11 @@ void register_stone_command(CLI::App& app)
     cmd->add_option("--feature-size", j.quarry.feature_size,
                     "grain size, vein spacing or bed thickness (m)")
         ->capture_default_str()
-        ->check(CLI::PositiveNumber);
+        ->check(patina::positive);
     cmd->add_option("--up", o->up, "the up axis: x, y or z (or -x, -y, -z)")->capture_default_str();
     cmd->add_option("--depth", j.depth,
                     "shell depth below the surface (m; default 15% of the largest extent)")
-        ->check(CLI::PositiveNumber);
+        ->check(patina::positive);
     cmd->add_option("--tangential-res", j.tangential_res, "voxels along each slab edge")
         ->capture_default_str()
         ->check(CLI::Range(2, 256));
@@ -105,12 +106,12 @@ void register_stone_command(CLI::App& app)
         ->capture_default_str()
         ->check(CLI::Range(2, 256));
     cmd->add_option("--cycles", j.cycles, "wet/dry cycles")->capture_default_str()->check(
-        CLI::NonNegativeNumber);
+        patina::non_negative);
     cmd->add_option("--steps", j.snapshots,
                     "write a time series: the fresh stone and N snapshots evenly over the "
                     "cycles, one folder each (cycle_0000, ...); 0: the end state into --out")
         ->capture_default_str()
-        ->check(CLI::NonNegativeNumber);
+        ->check(patina::non_negative);
     cmd->add_option("--wetness", j.wetness_map,
                     "wetness map from `patina-texgen wetness` (channel 'wetness'; needs uvs)");
     cmd->add_option("--rain-dir", o->rain_dir,
@@ -148,11 +149,11 @@ void register_stone_command(CLI::App& app)
                     "speeds up dissolution, crystallisation, black crusts and salt supply "
                     "against the flow of water (whose step is short on fine lattices)")
         ->capture_default_str()
-        ->check(CLI::PositiveNumber);
+        ->check(patina::positive);
     cmd->add_option("--mineral-iron-scale", p.mineral_iron_scale,
                     "solid iron fraction that shows as fully iron-stained in the iron channel")
         ->capture_default_str()
-        ->check(CLI::PositiveNumber);
+        ->check(patina::positive);
     cmd->add_option("--grid", j.grid_resolution,
                     "world-grid voxels along the longest side of volume.exr")
         ->capture_default_str()

@@ -3,6 +3,7 @@
 // texgen/wetness/wetness_baker.h.
 #include "texgen/cli/commands.h"
 
+#include "core/cli_errors.h"
 #include "texgen/cli/bake_command.h"
 #include "texgen/wetness/wetness_baker.h"
 
@@ -124,7 +125,7 @@ void register_wetness_command(CLI::App& app)
         ->check(CLI::Range(1, 1 << 20));
     cmd->add_option("--max-distance", p.max_distance,
                     "ignore shelter farther than this along a ray (m; default: no limit)")
-        ->check(CLI::PositiveNumber);
+        ->check(patina::positive);
     cmd->add_option("--exposure", p.exposure_map,
                     "exposure map from `patina-texgen exposure` (EXR; NAME.<UDIM>.exr for tile "
                     "sets): wetness *= 1 - drying * clamp(exposure / exposure-scale)");

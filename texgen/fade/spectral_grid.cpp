@@ -1,5 +1,9 @@
 #include "texgen/fade/spectral_grid.h"
 
+#include "core/limits.h"
+
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -26,7 +30,10 @@ WavelengthGrid WavelengthGrid::uniform(double first_nm, double last_nm, double s
     if (!(step_nm > 0.0) || !(last_nm >= first_nm))
         throw std::runtime_error("wavelength grid: need step > 0 and last >= first");
     WavelengthGrid g;
-    const int n = static_cast<int>(std::floor((last_nm - first_nm) / step_nm + 1e-9)) + 1;
+    const double count = std::floor((last_nm - first_nm) / step_nm + 1e-9) + 1;
+    check_limit(fmt::format("wavelength grid {}:{}:{}", first_nm, last_nm, step_nm), count,
+                kMaxWavelengths, "wavelengths");
+    const int n = static_cast<int>(count);
     g.nm.reserve(static_cast<size_t>(n));
     for (int i = 0; i < n; ++i)
         g.nm.push_back(first_nm + i * step_nm);

@@ -26,7 +26,11 @@ struct WavelengthGrid {
     std::vector<double> nm;
 
     /// first, first + step, ... up to last (inclusive when it falls on the grid).
-    /// The paper's grid is uniform(330, 700, 1): 371 wavelengths (Table IV).
+    /// Most wavelengths a grid may have (0.13 nm steps over 300-830 nm).
+    static constexpr double kMaxWavelengths = 4096;
+
+    /// The paper's grid is uniform(330, 700, 1): 371 wavelengths (Table IV). Throws when
+    /// the grid would have more than kMaxWavelengths.
     static WavelengthGrid uniform(double first_nm, double last_nm, double step_nm);
     size_t size() const { return nm.size(); }
     /// Trapezoid weights in nm: sum_i w_i g(nm_i) approximates the integral of g over

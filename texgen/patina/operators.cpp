@@ -41,6 +41,14 @@ namespace {
         }
     }
 
+    /// Room for one more layer, before its texels are allocated.
+    void check_room(const char* op, const LayerStack& stack)
+    {
+        if (stack.layers.size() >= kMaxStackLayers)
+            fail(op, "the stack has " + std::to_string(stack.layers.size()) +
+                         " layers already, the most a stack may hold");
+    }
+
     void check_material(const char* op, int material)
     {
         if (material < 0) {
@@ -126,6 +134,7 @@ LayerStack new_stack(int material, size_t texel_count)
 void coat(LayerStack& stack, int material, float thickness_um, std::span<const float> map)
 {
     check_material("coat", material);
+    check_room("coat", stack);
     check_amount("coat", "thickness", thickness_um);
     check_map("coat", map, stack.texel_count);
     Layer layer;
@@ -161,6 +170,7 @@ void erode(LayerStack& stack, float thickness_um, std::span<const float> map)
 void fill(LayerStack& stack, int material, float height_um, std::span<const float> map)
 {
     check_material("fill", material);
+    check_room("fill", stack);
     check_amount("fill", "height", height_um);
     check_map("fill", map, stack.texel_count);
     Layer layer;
@@ -274,6 +284,7 @@ float polish_until_exposed(LayerStack& stack, float fraction, std::span<const fl
 
 void offset(LayerStack& stack, int material, std::span<const float> fill_thickness_um)
 {
+    check_room("offset", stack);
     check_material("offset", material);
     if (fill_thickness_um.size() != stack.texel_count) {
         fail("offset", "the fill has " + std::to_string(fill_thickness_um.size()) +

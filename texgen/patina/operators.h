@@ -18,6 +18,10 @@
 
 namespace patina::texgen {
 
+/// Most layers a stack may hold above its base (coat, fill and offset each add one); the
+/// layered_km shader renders up to 16 of them.
+inline constexpr size_t kMaxStackLayers = 256;
+
 /// `new material`: a stack whose base ("the '0'-th layer ... with an essentially infinite
 /// thickness", §3.1) is `material`, with no layers, over `texel_count` texels.
 LayerStack new_stack(int material, size_t texel_count);

@@ -70,7 +70,12 @@ struct Expr {
     NameKind name_kind = NameKind::Field;  ///< Name
     std::vector<Expr> operands;  ///< Negate: 1; Add..Divide: left, right; Call: arguments
     TextureCall texture;         ///< Texture
+    int depth = 1;               ///< height of this tree (the parser bounds it)
 };
+
+/// Deepest expression tree a script may hold, counting parentheses, unary minus signs and
+/// operator chains (`1 + 1 + ...`): the parser and the interpreter recurse over the tree.
+inline constexpr int kMaxExpressionDepth = 256;
 
 /// The expression fully parenthesised, numbers in shortest form: "(1 + (2 * t))",
 /// "clamp(w, 0, 1)", "texture(BD linear 1 20 seed=3)". For messages and tests.

@@ -528,17 +528,46 @@ private:
         return parse_expr();
     }
 
-    static Expr node(ExprKind kind, SourceLocation location, std::vector<Expr> operands = {})
+    Expr node(ExprKind kind, SourceLocation location, std::vector<Expr> operands = {}) const
     {
         Expr expr;
         expr.kind = kind;
         expr.location = location;
         expr.operands = std::move(operands);
+        for (const Expr& operand : expr.operands)
+            expr.depth = std::max(expr.depth, operand.depth + 1);
+        if (expr.depth > kMaxExpressionDepth)
+            fail_too_deep(location);
         return expr;
     }
 
+    [[noreturn]] void fail_too_deep(SourceLocation location) const
+    {
+        fail(location, "expression nested more than " + std::to_string(kMaxExpressionDepth) +
+                           " levels deep (parentheses, minus signs or a chain of operators); "
+                           "split it into smaller expressions");
+    }
+
+    /// Counts the parser's own recursion (parentheses and minus signs open before any node
+    /// is built), so that it is refused before it can overflow the stack.
+    class Nesting {
+    public:
+        explicit Nesting(Parser& parser) : parser_(parser)
+        {
+            if (++parser_.nesting_ > kMaxExpressionDepth)
+                parser_.fail_too_deep(parser_.peek().location);
+        }
+        ~Nesting() { --parser_.nesting_; }
+        Nesting(const Nesting&) = delete;
+        Nesting& operator=(const Nesting&) = delete;
+
+    private:
+        Parser& parser_;
+    };
+
     Expr parse_expr()
     {
+        const Nesting nesting(*this);
         Expr left = parse_term();
         while (at(TokenKind::Plus) || at(TokenKind::Minus)) {
             const Token op = next();
@@ -564,6 +593,7 @@ private:
     Expr parse_unary()
     {
         if (at(TokenKind::Minus)) {
+            const Nesting nesting(*this);
             const SourceLocation location = next().location;
             std::vector<Expr> operand;
             operand.push_back(parse_unary());
@@ -623,17 +653,18 @@ private:
             fail(word.location,
                  "unknown function '" + word.text + "'" + did_you_mean(word.text, functions));
         }
-        Expr call = node(ExprKind::Call, word.location);
-        call.name = word.text;
         const SourceLocation open = open_paren("'('");
+        std::vector<Expr> arguments;
         if (!at(TokenKind::RightParen)) {
-            call.operands.push_back(parse_expr());
+            arguments.push_back(parse_expr());
             while (at(TokenKind::Comma)) {
                 next();
-                call.operands.push_back(parse_expr());
+                arguments.push_back(parse_expr());
             }
         }
         close_paren(open);
+        Expr call = node(ExprKind::Call, word.location, std::move(arguments));
+        call.name = word.text;
         if (static_cast<int>(call.operands.size()) != function->arity)
             fail(word.location, word.text + " takes " + std::to_string(function->arity) +
                                     " argument" + (function->arity == 1 ? "" : "s") +
@@ -701,7 +732,8 @@ private:
     Lexer lexer_;
     std::deque<Token> tokens_;  // read so far; a deque keeps references valid as it grows
     size_t pos_ = 0;
-    int depth_ = 0;  // parentheses open at the current token
+    int depth_ = 0;    // parentheses open at the current token
+    int nesting_ = 0;  // parse_expr and parse_unary calls open (see Nesting)
     std::string file_name_;
     const std::set<std::string>& materials_;
     std::vector<std::string> material_list_;

@@ -69,6 +69,7 @@ void run_stone_job(const StoneJobOptions& o)
     reserve_output(o.out_dir / "volume.exr");  // a bad output folder fails before the run
     const TriangleMesh mesh = load_merged_mesh(o.mesh);
     const TriangleMesh base = o.slab_mesh.empty() ? mesh : load_merged_mesh(o.slab_mesh);
+    check_world_volume_memory(mesh, o.grid_resolution, "--grid");
     if (o.cycles < 0 || o.snapshots < 0)
         throw std::runtime_error("stone: --cycles and --steps must be >= 0");
     if (o.map_resolution > 0 && !mesh.has_uvs() && !o.quiet)

@@ -2,6 +2,7 @@
 
 #include "core/embree_scene.h"
 #include "core/image_io.h"
+#include "core/limits.h"
 #include "core/output_transaction.h"
 
 #include <OpenImageIO/imageio.h>
@@ -45,23 +46,61 @@ void output_fractions(const StoneState& st, std::vector<float>& crust, std::vect
         st.lattice->fill_halo(f->data());
 }
 
+namespace {
+
+    /// The world grid's box, voxel size and counts for `mesh` at `resolution`.
+    struct WorldGrid {
+        Imath::Box3d box;
+        double h = 0;
+        int nx = 0, ny = 0, nz = 0;
+    };
+
+    WorldGrid world_grid(const TriangleMesh& mesh, int resolution)
+    {
+        if (resolution < 2)
+            throw std::runtime_error(fmt::format("world grid: resolution must be >= 2 (got {})",
+                                                 resolution));
+        WorldGrid g;
+        for (const auto& p : mesh.positions)
+            g.box.extendBy(V3d(p.x, p.y, p.z));
+        const V3d size = g.box.max - g.box.min;
+        const double longest = std::max({size.x, size.y, size.z});
+        g.h = longest / (resolution - 2);
+        g.nx = std::max(2, int(std::ceil(size.x / g.h)) + 2);
+        g.ny = std::max(2, int(std::ceil(size.y / g.h)) + 2);
+        g.nz = std::max(2, int(std::ceil(size.z / g.h)) + 2);
+        return g;
+    }
+
+}  // namespace
+
+size_t world_voxel_count(const TriangleMesh& mesh, int resolution)
+{
+    const WorldGrid g = world_grid(mesh, resolution);
+    return size_t(g.nx) * g.ny * g.nz;
+}
+
+void check_world_volume_memory(const TriangleMesh& mesh, int resolution, const char* option)
+{
+    const WorldGrid g = world_grid(mesh, resolution);
+    // Four float channels, twice: the volume and the file's interleaved pixels.
+    check_memory(option, 2.0 * 4.0 * sizeof(float) * g.nx * g.ny * g.nz,
+                 fmt::format("a {}x{}x{} world volume", g.nx, g.ny, g.nz));
+}
+
 WorldVolume resample_to_world(const StoneState& st, const TriangleMesh& mesh, int resolution,
                               const Quarry* quarry)
 {
-    if (resolution < 2)
-        throw std::runtime_error(fmt::format("world grid: resolution must be >= 2 (got {})",
-                                             resolution));
-    const SlabLattice& lat = *st.lattice;
-    WorldVolume vol;
-    Imath::Box3d box;
-    for (const auto& p : mesh.positions)
-        box.extendBy(V3d(p.x, p.y, p.z));
+    const WorldGrid g = world_grid(mesh, resolution);
+    const Imath::Box3d& box = g.box;
+    const double h = g.h;
     const V3d size = box.max - box.min;
     const double longest = std::max({size.x, size.y, size.z});
-    const double h = longest / (resolution - 2);
-    vol.nx = std::max(2, int(std::ceil(size.x / h)) + 2);
-    vol.ny = std::max(2, int(std::ceil(size.y / h)) + 2);
-    vol.nz = std::max(2, int(std::ceil(size.z / h)) + 2);
+    const SlabLattice& lat = *st.lattice;
+    WorldVolume vol;
+    vol.nx = g.nx;
+    vol.ny = g.ny;
+    vol.nz = g.nz;
     const V3d centre = 0.5 * (box.min + box.max);
     const V3d half(0.5 * vol.nx * h, 0.5 * vol.ny * h, 0.5 * vol.nz * h);
     vol.bounds = Imath::Box3d(centre - half, centre + half);

@@ -230,3 +230,27 @@ TEST(ScriptErrors, ScriptErrorKeepsItsParts)
         EXPECT_EQ(e.message(), "negative thickness -1");
     }
 }
+
+TEST(ScriptErrors, NestingBeyondTheLimitIsRefusedAtItsToken)
+{
+    // Without the limit, 4000 parentheses or 200,000 minus signs overflowed the parser's
+    // stack (SIGSEGV). The expression starts at column 16 of line 2; its 257th level opens
+    // at the 257th '(' (column 272).
+    const std::string prefix = "new copper\ncoat tarnish 1 ";
+    const auto nested = [&](int n) {
+        return prefix + std::string(n, '(') + "1" + std::string(n, ')') + "\n";
+    };
+    EXPECT_EQ(pt::test::parse(nested(pt::kMaxExpressionDepth - 1)).statements.size(), 2u);
+    const std::string too_deep = error_of(nested(4000));
+    EXPECT_EQ(too_deep.rfind("test.patina:2:272: error: expression nested more than 256 levels "
+                             "deep", 0), 0u) << too_deep;
+    const std::string minus = error_of(prefix + std::string(200000, '-') + "1\n");
+    EXPECT_EQ(minus.rfind("test.patina:2:", 0), 0u) << minus;
+    EXPECT_NE(minus.find("nested more than 256"), std::string::npos) << minus;
+    // A long chain of one operator is as deep a tree: the interpreter recurses over it.
+    std::string chain = prefix + "(";
+    for (int i = 0; i < 1000; ++i)
+        chain += "1 + ";
+    const std::string chained = error_of(chain + "1)\n");
+    EXPECT_NE(chained.find("nested more than 256"), std::string::npos) << chained;
+}

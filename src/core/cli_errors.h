@@ -1,0 +1,74 @@
+// The command-line edge of every Patina tool: CLI11's parse errors in the tools' one form,
+// `patina-<tool>: error: <message>` on one line, exit status 2 (a usage error); --help and
+// --version print as CLI11 does and exit 0.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <string>
+
+namespace patina {
+
+/// `text` on one line: control characters (newlines, terminal escape codes) become `\n`,
+/// `\x1b`, ...; echoed input cannot break the one-line rule or drive the terminal.
+inline std::string one_line(const std::string& text)
+{
+    std::string out;
+    for (const char c : text) {
+        const auto u = static_cast<unsigned char>(c);
+        if (c == '\n')
+            out += "\\n";
+        else if (c == '\t')
+            out += "\\t";
+        else if (u < 0x20 || u == 0x7f) {
+            char hex[8];
+            std::snprintf(hex, sizeof hex, "\\x%02x", u);
+            out += hex;
+        } else
+            out += c;
+    }
+    return out;
+}
+
+/// Validators with short messages ("must be > 0, got -4"), where CLI::PositiveNumber prints
+/// the 309 digits of DBL_MAX as its bound. Numbers are read as doubles: NaN is refused too.
+inline const CLI::Validator positive{
+    [](std::string& text) -> std::string {
+        double v = 0;
+        if (!CLI::detail::lexical_cast(text, v) || !(v > 0))
+            return "must be a number > 0, got '" + one_line(text) + "'";
+        return {};
+    },
+    "> 0"};
+inline const CLI::Validator non_negative{
+    [](std::string& text) -> std::string {
+        double v = 0;
+        if (!CLI::detail::lexical_cast(text, v) || !(v >= 0))
+            return "must be a number >= 0, got '" + one_line(text) + "'";
+        return {};
+    },
+    ">= 0"};
+
+/// Report a CLI11 parse error of `app` for `tool` ("patina-texgen") and return the exit
+/// status. An unknown sub-command is named with the list of the known ones.
+inline int report_parse_error(const CLI::App& app, const CLI::ParseError& e, const char* tool,
+                              int argc, char** argv)
+{
+    if (e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success))
+        return app.exit(e);  // --help, --version
+    std::string message = e.what();
+    const auto subcommands = app.get_subcommands([](const CLI::App*) { return true; });
+    if (!subcommands.empty() && app.get_subcommands().empty() && argc > 1 && argv[1][0] != '-') {
+        std::string known;
+        for (const CLI::App* s : subcommands)
+            known += (known.empty() ? "" : ", ") + s->get_name();
+        message = "unknown command '" + std::string(argv[1]) + "' (the commands are " + known + ")";
+    }
+    while (!message.empty() && (message.back() == '\n' || message.back() == ' '))
+        message.pop_back();
+    std::fprintf(stderr, "%s: error: %s (see --help)\n", tool, one_line(message).c_str());
+    return 2;
+}
+
+}  // namespace patina
