@@ -50,14 +50,15 @@ int main(int argc, char** argv)
     } catch (const pt::ScriptError& e) {
         // Like a compiler: the script's file, line and column first.
         if (e.location().line > 0)
-            std::fprintf(stderr, "patina-texgen: error: %s:%d:%d: %s\n", e.file().c_str(),
-                         e.location().line, e.location().column, e.message().c_str());
+            std::fprintf(stderr, "patina-texgen: error: %s:%d:%d: %s\n",
+                         patina::one_line(e.file()).c_str(), e.location().line,
+                         e.location().column, patina::one_line(e.message()).c_str());
         else
-            std::fprintf(stderr, "patina-texgen: error: %s: %s\n", e.file().c_str(),
-                         e.message().c_str());
+            std::fprintf(stderr, "patina-texgen: error: %s: %s\n",
+                         patina::one_line(e.file()).c_str(), patina::one_line(e.message()).c_str());
         return 1;
     } catch (const std::exception& e) {
-        std::fprintf(stderr, "patina-texgen: error: %s\n", e.what());
+        std::fprintf(stderr, "patina-texgen: error: %s\n", patina::one_line(e.what()).c_str());
         return 1;
     }
 }

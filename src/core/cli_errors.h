@@ -3,33 +3,14 @@
 // --version print as CLI11 does and exit 0.
 #pragma once
 
+#include "core/one_line.h"
+
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
 #include <string>
 
 namespace patina {
-
-/// `text` on one line: control characters (newlines, terminal escape codes) become `\n`,
-/// `\x1b`, ...; echoed input cannot break the one-line rule or drive the terminal.
-inline std::string one_line(const std::string& text)
-{
-    std::string out;
-    for (const char c : text) {
-        const auto u = static_cast<unsigned char>(c);
-        if (c == '\n')
-            out += "\\n";
-        else if (c == '\t')
-            out += "\\t";
-        else if (u < 0x20 || u == 0x7f) {
-            char hex[8];
-            std::snprintf(hex, sizeof hex, "\\x%02x", u);
-            out += hex;
-        } else
-            out += c;
-    }
-    return out;
-}
 
 /// Validators with short messages ("must be > 0, got -4"), where CLI::PositiveNumber prints
 /// the 309 digits of DBL_MAX as its bound. Numbers are read as doubles: NaN is refused too.

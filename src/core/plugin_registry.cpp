@@ -1,10 +1,15 @@
 #include "core/plugin_registry.h"
 
+#include "core/elf_symbol.h"
+
 #include <fmt/format.h>
 
 #include <dlfcn.h>
 
 #include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <optional>
 #include <map>
 #include <regex>
 
@@ -29,10 +34,57 @@ namespace {
 
     std::string version_string(int v) { return fmt::format("{}.{}", v / 100, v % 100); }
 
+    /// An enum field as the integer the plugin stored: a value outside the enumerators must
+    /// not be loaded as the enum type (undefined behaviour, which UBSan reports).
+    template <class Enum>
+    int raw_enum(const Enum& field)
+    {
+        static_assert(sizeof(Enum) == sizeof(int));
+        int value = 0;
+        std::memcpy(&value, &field, sizeof value);
+        return value;
+    }
+
     bool valid_identifier(const char* s)
     {
         static const std::regex kIdentifier("[a-z_][a-z0-9_]*");
         return s && std::regex_match(s, kIdentifier);
+    }
+
+    /// A parameter's range and default: what create() receives when the scene leaves the
+    /// parameter out must be a value the scene itself could give.
+    template <class Fail>
+    void check_default(const PatinaParamDecl& p, int type, const Fail& fail)
+    {
+        if (std::isnan(p.min_value) || std::isnan(p.max_value) || p.min_value > p.max_value)
+            fail(fmt::format("parameter '{}' has an invalid range [{}, {}]", p.name, p.min_value,
+                             p.max_value));
+        const int components = type == PATINA_PARAM_COLOR ? 3
+                               : (type == PATINA_PARAM_FLOAT || type == PATINA_PARAM_INT ||
+                                  (type == PATINA_PARAM_SPECTRUM && !p.default_spectrum))
+                                   ? 1
+                                   : 0;
+        for (int c = 0; c < components; ++c) {
+            const float v = p.default_value[c];
+            if (!std::isfinite(v) || v < p.min_value || v > p.max_value)
+                fail(fmt::format("parameter '{}' has default {} outside its range [{}, {}]",
+                                 p.name, v, p.min_value, p.max_value));
+        }
+        if (type == PATINA_PARAM_INT && p.default_value[0] != std::floor(p.default_value[0]))
+            fail(fmt::format("parameter '{}' is an integer with default {}", p.name,
+                             p.default_value[0]));
+        if (type == PATINA_PARAM_SPECTRUM && p.default_spectrum) {
+            const PatinaTabulatedSpectrum& s = *p.default_spectrum;
+            if (s.count < 1 || !s.lambda_nm || !s.value)
+                fail(fmt::format("parameter '{}' has an empty default spectrum", p.name));
+            for (int i = 0; i < s.count; ++i)
+                if (!std::isfinite(s.lambda_nm[i]) || !std::isfinite(s.value[i]) ||
+                    s.value[i] < p.min_value || s.value[i] > p.max_value ||
+                    (i > 0 && !(s.lambda_nm[i] > s.lambda_nm[i - 1])))
+                    fail(fmt::format("parameter '{}': default spectrum entry {} is invalid "
+                                     "(wavelengths must ascend, values lie in [{}, {}])",
+                                     p.name, i, p.min_value, p.max_value));
+        }
     }
 
     // Checks a descriptor for the promises abi.h makes, so that a broken plugin is refused
@@ -49,7 +101,7 @@ namespace {
             fail("create and destroy must both be set");
         if (d.param_count < 0 || (d.param_count > 0 && !d.params))
             fail("param_count and params disagree");
-        switch (d.kind) {
+        switch (raw_enum(d.kind)) {
         case PATINA_SHADER_BSDF:
             if (!d.bsdf || !d.bsdf->eval || !d.bsdf->pdf || !d.bsdf->sample)
                 fail("a bsdf needs eval, pdf and sample");
@@ -68,7 +120,7 @@ namespace {
                 fail("a texture needs eval");
             break;
         default:
-            fail(fmt::format("unknown kind {}", static_cast<int>(d.kind)));
+            fail(fmt::format("unknown kind {}", raw_enum(d.kind)));
         }
         std::vector<std::string> seen;
         for (int i = 0; i < d.param_count; ++i) {
@@ -78,14 +130,24 @@ namespace {
             if (std::find(seen.begin(), seen.end(), p.name) != seen.end())
                 fail(fmt::format("parameter '{}' is declared twice", p.name));
             seen.emplace_back(p.name);
-            if (p.type < PATINA_PARAM_FLOAT || p.type > PATINA_PARAM_FILE)
-                fail(fmt::format("parameter '{}' has an unknown type", p.name));
-            if (p.min_value > p.max_value)
-                fail(fmt::format("parameter '{}' has min > max", p.name));
+            const int type = raw_enum(p.type);
+            if (type < PATINA_PARAM_FLOAT || type > PATINA_PARAM_FILE)
+                fail(fmt::format("parameter '{}' has an unknown type {}", p.name, type));
+            check_default(p, type, fail);
         }
     }
 
 }  // namespace
+
+void check_abi_version(const fs::path& file, int plugin_version)
+{
+    if (plugin_version / 100 != PATINA_ABI_VERSION_MAJOR ||
+        plugin_version % 100 > PATINA_ABI_VERSION_MINOR)
+        throw PluginError(fmt::format(
+            "plugin '{}': built for Patina plugin ABI {} but this host speaks ABI {}; "
+            "rebuild the plugin against this version's patina/abi.h",
+            file.string(), version_string(plugin_version), version_string(PATINA_ABI_VERSION)));
+}
 
 PluginRegistry::PluginRegistry(const PatinaHost* host) : host_(host) {}
 
@@ -100,6 +162,22 @@ void PluginRegistry::load_file(const fs::path& file)
     for (const auto& lib : libraries_)
         if (lib->file == canonical)
             return;  // the same file through two search-path entries: load once
+
+    // The ABI version is read from the file before dlopen, which would run the library's
+    // constructors: a plugin of another ABI is refused without running any of its code.
+    std::optional<int32_t> file_version;
+    try {
+        file_version = read_elf_int_symbol(canonical, PATINA_PLUGIN_VERSION_SYMBOL);
+    } catch (const std::exception& e) {
+        throw PluginError(fmt::format("plugin '{}': cannot be loaded as a shared library: {}",
+                                      file.string(), e.what()));
+    }
+    if (!file_version)
+        throw PluginError(fmt::format(
+            "plugin '{}': missing symbol '{}' — not a Patina plugin, or built without "
+            "PATINA_PLUGIN_EXPORT; rebuild it against patina/abi.h",
+            file.string(), PATINA_PLUGIN_VERSION_SYMBOL));
+    check_abi_version(file, *file_version);
 
     auto lib = std::make_unique<Library>();
     lib->file = canonical;
@@ -118,13 +196,9 @@ void PluginRegistry::load_file(const fs::path& file)
             "plugin '{}': missing symbol '{}' — not a Patina plugin, or built without "
             "PATINA_PLUGIN_EXPORT; rebuild it against patina/abi.h",
             file.string(), PATINA_PLUGIN_VERSION_SYMBOL));
-    const int plugin_version = *version;
-    if (plugin_version / 100 != PATINA_ABI_VERSION_MAJOR ||
-        plugin_version % 100 > PATINA_ABI_VERSION_MINOR)
-        throw PluginError(fmt::format(
-            "plugin '{}': built for Patina plugin ABI {} but this host speaks ABI {}; "
-            "rebuild the plugin against this version's patina/abi.h",
-            file.string(), version_string(plugin_version), version_string(PATINA_ABI_VERSION)));
+    if (*version != *file_version)
+        throw PluginError(fmt::format("plugin '{}': its ABI version reads {} in the file but {} "
+                                      "once loaded", file.string(), *file_version, *version));
 
     auto entry = reinterpret_cast<PatinaPluginEntryFn>(dlsym(lib->handle, PATINA_PLUGIN_ENTRY_SYMBOL));
     if (!entry)

@@ -19,6 +19,10 @@ public:
     using std::runtime_error::runtime_error;
 };
 
+/// Throw PluginError naming `file` unless `plugin_version` (major*100 + minor) is one this
+/// host speaks: the same major version, a minor version no newer than the host's.
+void check_abi_version(const std::filesystem::path& file, int plugin_version);
+
 /// One shader declared by a loaded plugin.
 struct LoadedShader {
     const PatinaShaderDesc* desc = nullptr;

@@ -28,6 +28,9 @@ int main(int argc, char** argv)
     app.add_flag("--list-shaders", list, "print every shader the plugins provide, with parameters");
     app.add_option("--plugin-path", plugin_paths,
                    "a folder of plugins to load (repeatable; also $PATINA_PLUGIN_PATH)");
+    app.add_flag("--allow-scene-plugins", search.allow_scene_plugins,
+                 "load the plugin folders a scene's [plugins] path names (native code: only for "
+                 "scenes you trust; see also the trust file)");
     app.add_flag("--no-bundled-plugins", no_bundled,
                  "do not load the plugins shipped next to patina-render");
     app.add_option("-o,--output", options.output,
@@ -80,7 +83,7 @@ int main(int argc, char** argv)
                              "written, earlier files are as they were\n", e.what());
         return 130;
     } catch (const std::exception& e) {
-        std::fprintf(stderr, "patina-render: error: %s\n", e.what());
+        std::fprintf(stderr, "patina-render: error: %s\n", patina::one_line(e.what()).c_str());
         return 1;
     }
 }

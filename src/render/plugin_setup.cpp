@@ -1,8 +1,10 @@
 #include "render/plugin_setup.h"
 
+#include "core/one_line.h"
 #include "core/shader_instance.h"
 
 #include <fmt/format.h>
+#include <toml++/toml.h>
 
 #include <cstdlib>
 
@@ -17,6 +19,87 @@ fs::path bundled_plugin_dir()
     if (ec)
         return {};
     return (exe.parent_path().parent_path() / PATINA_PLUGIN_RELDIR).lexically_normal();
+}
+
+fs::path trust_file_path()
+{
+    if (const char* dir = std::getenv("PATINA_CONFIG_DIR"); dir && *dir)
+        return fs::path(dir) / "trust.toml";
+    if (const char* xdg = std::getenv("XDG_CONFIG_HOME"); xdg && *xdg)
+        return fs::path(xdg) / "patina" / "trust.toml";
+    if (const char* home = std::getenv("HOME"); home && *home)
+        return fs::path(home) / ".config" / "patina" / "trust.toml";
+    return {};
+}
+
+std::vector<fs::path> trusted_scene_plugin_dirs()
+{
+    const fs::path file = trust_file_path();
+    std::error_code ec;
+    if (file.empty() || !fs::exists(file, ec))
+        return {};
+    toml::table root;
+    try {
+        root = toml::parse_file(file.string());
+    } catch (const toml::parse_error& e) {
+        throw PluginError(fmt::format("{}:{}:{}: {}", file.string(), e.source().begin.line,
+                                      e.source().begin.column, e.description()));
+    }
+    std::vector<fs::path> dirs;
+    const toml::node* list = root.get("scene_plugin_dirs");
+    if (!list)
+        return dirs;
+    auto fail = [&](const toml::node& node, const std::string& what) {
+        throw PluginError(fmt::format("{}:{}:{}: {}", file.string(), node.source().begin.line,
+                                      node.source().begin.column, what));
+    };
+    const toml::array* a = list->as_array();
+    if (!a)
+        fail(*list, "scene_plugin_dirs must be an array of absolute folder names");
+    for (const toml::node& e : *a) {
+        const auto* text = e.as_string();
+        if (!text || !fs::path(text->get()).is_absolute())
+            fail(e, "scene_plugin_dirs entries must be absolute folder names");
+        dirs.push_back(fs::weakly_canonical(fs::path(text->get()), ec));
+    }
+    return dirs;
+}
+
+namespace {
+
+    /// `dir` is `root` or lies below it (both canonical).
+    bool lies_in(const fs::path& dir, const fs::path& root)
+    {
+        auto d = dir.begin();
+        for (auto r = root.begin(); r != root.end(); ++r, ++d)
+            if (d == dir.end() || *d != *r)
+                return r->empty();  // a trailing separator of root
+        return true;
+    }
+
+}  // namespace
+
+void check_scene_plugins(const std::vector<fs::path>& dirs, const std::string& where,
+                         const PluginSearch& search)
+{
+    if (dirs.empty() || search.allow_scene_plugins)
+        return;
+    const std::vector<fs::path> trusted = trusted_scene_plugin_dirs();
+    for (const fs::path& dir : dirs) {
+        std::error_code ec;
+        const fs::path canonical = fs::weakly_canonical(dir, ec);
+        bool ok = false;
+        for (const fs::path& root : trusted)
+            ok = ok || lies_in(canonical, root);
+        if (!ok)
+            throw PluginError(fmt::format(
+                "{}: [plugins] path names '{}': plugins are native code, and a scene may not "
+                "load them unless allowed; pass --allow-scene-plugins for a scene you trust, or "
+                "list the folder under scene_plugin_dirs in {}",
+                where, one_line(dir.string()),
+                trust_file_path().empty() ? std::string("the trust file")
+                                          : trust_file_path().string()));
+    }
 }
 
 void load_plugins(PluginRegistry& registry, const PluginSearch& search)

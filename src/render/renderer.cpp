@@ -459,6 +459,7 @@ namespace {
     {
         Host& host = default_host();
         const SceneFile file = parse_scene_file(scene_file);
+        check_scene_plugins(file.plugin_dirs, file.plugins_where, search);
         search.scene = file.plugin_dirs;
         PluginRegistry registry(host.c_host());
         load_plugins(registry, search);

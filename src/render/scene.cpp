@@ -48,6 +48,8 @@ SceneFile parse_scene_file(const fs::path& path)
             const toml::array* a = list->as_array();
             if (!a)
                 w.fail(list, "[plugins] path must be an array of folder names");
+            file.plugins_where = fmt::format("{}:{}:{}", path.string(), list->source().begin.line,
+                                             list->source().begin.column);
             for (const toml::node& e : *a) {
                 if (!e.is_string())
                     w.fail(&e, "[plugins] path entries must be strings");

@@ -59,6 +59,7 @@ struct SceneFile {
     std::filesystem::path path;
     toml::table root;
     std::vector<std::filesystem::path> plugin_dirs;  ///< absolute
+    std::string plugins_where;  ///< "file:line:col" of [plugins] path, for messages
 };
 
 SceneFile parse_scene_file(const std::filesystem::path& path);

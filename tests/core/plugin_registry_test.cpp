@@ -2,11 +2,17 @@
 #include "core/host.h"
 #include "core/plugin_registry.h"
 
+#include "core/elf_symbol.h"
+
 #include <gtest/gtest.h>
 
 #include "test_util.h"
 
+#include <unistd.h>
+
+#include <cstdlib>
 #include <filesystem>
+#include <optional>
 #include <fstream>
 
 namespace fs = std::filesystem;
@@ -58,6 +64,42 @@ TEST(PluginRegistry, WrongMajorVersionNamesFileAndVersions)
     EXPECT_NE(msg.find("ABI 1.1"), std::string::npos) << msg;
     EXPECT_NE(msg.find("rebuild"), std::string::npos) << msg;
     EXPECT_EQ(reg.find("fixture_diffuse"), nullptr);  // nothing of it was registered
+}
+
+TEST(PluginRegistry, AWrongVersionIsRefusedWithoutRunningItsCode)
+{
+    // The wrong-version fixture has a constructor that writes this file when the library is
+    // loaded: the version must be read from the ELF file, before dlopen.
+    const fs::path witness = fs::path(PATINA_TEST_BUILD_DIR) /
+                             ("constructor_ran_" + std::to_string(::getpid()));
+    fs::remove(witness);
+    ::setenv("PATINA_FIXTURE_CONSTRUCTOR_FILE", witness.c_str(), 1);
+    PluginRegistry reg(patina::default_host().c_host());
+    const std::string msg = error_of([&] { reg.load_file(fixture("wrong_version")); });
+    ::unsetenv("PATINA_FIXTURE_CONSTRUCTOR_FILE");
+    EXPECT_NE(msg.find("ABI 2.0"), std::string::npos) << msg;
+    EXPECT_FALSE(fs::exists(witness)) << "the refused plugin's constructor ran";
+    fs::remove(witness);
+}
+
+TEST(PluginRegistry, TheAbiVersionIsReadFromTheElfFile)
+{
+    EXPECT_EQ(patina::read_elf_int_symbol(fixture("good"), PATINA_PLUGIN_VERSION_SYMBOL),
+              std::optional<int32_t>(PATINA_ABI_VERSION));
+    EXPECT_EQ(patina::read_elf_int_symbol(fixture("wrong_version"), PATINA_PLUGIN_VERSION_SYMBOL),
+              std::optional<int32_t>(200));
+    EXPECT_EQ(patina::read_elf_int_symbol(fixture("good"), "no_such_symbol"), std::nullopt);
+}
+
+TEST(PluginRegistry, InvalidTablesAreRefusedBeforeUse)
+{
+    PluginRegistry reg(patina::default_host().c_host());
+    const std::string nan = error_of([&] { reg.load_file(fixture("nan_default")); });
+    EXPECT_NE(nan.find("parameter 'weight' has default nan outside its range [0, 1]"),
+              std::string::npos) << nan;
+    const std::string kind = error_of([&] { reg.load_file(fixture("bad_kind")); });
+    EXPECT_NE(kind.find("unknown kind 77"), std::string::npos) << kind;
+    EXPECT_EQ(reg.find("fixture_diffuse"), nullptr);
 }
 
 TEST(PluginRegistry, MissingEntrySymbolNamesFileAndSymbol)
