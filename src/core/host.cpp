@@ -169,8 +169,19 @@ namespace {
             return 0;
         }
         if (subimage < 0 || !input->seek_subimage(subimage, 0)) {
+            // Say what is there: a volume cut short by a crash or a full disk reads as a file
+            // with fewer parts than its header promises.
+            std::string why = input->geterror();
+            int readable = 0;
+            while (input->seek_subimage(readable, 0))
+                ++readable;
+            input->geterror();  // (clear)
             host_error(h, nullptr,
-                       fmt::format("'{}' has no subimage {}", path, subimage).c_str());
+                       fmt::format("cannot read part {} of '{}': the file has {} readable "
+                                   "part{}{}{} (truncated, or not the file expected?)",
+                                   subimage, path, readable, readable == 1 ? "" : "s",
+                                   why.empty() ? "" : "; ", why)
+                           .c_str());
             return 0;
         }
         const OIIO::ImageSpec& spec = input->spec();

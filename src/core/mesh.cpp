@@ -7,8 +7,10 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <numbers>
+#include <sstream>
 #include <stdexcept>
 #include <string_view>
 
@@ -153,6 +155,34 @@ namespace {
             throw std::runtime_error(fmt::format("mesh file '{}' contains no triangles", path.string()));
     }
 
+    /// Assimp's OBJ reader turns a coordinate it cannot parse ("nan", "inf", "1e999",
+    /// "abc") into 0 without a word: read the vertex lines' numbers first, so that such a
+    /// value is refused with its line as the documentation promises.
+    void check_obj_numbers(const std::filesystem::path& path)
+    {
+        if (path.extension() != ".obj" && path.extension() != ".OBJ")
+            return;
+        std::ifstream in(path);
+        std::string line;
+        for (size_t number = 1; std::getline(in, line); ++number) {
+            std::istringstream words(line);
+            std::string keyword;
+            words >> keyword;
+            if (keyword != "v" && keyword != "vt" && keyword != "vn")
+                continue;
+            for (std::string word; words >> word;) {
+                if (word[0] == '#')
+                    break;  // a comment to the end of the line
+                char* end = nullptr;
+                const double v = std::strtod(word.c_str(), &end);
+                if (end != word.c_str() + word.size() || !std::isfinite(v))
+                    throw std::runtime_error(fmt::format(
+                        "mesh file '{}': line {}: '{}' has a coordinate '{}' that is not a "
+                        "finite number", path.string(), number, keyword, word));
+            }
+        }
+    }
+
 }  // namespace
 
 std::vector<TriangleMesh> load_meshes(const std::filesystem::path& path, const Imath::M44f& transform)
@@ -164,6 +194,7 @@ std::vector<TriangleMesh> load_meshes(const std::filesystem::path& path, const I
         throw std::runtime_error(fmt::format("mesh file '{}': not a regular file", path.string()));
 
     check_ply_header(path);
+    check_obj_numbers(path);
     Assimp::Importer importer;
     importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
     const aiScene* scene = importer.ReadFile(path.string(), aiProcess_ValidateDataStructure);

@@ -31,3 +31,17 @@ expect_exit_code(0 "${PATINA_RENDER}" --help)
 # A control character in an echoed option value is escaped.
 string(ASCII 27 esc)
 expect_failure("got '\\x1b[31mred'" "${PATINA_RENDER}" "${WORK_DIR}/scene.toml" --spp "${esc}[31mred")
+
+# Values that used to be reported as something else.
+expect_failure("--dose must be a finite number of J/m^2 >= 0, got -5"
+  "${PATINA_TEXGEN}" fade --dose -5 --material congo_red --out "${WORK_DIR}/f")
+file(WRITE "${WORK_DIR}/octaves.patina"
+  "new copper\ncoat tarnish 1 0.3 texture(noise linear 1 30 octaves=1e10)\n")
+# (a double outside int's range converted to int is undefined; it printed -2147483648)
+expect_failure("octaves.patina:2:46: texture parameter 'octaves' must be a whole number (got 10000000000)"
+  "${PATINA_TEXGEN}" patina "${WORK_DIR}/octaves.patina" -o "${WORK_DIR}/o" --resolution 8)
+# Assimp reads a 'nan' coordinate of an OBJ file as 0: it is refused with its line.
+file(WRITE "${WORK_DIR}/nan_uv.obj" "v -1 0 1\nv 1 0 1\nv 1 0 -1\nv -1 0 -1\n"
+  "vt 0 0\nvt nan 0\nvt 1 1\nvt 0 1\nf 1/1 2/2 3/3 4/4\n")
+expect_failure("nan_uv.obj': line 6: 'vt' has a coordinate 'nan' that is not a finite number"
+  "${PATINA_TEXGEN}" uv-check "${WORK_DIR}/nan_uv.obj")

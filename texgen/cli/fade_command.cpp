@@ -32,7 +32,7 @@ namespace {
 
 struct FadeOptions {
     std::vector<fs::path> exposures;
-    double dose = -1.0;
+    std::optional<double> dose;  ///< --dose, J/m^2
     std::string channel;
     std::string material;
     std::vector<fs::path> materials;
@@ -137,15 +137,16 @@ struct Doses {
 Doses gather_doses(const FadeOptions& o, double duration_s)
 {
     Doses d;
-    if (o.dose >= 0.0) {
+    if (o.dose) {
         if (!o.exposures.empty())
             throw std::runtime_error("--dose and --exposure exclude each other");
-        if (!std::isfinite(o.dose))
-            throw std::runtime_error("--dose must be a finite number of J/m^2");
+        if (!std::isfinite(*o.dose) || *o.dose < 0.0)
+            throw std::runtime_error(fmt::format("--dose must be a finite number of J/m^2 >= 0, "
+                                                 "got {}", *o.dose));
         d.map.width = d.map.height = 4;
         d.map.channel = "dose";
         d.map.units = "J/m^2";
-        d.map.values.assign(16, static_cast<float>(o.dose * o.scale));
+        d.map.values.assign(16, static_cast<float>(*o.dose * o.scale));
         d.first = d.map;
         return d;
     }

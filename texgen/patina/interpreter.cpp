@@ -201,9 +201,11 @@ namespace {
                     spec.parameters.*(d->second) = p.value;
                 } else if (auto i = texture_int_parameters().find(p.name);
                            i != texture_int_parameters().end()) {
-                    if (p.value != std::floor(p.value))
+                    // (Checked before the conversion: a double outside int's range does not
+                    // convert to any int.)
+                    if (p.value != std::floor(p.value) || p.value < -1e9 || p.value > 1e9)
                         fail(p.location, fmt::format("texture parameter '{}' must be a whole "
-                                                     "number", p.name));
+                                                     "number (got {})", p.name, p.value));
                     spec.parameters.*(i->second) = static_cast<int>(p.value);
                 } else {
                     const std::vector<std::string> names = texture_parameter_names();

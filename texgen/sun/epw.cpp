@@ -1,5 +1,7 @@
 #include "texgen/sun/epw.h"
 
+#include <fmt/format.h>
+
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -188,10 +190,15 @@ void require_irradiance(const EpwFile& file, const EpwRecord& r)
                   {r.dni_wh, 15, "direct normal radiation"},
                   {r.dhi_wh, 16, "diffuse horizontal radiation"}};
     for (const auto& f : fields) {
-        if (f.value >= 9999.0)
+        if (f.value == 9999.0)
             fail_at(file.path, r.line,
                     std::string(f.label) + " (field " + std::to_string(f.field) +
                         ") is missing (9999), but the exposure needs it");
+        if (!(f.value <= 9999.0))
+            fail_at(file.path, r.line,
+                    std::string(f.label) + " (field " + std::to_string(f.field) + ") is " +
+                        fmt::format("{}", f.value) +
+                        " Wh/m^2, not an irradiation (9999 marks a missing value)");
         if (f.value < 0.0)
             fail_at(file.path, r.line,
                     std::string(f.label) + " (field " + std::to_string(f.field) +

@@ -18,7 +18,11 @@
 #include <cstdio>
 #include <cstring>
 #include <sstream>
+#include <string>
 
+#include <sys/resource.h>
+
+#include "test_util.h"
 #include "texgen/spa_example_site.h"
 
 namespace pt = patina::texgen;
@@ -375,4 +379,35 @@ TEST(Exposure, VerticalWallUnderTheOvercastSky)
                     n.z, v[2] / sky.diffuse_horizontal, expected);
         EXPECT_NEAR(v[2] / sky.diffuse_horizontal, expected, 0.01 * expected);
     }
+}
+
+TEST(ExposureSky, ALongPeriodIsAccumulatedWithoutKeepingItsSteps)
+{
+    // 40 years at 30-minute steps: 701,000 steps, about half of them lit. Kept in a vector
+    // (as before) they took 56 bytes each, ~20 MB with its growth; streamed, the memory
+    // does not depend on the period. (A 1000-year period at 0.1 minutes grew past 1.4 GB.)
+    const auto peak_kib = [] {
+        rusage usage{};
+        ::getrusage(RUSAGE_SELF, &usage);
+        return usage.ru_maxrss;
+    };
+    const pt::CieSky clear = pt::parse_cie_sky("clear", "sky");
+    // A short period first, so that every lazily made table already exists.
+    pt::accumulate_exposure(pt::clear_sky_period(clear_period("2003-06-21", "2003-06-22")),
+                            clear, {});
+    const long before = peak_kib();
+    const pt::ExposureSky sky = pt::accumulate_exposure(
+        pt::clear_sky_period(clear_period("2000-01-01", "2040-01-01", 30.0)), clear, {});
+    const long grown_kib = peak_kib() - before;
+    EXPECT_GT(sky.steps, 300000u);
+    EXPECT_LT(grown_kib, 4 * 1024) << "the period's steps were kept in memory";
+}
+
+TEST(ExposureSky, APeriodOfTooManyStepsIsRefusedNamingTheStep)
+{
+    const std::string msg = patina::test::message_of(
+        [] { pt::clear_sky_period(clear_period("2000-01-01", "3000-01-01", 0.1)); });
+    EXPECT_NE(msg.find("--step-minutes 0.1: the period from 2000-01-01"), std::string::npos)
+        << msg;
+    EXPECT_NE(msg.find("more than the limit of 1e+08"), std::string::npos) << msg;
 }

@@ -107,4 +107,10 @@ TEST(Epw, BrokenRowsNameFileAndLine)
     EXPECT_NE(patina::test::message_of([&] { pt::require_irradiance(f, f.records[1]); })
                   .find("chicago.epw:10: diffuse horizontal radiation (field 16) is missing"),
               std::string::npos);
+    // A huge value is not reported as missing: it is named as what it is.
+    const pt::EpwFile g = parse(kHeader + kRow12 + replace_field(kRow13, 15, "1e308"));
+    const std::string huge =
+        patina::test::message_of([&] { pt::require_irradiance(g, g.records[1]); });
+    EXPECT_NE(huge.find("chicago.epw:10: direct normal radiation (field 15) is 1e+308 Wh/m^2, "
+                        "not an irradiation"), std::string::npos) << huge;
 }
