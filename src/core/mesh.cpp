@@ -177,8 +177,8 @@ namespace {
                 const double v = std::strtod(word.c_str(), &end);
                 if (end != word.c_str() + word.size() || !std::isfinite(v))
                     throw std::runtime_error(fmt::format(
-                        "mesh file '{}': line {}: '{}' has a coordinate '{}' that is not a "
-                        "finite number", path.string(), number, keyword, word));
+                        "mesh file '{}': line {}: '{}' has a non-finite or malformed "
+                        "coordinate '{}'", path.string(), number, keyword, word));
             }
         }
     }

@@ -121,19 +121,23 @@ void OutputTransaction::reserve(const fs::path& target)
     staging_for(target);
 }
 
+OutputTransaction::Entry& OutputTransaction::entry_for(const fs::path& target, bool remove)
+{
+    const fs::path key = key_of(target);
+    if (Entry* entry = find(key))
+        return *entry;
+    Staging& staging = staging_for(target);
+    entries_.push_back({key, target, staging.folder / key.lexically_relative(staging.anchor),
+                        &staging, remove});
+    return entries_.back();
+}
+
 fs::path OutputTransaction::stage(const fs::path& target)
 {
     const std::lock_guard lock(mutex_);
     if (committed_)
         throw std::logic_error("OutputTransaction::stage after commit");
-    const fs::path key = key_of(target);
-    Entry* entry = find(key);
-    if (!entry) {
-        Staging& staging = staging_for(target);
-        entries_.push_back({key, target, staging.folder / key.lexically_relative(staging.anchor),
-                            &staging, false});
-        entry = &entries_.back();
-    }
+    Entry* entry = &entry_for(target, false);
     entry->remove = false;
     std::error_code ec;
     fs::create_directories(entry->staged.parent_path(), ec);
@@ -153,17 +157,10 @@ fs::path OutputTransaction::current(const fs::path& target) const
 void OutputTransaction::remove_at_commit(const fs::path& target)
 {
     const std::lock_guard lock(mutex_);
-    const fs::path key = key_of(target);
-    Entry* entry = find(key);
-    if (!entry) {
-        Staging& staging = staging_for(target);
-        entries_.push_back({key, target, staging.folder / key.lexically_relative(staging.anchor),
-                            &staging, true});
-        return;
-    }
+    Entry& entry = entry_for(target, true);
     std::error_code ec;
-    fs::remove(entry->staged, ec);
-    entry->remove = true;
+    fs::remove(entry.staged, ec);  // a version this run staged earlier
+    entry.remove = true;
 }
 
 void OutputTransaction::mark_failed(const std::string& why)

@@ -75,6 +75,8 @@ private:
     struct Entry;
     struct Staging;
     Staging& staging_for(const std::filesystem::path& target);
+    /// The entry of `target`, made (as a write or a deletion) when there is none.
+    Entry& entry_for(const std::filesystem::path& target, bool remove);
     Entry* find(const std::filesystem::path& key);
     const Entry* find(const std::filesystem::path& key) const;
 

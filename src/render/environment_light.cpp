@@ -110,12 +110,12 @@ EnvironmentLight::EnvironmentLight(const Host& host, const std::array<float, 3>&
     build(host, constant_image(working_rgb), host.colors().working_space());
 }
 
-EnvironmentLight::EnvironmentLight(const Host& host, const ImageData& image,
+EnvironmentLight::EnvironmentLight(const Host& host, ImageData image,
                                    std::string_view colorspace, float intensity, float rotation_deg,
                                    std::string source_name)
     : source_name_(std::move(source_name)), intensity_(intensity), rotation_deg_(rotation_deg)
 {
-    build(host, image, colorspace);
+    build(host, std::move(image), colorspace);
 }
 
 void EnvironmentLight::check_arguments(const Host& host, std::string_view colorspace) const
@@ -134,7 +134,7 @@ void EnvironmentLight::check_arguments(const Host& host, std::string_view colors
                         source_name_, colorspace, colors.config_path().string()));
 }
 
-void EnvironmentLight::build(const Host& host, const ImageData& image, std::string_view colorspace)
+void EnvironmentLight::build(const Host& host, ImageData image, std::string_view colorspace)
 {
     check_arguments(host, colorspace);
     const ColorManager& colors = host.colors();
@@ -153,19 +153,35 @@ void EnvironmentLight::build(const Host& host, const ImageData& image, std::stri
     const size_t n = static_cast<size_t>(width_) * height_;
 
     // Gather R, G, B, refusing NaN/Inf: a bad texel would otherwise turn into a plausible
-    // (black or white) patch of sky. The first bad one in scanline order is named.
+    // (black or white) patch of sky. The first bad one in scanline order is named. When the
+    // image holds R, G, B as its first channels, they are packed in place: a production
+    // HDRI (16384 x 8192) is not copied.
     const std::array<int, 3> ch = rgb_channels(image);
-    std::vector<float> rgb(3 * n);
+    const size_t nc = static_cast<size_t>(image.channels);
+    const bool in_place = nc >= 3 && ch[0] == 0 && ch[1] == 1 && ch[2] == 2;
+    std::vector<float> rgb;
+    if (!in_place)
+        rgb.resize(3 * n);
+    float* packed = in_place ? image.pixels.data() : rgb.data();
     for (int y = 0; y < height_; ++y)
-        for (int x = 0; x < width_; ++x)
+        for (int x = 0; x < width_; ++x) {
+            const size_t i = static_cast<size_t>(y) * width_ + x;
             for (int c = 0; c < 3; ++c) {
-                const float v = image.at(x, y, ch[c]);
+                // (In place, the source i*nc + c never lies below the destination 3i + c.)
+                const float v = image.pixels[i * nc + static_cast<size_t>(ch[c])];
                 if (!std::isfinite(v))
                     throw std::runtime_error(fmt::format(
                         "environment map '{}': texel ({}, {}) is {} (channel {})", source_name_, x,
                         y, std::isnan(v) ? "NaN" : "infinite", "RGB"[c]));
-                rgb[3 * (static_cast<size_t>(y) * width_ + x) + c] = v;
+                packed[3 * i + c] = v;
             }
+        }
+    if (in_place) {
+        image.pixels.resize(3 * n);  // (keeps the allocation: no copy)
+        rgb = std::move(image.pixels);
+    } else {
+        image.pixels = {};
+    }
 
     // Convert once to the working space (data spaces are not colours: used as they are),
     // then clamp what falls outside the working gamut or below zero.
@@ -181,10 +197,40 @@ void EnvironmentLight::build(const Host& host, const ImageData& image, std::stri
     for (float& v : rgb)
         v = std::isfinite(v) && v > 0.0f ? v : 0.0f;
 
+    // Luminance (Y of the working-space RGB) per texel, and its integral over the sphere:
+    // a texel row spans the solid angle (2 pi / W) (cos theta0 - cos theta1). Computed where
+    // it is needed (twice), not stored: a double per texel is 1 GiB for a 16k map.
+    const Matrix3 m = colors.working_rgb_to_xyz();
+    const auto luminance = [&](size_t i) {
+        const float* c = &rgb[3 * i];
+        return std::max(0.0, double(m[3]) * c[0] + double(m[4]) * c[1] + double(m[5]) * c[2]);
+    };
+    double y_integral = 0.0;
+    for (int y = 0; y < height_; ++y) {
+        const double cos0 = std::cos(kPi * y / height_), cos1 = std::cos(kPi * (y + 1) / height_);
+        const double texel_solid_angle = 2.0 * kPi / width_ * (cos0 - cos1);
+        for (int x = 0; x < width_; ++x)
+            y_integral += luminance(static_cast<size_t>(y) * width_ + x) * texel_solid_angle;
+    }
+    power_ = static_cast<float>(intensity_ * y_integral);
+
+    // Sampling weight per texel: its luminance, floored for texels that are not black.
+    const double floor = std::max(kLuminanceFloor * y_integral / (4.0 * kPi),
+                                  double(std::numeric_limits<float>::min()));
+    std::vector<float> weight(n);
+    for (size_t i = 0; i < n; ++i) {
+        const bool black = rgb[3 * i] == 0.0f && rgb[3 * i + 1] == 0.0f && rgb[3 * i + 2] == 0.0f;
+        weight[i] = black ? 0.0f : static_cast<float>(std::max(luminance(i), floor));
+    }
+
     // Uplift every distinct colour once (a fit costs a few microseconds; hashing a texel far
     // less): flat sky, black ground, clipped highlights and synthetic maps repeat colours.
+    // A colour's spectrum is fitted straight into its first texel; the others copy it.
+    if (n > std::numeric_limits<uint32_t>::max())
+        throw std::runtime_error(fmt::format("environment map '{}': {} x {} texels is too many",
+                                             source_name_, width_, height_));
     std::vector<uint32_t> colour_of(n);
-    std::vector<size_t> first_texel; // of each distinct colour, in scanline order
+    std::vector<uint32_t> first_texel; // of each distinct colour, in scanline order
     {
         std::unordered_map<RgbBits, uint32_t, RgbBitsHash> seen;
         seen.reserve(std::min(n, kMaxCachedColours));
@@ -197,44 +243,20 @@ void EnvironmentLight::build(const Host& host, const ImageData& image, std::stri
                 continue;
             }
             colour_of[i] = static_cast<uint32_t>(first_texel.size());
-            first_texel.push_back(i);
+            first_texel.push_back(static_cast<uint32_t>(i));
             if (seen.size() < kMaxCachedColours)
                 seen.emplace(key, colour_of[i]);
         }
     }
-    std::vector<PatinaRgbSpectrum> distinct(first_texel.size());
-    tbb::parallel_for(size_t(0), distinct.size(),
-                      [&](size_t k) { distinct[k] = host.uplift(&rgb[3 * first_texel[k]], true); });
     texels_.resize(n);
+    tbb::parallel_for(size_t(0), first_texel.size(), [&](size_t k) {
+        texels_[first_texel[k]] = host.uplift(&rgb[3 * size_t(first_texel[k])], true);
+    });
+    rgb = {};
     for (size_t i = 0; i < n; ++i)
-        texels_[i] = distinct[colour_of[i]];
-
-    // Luminance (Y of the working-space RGB) per texel, and its integral over the sphere:
-    // a texel row spans the solid angle (2 pi / W) (cos theta0 - cos theta1).
-    const Matrix3 m = colors.working_rgb_to_xyz();
-    std::vector<double> luminance(n);
-    double y_integral = 0.0;
-    for (int y = 0; y < height_; ++y) {
-        const double cos0 = std::cos(kPi * y / height_), cos1 = std::cos(kPi * (y + 1) / height_);
-        const double texel_solid_angle = 2.0 * kPi / width_ * (cos0 - cos1);
-        for (int x = 0; x < width_; ++x) {
-            const size_t i = static_cast<size_t>(y) * width_ + x;
-            const float* c = &rgb[3 * i];
-            luminance[i] =
-                std::max(0.0, double(m[3]) * c[0] + double(m[4]) * c[1] + double(m[5]) * c[2]);
-            y_integral += luminance[i] * texel_solid_angle;
-        }
-    }
-    power_ = static_cast<float>(intensity_ * y_integral);
-
-    // Sampling weight per texel: its luminance, floored for texels that are not black.
-    const double floor = std::max(kLuminanceFloor * y_integral / (4.0 * kPi),
-                                  double(std::numeric_limits<float>::min()));
-    std::vector<float> weight(n);
-    for (size_t i = 0; i < n; ++i) {
-        const bool black = rgb[3 * i] == 0.0f && rgb[3 * i + 1] == 0.0f && rgb[3 * i + 2] == 0.0f;
-        weight[i] = black ? 0.0f : static_cast<float>(std::max(luminance[i], floor));
-    }
+        texels_[i] = texels_[first_texel[colour_of[i]]];
+    colour_of = {};
+    first_texel = {};
 
     // The sampling grid: rows split up to kMinSamplingRows (whole texels per cell), large maps
     // max-downsampled so every cell over a non-black texel keeps a non-zero density.

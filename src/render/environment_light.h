@@ -68,7 +68,7 @@ public:
 
     /// A map already in memory (procedural skies, tests); `source_name` stands in for the
     /// file name in messages. Same rules as the file constructor.
-    EnvironmentLight(const Host& host, const ImageData& image, std::string_view colorspace,
+    EnvironmentLight(const Host& host, ImageData image, std::string_view colorspace,
                      float intensity, float rotation_deg, std::string source_name);
 
     std::optional<LightSample> sample(const Imath::V3f& p, Imath::V2f u,
@@ -123,7 +123,8 @@ public:
 private:
     /// Throws for a bad intensity, rotation or colour space (before any file is read).
     void check_arguments(const Host& host, std::string_view colorspace) const;
-    void build(const Host& host, const ImageData& image, std::string_view colorspace);
+    /// Takes the image's pixels over (packs R, G, B in place): no full-size copy.
+    void build(const Host& host, ImageData image, std::string_view colorspace);
     /// The uplifted spectrum of the texel containing (u, v).
     const PatinaRgbSpectrum& texel_at(float u, float v) const;
     SampledSpectrum radiance_of(const PatinaRgbSpectrum& s, const PatinaWavelengths& wl) const;

@@ -62,9 +62,7 @@ expect_quick_failure("--wavelengths '300:830:0.000001': 5.3e+08 wavelengths, mor
   --wavelengths 300:830:0.000001 --quiet)
 
 # --- stone: the world grid ----------------------------------------------------------------
-file(WRITE "${WORK_DIR}/cube.obj" "v -0.1 0 -0.1\nv 0.1 0 -0.1\nv 0.1 0 0.1\nv -0.1 0 0.1\n"
-  "v -0.1 0.2 -0.1\nv 0.1 0.2 -0.1\nv 0.1 0.2 0.1\nv -0.1 0.2 0.1\n"
-  "f 1 2 3 4\nf 8 7 6 5\nf 1 5 6 2\nf 2 6 7 3\nf 3 7 8 4\nf 4 8 5 1\n")
+write_small_cube_obj("${WORK_DIR}/cube.obj")
 # About 2048^3 voxels of 4 floats, twice: 256 GiB.
 expect_quick_failure("world volume would need"
   "${PATINA_TEXGEN}" stone --mesh "${WORK_DIR}/cube.obj" --grid 2048 --cycles 1

@@ -94,9 +94,7 @@ expect_failure_changes_nothing("${WORK_DIR}/corrupt" "stack.toml"
   --resolution 32 --rays 8 --quiet)
 
 # --- stone: a series of steps -------------------------------------------------------------
-file(WRITE "${WORK_DIR}/cube.obj" "v -0.1 0 -0.1\nv 0.1 0 -0.1\nv 0.1 0 0.1\nv -0.1 0 0.1\n"
-  "v -0.1 0.2 -0.1\nv 0.1 0.2 -0.1\nv 0.1 0.2 0.1\nv -0.1 0.2 0.1\n"
-  "f 1 2 3 4\nf 8 7 6 5\nf 1 5 6 2\nf 2 6 7 3\nf 3 7 8 4\nf 4 8 5 1\n")
+write_small_cube_obj("${WORK_DIR}/cube.obj")
 set(stone_args stone --mesh "${WORK_DIR}/cube.obj" --stone sandstone --feature-size 0.05
   --tangential-res 4 --depth-res 4 --cycles 4 --steps 2 --rain-dir 0 -1 0 --grid 16
   --out "${WORK_DIR}/stone" --quiet)

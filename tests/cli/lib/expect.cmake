@@ -38,3 +38,10 @@ function(write_unit_square_obj path)
   file(WRITE "${path}" "v -1 0 1\nv 1 0 1\nv 1 0 -1\nv -1 0 -1\n"
                        "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nf 1/1 2/2 3/3 4/4\n")
 endfunction()
+
+# A 0.2 m cube standing on y = 0, no uvs (stone tests).
+function(write_small_cube_obj path)
+  file(WRITE "${path}" "v -0.1 0 -0.1\nv 0.1 0 -0.1\nv 0.1 0 0.1\nv -0.1 0 0.1\n"
+    "v -0.1 0.2 -0.1\nv 0.1 0.2 -0.1\nv 0.1 0.2 0.1\nv -0.1 0.2 0.1\n"
+    "f 1 2 3 4\nf 8 7 6 5\nf 1 5 6 2\nf 2 6 7 3\nf 3 7 8 4\nf 4 8 5 1\n")
+endfunction()
