@@ -43,7 +43,9 @@ namespace {
         for (int a = 0; a <= k; ++a) {
             std::set<std::pair<uint32_t, uint32_t>> cells;
             for (int i = 0; i < n; ++i) {
-                const uint32_t x = sobol02_dimension0(i, scramble0) >> (32 - a);
+                // (A shift by 32 is undefined, and on x86 shifts by 0: the a = 0 shape would
+                // compare whole values. UBSan found it.)
+                const uint32_t x = a == 0 ? 0 : sobol02_dimension0(i, scramble0) >> (32 - a);
                 const uint32_t y = a == k ? 0 : sobol02_dimension1(i, scramble1) >> (32 - (k - a));
                 cells.insert({x, y});
             }
