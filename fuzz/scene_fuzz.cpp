@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include <cstddef>
+#include <cstdlib>
 #include <cstdint>
 #include <exception>
 #include <fstream>
@@ -19,6 +20,7 @@
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
 {
     static patina::PluginRegistry* registry = [] {
+        ::setenv("OCIO", PATINA_FUZZ_OCIO_CONFIG, 0);  // the source tree's config
         auto* r = new patina::PluginRegistry(patina::default_host().c_host());
         patina::render::PluginSearch search;
         search.bundled = false;

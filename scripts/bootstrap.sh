@@ -14,6 +14,11 @@ packages=(
   libcli11-dev libfmt-dev libspdlog-dev libtomlplusplus-dev
   colord-data fonts-dejavu-core
 )
+# Tools of one script only (scripts/fuzz.sh: clang and libFuzzer), named by that script.
+if [ -n "${PATINA_BOOTSTRAP_EXTRA:-}" ]; then
+  read -r -a extra <<<"$PATINA_BOOTSTRAP_EXTRA"
+  packages+=("${extra[@]}")
+fi
 
 missing=()
 for p in "${packages[@]}"; do

@@ -17,14 +17,15 @@ for a in "$@"; do
   esac
 done
 [ ${#names[@]} -eq 0 ] && names=(script_parser epw stack_manifest scene)
-for tool in clang clang++; do
-  command -v "$tool" >/dev/null || { echo "fuzz: $tool is missing: apt-get install clang libclang-rt-14-dev" >&2; exit 1; }
-done
-./scripts/build.sh >/dev/null   # the bundled plugins the scene fuzzer loads
+PATINA_BOOTSTRAP_EXTRA="clang libclang-rt-14-dev" ./scripts/bootstrap.sh
+./scripts/build.sh >/dev/null   # the bundled plugins and static libraries of the scene fuzzer
 main=$(pwd)/${PATINA_BUILD_DIR:-build}
 build=${PATINA_FUZZ_BUILD_DIR:-build-fuzz}
 CC=clang CXX=clang++ cmake -S fuzz -B "$build" -G Ninja -DPATINA_BUILD_DIR="$main" >/dev/null
 cmake --build "$build" -j "$(nproc)"
+# As in sanitize.sh (and for the same third-party reasons, scripts/sanitize/*.supp).
+export ASAN_OPTIONS="new_delete_type_mismatch=0"
+export LSAN_OPTIONS="suppressions=$(pwd)/scripts/sanitize/lsan.supp:print_suppressions=0"
 for name in "${names[@]}"; do
   scratch=$(mktemp -d)
   echo "fuzz: $name for $seconds s" >&2
