@@ -69,7 +69,6 @@ public:
 
     /// Files staged so far (deletions not counted).
     size_t staged_count() const;
-    bool committed() const { return committed_; }
 
 private:
     struct Entry;

@@ -322,8 +322,6 @@ FilmResult render_region(const Scene& scene, const Region& region, const RenderC
     for (int pass = 0; pass < passes; ++pass) {
         const int s0 = pass * pass_spp, s1 = std::min(film.spp, s0 + pass_spp);
         tbb::parallel_for(0, tiles_x * tiles_y, [&](int tile) {
-            if (cancel_requested())
-                return;  // a signal: the remaining tiles are skipped, the pass is thrown away
             const DenormalsAreZero daz;
             const int tx0 = (tile % tiles_x) * kTileSize, ty0 = (tile / tiles_x) * kTileSize;
             const int tx1 = std::min(tx0 + kTileSize, w);
@@ -351,7 +349,7 @@ FilmResult render_region(const Scene& scene, const Region& region, const RenderC
                 // size, so that a batch holds the same rays in every render of the pixel.
                 for (int g0 = s0; g0 < s1; g0 = std::min(s1, (g0 / kBatchSamples + 1) * kBatchSamples)) {
                     if (cancel_requested())
-                        return;  // the pass is thrown away below
+                        return;  // a signal: the pass is thrown away below
                     const int g1 = std::min(s1, (g0 / kBatchSamples + 1) * kBatchSamples);
                     // The camera rays of the row's pixels and these samples, traced as one
                     // coherent stream; each sample keeps its own generator for its path.

@@ -74,12 +74,6 @@ namespace {
 
 }  // namespace
 
-size_t world_voxel_count(const TriangleMesh& mesh, int resolution)
-{
-    const WorldGrid g = world_grid(mesh, resolution);
-    return size_t(g.nx) * g.ny * g.nz;
-}
-
 void check_world_volume_memory(const TriangleMesh& mesh, int resolution, const char* option)
 {
     const WorldGrid g = world_grid(mesh, resolution);

@@ -54,9 +54,8 @@ void output_fractions(const StoneState& st, std::vector<float>& crust, std::vect
 WorldVolume resample_to_world(const StoneState& st, const TriangleMesh& mesh, int resolution,
                               const Quarry* quarry = nullptr);
 
-/// The voxels resample_to_world makes for `mesh` at `resolution` (nx ny nz), and a check
-/// that the volume and its file fit in memory, naming `option` when they do not.
-size_t world_voxel_count(const TriangleMesh& mesh, int resolution);
+/// Throws, naming `option`, when the world volume resample_to_world makes for `mesh` at
+/// `resolution`, and its file's pixels, would not fit in this machine's memory.
 void check_world_volume_memory(const TriangleMesh& mesh, int resolution, const char* option);
 
 void write_world_volume(const std::filesystem::path& path, const WorldVolume& volume,
