@@ -112,6 +112,7 @@ SampledSpectrum trace_path(const Scene& scene, Ray ray, const std::optional<Hit>
     const UniformSky sky(scene, wl, cie.d65);
     const ShaderInstance* medium = nullptr;  // the camera is in vacuum
     int pass_through = 0;
+    float eta_scale = 1.0f;  // η'² over the boundaries crossed: survive_roulette
     bool first_segment = true;
     for (int depth = 0;;) {
         const std::optional<Hit> hit = first_segment
@@ -150,7 +151,7 @@ SampledSpectrum trace_path(const Scene& scene, Ray ray, const std::optional<Hit>
                 beta *= SampledSpectrum::from_lanes(wl.count, p) / phase_pdf;
                 prev = {P, phase_pdf, false};
                 ++depth;
-                if (beta.is_black() || !survive_roulette(depth, beta, rng))
+                if (beta.is_black() || !survive_roulette(depth, beta, eta_scale, rng))
                     break;
                 ray = {P, from_abi(wi).normalized()};
                 continue;
@@ -232,8 +233,9 @@ SampledSpectrum trace_path(const Scene& scene, Ray ray, const std::optional<Hit>
             secondaries_terminated = true;
         }
         prev = {sp.P, bs.pdf, (bs.lobe & PATINA_LOBE_SPECULAR) != 0};
+        eta_scale *= eta_scale_of(bs);
         ++depth;
-        if (beta.is_black() || !survive_roulette(depth, beta, rng))
+        if (beta.is_black() || !survive_roulette(depth, beta, eta_scale, rng))
             break;
 
         const Imath::V3f wi_world = unit(frame.to_world(from_abi(bs.wi)));

@@ -109,13 +109,32 @@ inline SampledSpectrum escaped(const Scene& scene, const Ray& ray, const PrevVer
     return L;
 }
 
-// Russian roulette once the path has some length (pbrt-v4 §13.3: on the largest
-// throughput component, so bright paths survive). False ends the path.
-inline bool survive_roulette(int depth, SampledSpectrum& beta, Pcg32& rng)
+// η'² of a sampled transmission (1 for reflection), for the roulette's throughput:
+// pbrt-v4 §13.4 ("etaScale"). A plugin that leaves eta unset counts as 1.
+inline float eta_scale_of(const PatinaBsdfSample& bs)
+{
+    if (!(bs.lobe & PATINA_LOBE_TRANSMISSION) || !(bs.eta > 0.0f) || !std::isfinite(bs.eta))
+        return 1.0f;
+    return bs.eta * bs.eta;
+}
+
+// Russian roulette once the path has some length (pbrt-v4 §13.4, PathIntegrator::Li and
+// VolPathIntegrator::Li). The throughput it looks at is the largest component of beta
+// times `eta_scale`, the product of η'² over the boundaries crossed, so that the 1/η'²
+// radiance scaling inside a dense body does not count as a loss. A path whose throughput
+// is 1 or more always goes on; below 1 it survives with probability equal to it and is
+// divided by it, which brings its throughput to exactly 1. Roulette thus never raises a
+// throughput above 1: no path can blow up however many albedo-0.99 scatterings or internal
+// reflections it makes (the rule it replaces, a kill probability of at least 0.05 and a
+// division by 0.95, multiplied a weight by 1/0.95 per vertex). False ends the path.
+inline bool survive_roulette(int depth, SampledSpectrum& beta, float eta_scale, Pcg32& rng)
 {
     if (depth < 3)
         return true;
-    const float q = std::max(0.05f, 1.0f - beta.max_value());
+    const float throughput = beta.max_value() * eta_scale;
+    if (!(throughput < 1.0f))
+        return true;
+    const float q = std::max(0.0f, 1.0f - throughput);
     if (rng.uniform_float() < q)
         return false;
     beta /= 1.0f - q;

@@ -133,8 +133,9 @@ namespace {
             p.secondaries_terminated = true;
         }
         p.prev = {sp.P, bs.pdf, (bs.lobe & PATINA_LOBE_SPECULAR) != 0};
+        p.eta_scale *= eta_scale_of(bs);
         ++p.depth;
-        if (p.beta.is_black() || !survive_roulette(p.depth, p.beta, p.rng))
+        if (p.beta.is_black() || !survive_roulette(p.depth, p.beta, p.eta_scale, p.rng))
             return false;
         const Imath::V3f wi_world = unit(frame.to_world(from_abi(bs.wi)));
         p.ray.origin = offset_ray_origin(sp, wi_world);
@@ -165,6 +166,7 @@ void trace_wavefront(const Scene& scene, std::span<WavefrontPath> paths, bool wa
         p.prev = PrevVertex{};
         p.sky = UniformSky(scene, p.wl, p.cie.d65);
         p.depth = 0;
+        p.eta_scale = 1.0f;
         if (want_aovs)
             p.aov = PathAovs{};
         s.live[i] = static_cast<uint32_t>(i);

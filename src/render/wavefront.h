@@ -35,6 +35,7 @@ struct WavefrontPath {
     path::UniformSky sky;
     path::PrevVertex prev;
     int depth = 0;
+    float eta_scale = 1.0f;  // η'² over the boundaries crossed: survive_roulette
     bool secondaries_terminated = false;
 };
 
