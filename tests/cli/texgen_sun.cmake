@@ -30,3 +30,11 @@ expect_failure("--date" "${PATINA_TEXGEN}" sun --date 2003-13-17 ${site})
 expect_failure("--time" "${PATINA_TEXGEN}" sun --date 2003-10-17 --time 25:00 ${site})
 expect_failure("already holds a time"
   "${PATINA_TEXGEN}" sun --date 2003-10-17T10:00 --time 11:00 ${site})
+
+# Without --delta-t, ΔT comes from the date (Espenak & Meeus 2006: 64.5 s in October 2003)
+# and the report's example still reads the published angles to 0.001 deg.
+list(REMOVE_ITEM site --delta-t 67)
+expect_success("${PATINA_TEXGEN}" sun --date 2003-10-17 --time 12:30:30 ${site})
+expect_in("${LAST_STDOUT}" "delta_t: 64.5")
+expect_in("${LAST_STDOUT}" "zenith: 50.111")
+expect_in("${LAST_STDOUT}" "azimuth: 194.340")

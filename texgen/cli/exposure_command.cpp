@@ -37,7 +37,7 @@ struct ExposureArguments {
     int sky_samples = 256;
     float max_distance = std::numeric_limits<float>::infinity();
     double linke_turbidity = 3.0;
-    double delta_t = 69.0;
+    std::optional<double> delta_t;
     std::optional<double> pressure;
     double temperature = 15.0;
 };
@@ -208,8 +208,10 @@ void register_exposure_command(CLI::App& app)
     cmd->add_option("--linke-turbidity", a->linke_turbidity,
                     "clear-sky Linke turbidity (2 very clean, 3 typical, 5+ hazy)")
         ->capture_default_str()->check(CLI::Range(1.0, 10.0));
-    cmd->add_option("--delta-t", a->delta_t, "TT - UT in seconds for the solar position")
-        ->capture_default_str()->check(CLI::Range(-8000.0, 8000.0));
+    cmd->add_option("--delta-t", a->delta_t,
+                    "TT - UT in seconds for the solar position (default: from the date, "
+                    "Espenak & Meeus 2006)")
+        ->check(CLI::Range(-8000.0, 8000.0));
     cmd->add_option("--pressure", a->pressure,
                     "mean pressure, mbar, for refraction (default: standard atmosphere at the "
                     "elevation; with --epw each row's own)")

@@ -54,6 +54,7 @@ void run_sun(const SunArguments& a)
 
     std::string out;
     out += fmt::format("julian_day: {:.6f} d\n", p.julian_day);
+    out += fmt::format("delta_t: {:.2f} s\n", p.delta_t_s);
     out += fmt::format("zenith: {:.5f} deg\n", p.zenith_deg);
     out += fmt::format("azimuth: {:.5f} deg\n", p.azimuth_deg);
     out += fmt::format("elevation: {:.5f} deg\n", p.elevation_deg);
@@ -99,8 +100,9 @@ void register_sun_command(CLI::App& app)
     cmd->add_option("--temperature", a->site.temperature_c,
                     "mean local temperature, C, for refraction")
         ->capture_default_str()->check(CLI::Range(-90.0, 60.0));
-    cmd->add_option("--delta-t", a->site.delta_t_s, "TT - UT, seconds")
-        ->capture_default_str()->check(CLI::Range(-8000.0, 8000.0));
+    cmd->add_option("--delta-t", a->site.delta_t_s,
+                    "TT - UT, seconds (default: from the date, Espenak & Meeus 2006)")
+        ->check(CLI::Range(-8000.0, 8000.0));
     cmd->add_option("--linke-turbidity", a->linke_turbidity,
                     "Linke turbidity of the clear sky (2 very clean, 3 typical, 5+ hazy)")
         ->capture_default_str()->check(CLI::Range(1.0, 10.0));

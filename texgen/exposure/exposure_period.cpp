@@ -36,7 +36,8 @@ void add_site_parameters(Metadata& m, const SolarSite& site, double timezone_hou
     m.push_back({"longitude_deg", number(site.longitude_deg)});
     m.push_back({"elevation_m", number(site.elevation_m)});
     m.push_back({"timezone_hours", number(timezone_hours)});
-    m.push_back({"delta_t_s", number(site.delta_t_s)});
+    m.push_back({"delta_t_s", site.delta_t_s ? number(*site.delta_t_s)
+                                             : std::string("Espenak & Meeus 2006 at each step's date")});
     m.push_back({"solar_position", std::string("NREL SPA (Reda & Andreas 2004)")});
 }
 

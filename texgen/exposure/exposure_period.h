@@ -71,7 +71,7 @@ struct EpwPeriodOptions {
     /// Sub-steps per row: each row's interval is split into steps of about this length
     /// so the sun's direction follows its path through the hour.
     double step_minutes = 10;
-    double delta_t_s = 69.0;
+    std::optional<double> delta_t_s;  ///< TT − UT, s; unset: from the date (sun/delta_t.h)
 };
 
 /// The rows of `file` in range, each split into sub-steps: the row's diffuse energy evenly

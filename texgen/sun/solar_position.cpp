@@ -1,5 +1,7 @@
 #include "texgen/sun/solar_position.h"
 
+#include "texgen/sun/delta_t.h"
+
 #include <algorithm>
 #include <cmath>
 #include <initializer_list>
@@ -234,7 +236,9 @@ SolarPosition solar_position(double jd_ut, const SolarSite& site)
     SolarPosition p;
     // §3.1: Julian day, ephemeris day, centuries and millennia from J2000.0 (Eq. 4-8).
     p.julian_day = jd_ut;
-    p.julian_ephemeris_day = jd_ut + site.delta_t_s / 86400.0;
+    p.delta_t_s =
+        site.delta_t_s.value_or(delta_t_espenak_meeus(decimal_year_of_julian_day(jd_ut)));
+    p.julian_ephemeris_day = jd_ut + p.delta_t_s / 86400.0;
     const double jc = (jd_ut - 2451545.0) / 36525.0;
     const double jce = (p.julian_ephemeris_day - 2451545.0) / 36525.0;
     const double jme = jce / 10.0;

@@ -5,6 +5,8 @@
 
 #include <Imath/ImathVec.h>
 
+#include <optional>
+
 namespace patina::texgen {
 
 /// Where and in what air the sun is observed.
@@ -14,8 +16,9 @@ struct SolarSite {
     double elevation_m = 0.0;     ///< above sea level
     double pressure_mbar = 1013.25;  ///< annual mean local pressure, for refraction
     double temperature_c = 15.0;     ///< annual mean local temperature, for refraction
-    /// TT - UT in seconds (about 64 s in 2000, 69 s in 2020; see the IERS bulletins).
-    double delta_t_s = 69.0;
+    /// TT - UT in seconds (about 64 s in 2000, 69 s in 2020; see the IERS bulletins);
+    /// unset, the Espenak & Meeus (2006) polynomials at the date (sun/delta_t.h).
+    std::optional<double> delta_t_s;
     /// Refraction of the sun at sunrise/sunset, degrees (SPA's atmos_refract).
     double atmospheric_refraction_deg = 0.5667;
 };
@@ -23,6 +26,7 @@ struct SolarSite {
 /// Every intermediate and final quantity of the SPA (the names of Reda & Andreas §3).
 struct SolarPosition {
     double julian_day = 0;           ///< JD (UT), Eq. 4
+    double delta_t_s = 0;             ///< TT − UT used, s (the site's, or from the date)
     double julian_ephemeris_day = 0;  ///< JDE, Eq. 5
     double heliocentric_longitude_deg = 0;  ///< L, Eq. 9-12 (0..360)
     double heliocentric_latitude_deg = 0;   ///< B
