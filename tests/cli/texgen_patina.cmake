@@ -68,3 +68,22 @@ expect_script_error(missing_map "map wet = \"nowhere.exr\"\nnew copper\ncoat dir
   "missing_map.patina:1:1:")
 expect_failure("--times must ascend" "${PATINA_TEXGEN}" patina "${urban}" -o "${WORK_DIR}/bad_times"
   --times 6,0 --quiet)
+
+# A periodic strip: the manifest says so, the layers differ from the open strip's (the same
+# seed grows other edges), and a mesh has no strip boundary to choose.
+expect_success("${PATINA_TEXGEN}" patina "${urban}" -o "${WORK_DIR}/periodic" --resolution 32
+  --strip-boundary periodic --quiet)
+file(READ "${WORK_DIR}/periodic/stack.toml" stack)
+expect_in("${stack}" "periodic")
+expect_success("${PATINA_TEXGEN}" patina "${urban}" -o "${WORK_DIR}/open" --resolution 32 --quiet)
+file(READ "${WORK_DIR}/open/stack.toml" stack)
+expect_in("${stack}" "open")
+file(SHA256 "${WORK_DIR}/periodic/total_thickness.exr" periodic_hash)
+file(SHA256 "${WORK_DIR}/open/total_thickness.exr" open_hash)
+if(periodic_hash STREQUAL open_hash)
+  message(FATAL_ERROR "--strip-boundary periodic grew the same layers as the open strip")
+endif()
+expect_failure("--strip-boundary" "${PATINA_TEXGEN}" patina "${urban}" -o "${WORK_DIR}/bad_boundary"
+  --strip-boundary torus --quiet)
+expect_failure("--mesh" "${PATINA_TEXGEN}" patina "${urban}" -o "${WORK_DIR}/bad_boundary"
+  --mesh "${WORK_DIR}/plane.obj" --strip-boundary periodic --quiet)

@@ -38,6 +38,7 @@ struct PatinaOptions {
     double end_time = 0;
     int width = 0, height = 0;  // 0: 512 for a strip, 1024 for a mesh
     double strip_size = 0.1;
+    std::string strip_boundary = "open";
     int supersampling = 2;
     uint64_t seed = 1;
     int threads = 0;
@@ -97,7 +98,9 @@ void run_patina(const PatinaOptions& o)
         domain = make_mesh_domain(mesh, raster);
     } else {
         const int w = o.width > 0 ? o.width : 512;
-        domain = make_strip_domain(w, o.height > 0 ? o.height : w, o.strip_size);
+        domain = make_strip_domain(w, o.height > 0 ? o.height : w, o.strip_size,
+                                   o.strip_boundary == "periodic" ? GridBoundary::periodic
+                                                                  : GridBoundary::open);
     }
 
     InterpreterOptions run;
@@ -121,8 +124,10 @@ void run_patina(const PatinaOptions& o)
                        static_cast<float>(o.end_time > 0 ? o.end_time : o.times.back())},
                       {"patina:domain", o.mesh.empty() ? std::string("strip")
                                                        : o.mesh.filename().string()}};
-    if (o.mesh.empty())
+    if (o.mesh.empty()) {
         out.parameters.emplace_back("patina:strip_size_m", static_cast<float>(o.strip_size));
+        out.parameters.emplace_back("patina:strip_boundary", o.strip_boundary);
+    }
 
     const bool series = steps.size() > 1;
     std::ostringstream series_toml;
@@ -208,6 +213,11 @@ void register_patina_command(CLI::App& app)
         ->check(CLI::Range(8, 16384));
     cmd->add_option("--strip-size", o->strip_size, "width of the strip in metres")
         ->capture_default_str()->check(patina::positive);
+    cmd->add_option("--strip-boundary", o->strip_boundary,
+                    "open: a real strip, its edge texels have fewer neighbours; periodic: one "
+                    "tile of an endless sheet (growth and offset wrap around the edges)")
+        ->capture_default_str()->check(CLI::IsMember({"open", "periodic"}))
+        ->excludes("--mesh");
     cmd->add_option("--supersampling", o->supersampling, "sub-samples per texel side (mesh)")
         ->capture_default_str()->check(CLI::Range(1, 8));
     cmd->add_option("--seed", o->seed, "random seed of the growth models")->capture_default_str();

@@ -13,6 +13,12 @@
 
 namespace patina::texgen {
 
+/// What lies beyond the edges of a flat grid: nothing (`open`, the default: edge nodes have
+/// fewer neighbours, as on a real strip of finite size) or the opposite edge (`periodic`:
+/// the grid is one tile of an endless sheet, every node has four neighbours, and growth
+/// statistics are those of the bulk; along an axis of fewer than 3 nodes nothing wraps).
+enum class GridBoundary { open, periodic };
+
 struct Lattice {
     /// Up to four neighbours per node (the cardinal directions of the grid, or their
     /// continuation across a seam); -1 where the lattice ends. Symmetric: if b is a
@@ -37,10 +43,11 @@ struct Lattice {
     size_t size() const { return neighbours.size(); }
 };
 
-/// A width x height grid of square cells of side `cell_size` (m) in the z = 0 plane with open
-/// boundaries; node y * width + x is texel (x, y) of tile 1001, at position
+/// A width x height grid of square cells of side `cell_size` (m) in the z = 0 plane with
+/// open or periodic boundaries; node y * width + x is texel (x, y) of tile 1001, at position
 /// ((x + 0.5) cell_size, (height - y - 0.5) cell_size, 0). Neighbour order: +x, -x, +y, -y
 /// (image rows, y down). Throws std::invalid_argument for non-positive sizes.
-Lattice make_grid_lattice(int width, int height, float cell_size);
+Lattice make_grid_lattice(int width, int height, float cell_size,
+                          GridBoundary boundary = GridBoundary::open);
 
 }  // namespace patina::texgen

@@ -58,16 +58,26 @@ namespace {
         }
     }
 
-    /// The field continued beyond its border by its edge values, padded by `pad` cells.
-    std::vector<float> padded(std::span<const float> h, int width, int height, int pad)
+    /// Cell index i (any integer) of an axis of n cells: clamped to the edge, or wrapped.
+    int continued(int i, int n, GridBoundary boundary)
+    {
+        if (boundary == GridBoundary::periodic)
+            return ((i % n) + n) % n;
+        return std::clamp(i, 0, n - 1);
+    }
+
+    /// The field continued beyond its border (by its edge values, or periodically), padded
+    /// by `pad` cells.
+    std::vector<float> padded(std::span<const float> h, int width, int height, int pad,
+                              GridBoundary boundary)
     {
         const int pw = width + 2 * pad;
         const int ph = height + 2 * pad;
         std::vector<float> out(static_cast<size_t>(pw) * ph);
         for (int y = 0; y < ph; ++y) {
-            const int sy = std::clamp(y - pad, 0, height - 1);
+            const int sy = continued(y - pad, height, boundary);
             for (int x = 0; x < pw; ++x) {
-                const int sx = std::clamp(x - pad, 0, width - 1);
+                const int sx = continued(x - pad, width, boundary);
                 out[static_cast<size_t>(y) * pw + x] = h[static_cast<size_t>(sy) * width + sx];
             }
         }
@@ -95,7 +105,7 @@ namespace {
 }  // namespace
 
 std::vector<float> closing_fill(std::span<const float> heights_um, int width, int height,
-                                float cell_size_um, float radius_um)
+                                float cell_size_um, float radius_um, GridBoundary boundary)
 {
     check_field(heights_um, width, height, cell_size_um, radius_um, "radius");
     const size_t cells = static_cast<size_t>(width) * height;
@@ -123,7 +133,7 @@ std::vector<float> closing_fill(std::span<const float> heights_um, int width, in
     // Positive offset (dilation by the ball), on the grid padded by R, from the field padded
     // by 2R; kept less r: D'(p) = max_q h(q) + c(p - q) - r.
     const int pad2 = 2 * R;
-    const std::vector<float> h2 = padded(heights_um, width, height, pad2);
+    const std::vector<float> h2 = padded(heights_um, width, height, pad2, boundary);
     const int w2 = width + 2 * pad2;
     const int w1 = width + 2 * R;
     const int h1 = height + 2 * R;
@@ -166,7 +176,7 @@ namespace {
 
     std::vector<float> tangent_radius_named(std::span<const float> heights_um, int width,
                                             int height, float cell_size_um, float max_radius_um,
-                                            const char* radius_name)
+                                            const char* radius_name, GridBoundary boundary)
     {
         check_field(heights_um, width, height, cell_size_um, max_radius_um, radius_name);
         const size_t cells = static_cast<size_t>(width) * height;
@@ -197,7 +207,7 @@ namespace {
         std::stable_sort(offsets.begin(), offsets.end(),
                          [](const Offset& a, const Offset& b) { return a.planar < b.planar; });
 
-        const std::vector<float> hp = padded(heights_um, width, height, S);
+        const std::vector<float> hp = padded(heights_um, width, height, S, boundary);
         const int pw = width + 2 * S;
         auto at = [&](int x, int y) { return double(hp[static_cast<size_t>(y + S) * pw + x + S]); };
 
@@ -266,10 +276,11 @@ namespace {
 }  // namespace
 
 std::vector<float> tangent_sphere_radius(std::span<const float> heights_um, int width, int height,
-                                         float cell_size_um, float max_radius_um)
+                                         float cell_size_um, float max_radius_um,
+                                         GridBoundary boundary)
 {
     return tangent_radius_named(heights_um, width, height, cell_size_um, max_radius_um,
-                                "maximum radius");
+                                "maximum radius", boundary);
 }
 
 float fill_from_tangent_radius(float tangent_radius, float radius)
@@ -290,10 +301,10 @@ float fill_from_tangent_radius(float tangent_radius, float radius)
 }
 
 std::vector<float> tangent_sphere_fill(std::span<const float> heights_um, int width, int height,
-                                       float cell_size_um, float radius_um)
+                                       float cell_size_um, float radius_um, GridBoundary boundary)
 {
-    std::vector<float> fill =
-        tangent_radius_named(heights_um, width, height, cell_size_um, radius_um, "radius");
+    std::vector<float> fill = tangent_radius_named(heights_um, width, height, cell_size_um,
+                                                   radius_um, "radius", boundary);
     for (float& f : fill) {
         f = fill_from_tangent_radius(f, radius_um);
     }

@@ -16,6 +16,8 @@
 // TangentSphereBaker's "accessibility_radius" goes through fill_from_tangent_radius below.
 #pragma once
 
+#include "texgen/growth/lattice.h"
+
 #include <span>
 #include <vector>
 
@@ -34,8 +36,11 @@ namespace patina::texgen {
 /// Throws std::invalid_argument ("offset: ...") for sizes that do not match, a cell size or
 /// radius that is not positive and finite, or a radius over 128 cells (too slow: coarsen
 /// the grid).
+/// With `boundary` periodic the field continues beyond each edge from the opposite one (a
+/// periodic strip, lattice.h) instead of by its edge values.
 std::vector<float> closing_fill(std::span<const float> heights_um, int width, int height,
-                                float cell_size_um, float radius_um);
+                                float cell_size_um, float radius_um,
+                                GridBoundary boundary = GridBoundary::open);
 
 /// The radius (µm) of the largest sphere tangent to the height field at each cell (centre
 /// on the cell's upward unit normal, from central differences) that holds no sample of the
@@ -47,7 +52,8 @@ std::vector<float> closing_fill(std::span<const float> heights_um, int width, in
 /// sampled surface's resolution). At most O(cells * (max_radius / cell)^2), far less where the scan
 /// can stop early (flat ground with nothing higher near costs O(1)); parallel over rows.
 std::vector<float> tangent_sphere_radius(std::span<const float> heights_um, int width, int height,
-                                         float cell_size_um, float max_radius_um);
+                                         float cell_size_um, float max_radius_um,
+                                         GridBoundary boundary = GridBoundary::open);
 
 /// Miller's first variant as a fill thickness: where the largest tangent sphere at a point
 /// has radius rho < r, the point lies in a crevice a ball of radius r cannot touch, and it
@@ -66,6 +72,7 @@ float fill_from_tangent_radius(float tangent_radius, float radius);
 /// 0 on flat and convex ground and where an r-ball touches, > 0 only in crevices narrower
 /// than r. Same errors as closing_fill.
 std::vector<float> tangent_sphere_fill(std::span<const float> heights_um, int width, int height,
-                                       float cell_size_um, float radius_um);
+                                       float cell_size_um, float radius_um,
+                                       GridBoundary boundary = GridBoundary::open);
 
 }  // namespace patina::texgen

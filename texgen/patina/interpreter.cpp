@@ -470,9 +470,10 @@ namespace {
                 const auto cell_um = static_cast<float>(domain_.cell_size_m * kMicrometresPerMetre);
                 const auto r_um = static_cast<float>(r * kMicrometresPerMetre);
                 return o.variant == OffsetStatement::Variant::Closing
-                           ? closing_fill(heights, domain_.width, domain_.height, cell_um, r_um)
+                           ? closing_fill(heights, domain_.width, domain_.height, cell_um, r_um,
+                                          domain_.boundary)
                            : tangent_sphere_fill(heights, domain_.width, domain_.height,
-                                                 cell_um, r_um);
+                                                 cell_um, r_um, domain_.boundary);
             }
             // On a mesh the layers are thin against the mesh (§3.1): the accessibility of
             // the base surface decides, baked once per radius and variant.

@@ -20,16 +20,17 @@ std::vector<std::vector<float>> PatinaDomain::per_tile(const std::vector<float>&
     return out;
 }
 
-PatinaDomain make_strip_domain(int width, int height, double size_m)
+PatinaDomain make_strip_domain(int width, int height, double size_m, GridBoundary boundary)
 {
     if (width <= 0 || height <= 0 || !(size_m > 0.0))
         throw std::invalid_argument("strip: resolution and size must be positive");
     PatinaDomain d;
     d.is_strip = true;
+    d.boundary = boundary;
     d.width = width;
     d.height = height;
     d.cell_size_m = size_m / width;
-    d.lattice = make_grid_lattice(width, height, static_cast<float>(d.cell_size_m));
+    d.lattice = make_grid_lattice(width, height, static_cast<float>(d.cell_size_m), boundary);
 
     // Every texel is covered by the strip; its sample is the cell centre, facing up (+y)
     // like a strip laid out on a rack, so `inclination` is 1 everywhere.

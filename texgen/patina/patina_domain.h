@@ -29,6 +29,7 @@ struct PatinaDomain {
     /// A flat strip: a height field of `width` x `height` square cells `cell_size_m` wide
     /// (the operators that need the neighbourhood of a texel, offset, work on it directly).
     bool is_strip = false;
+    GridBoundary boundary = GridBoundary::open;  ///< of a strip's lattice and offsets
     int width = 0, height = 0;
     double cell_size_m = 0;
     const TriangleMesh* mesh = nullptr;  ///< the mesh, when not a strip
@@ -41,8 +42,9 @@ struct PatinaDomain {
 /// A flat copper strip (the paper's §5.1 strips) of width x height texels, `size_m` wide
 /// along x: every texel covered, one sample at its centre, lying in the y = 0 plane facing
 /// up (+y, so `inclination` is 1), uv covering [0, 1]^2 (tile 1001). The lattice is the
-/// plain grid (make_grid_lattice), node y * width + x.
-PatinaDomain make_strip_domain(int width, int height, double size_m);
+/// plain grid (make_grid_lattice) with the given boundary, node y * width + x.
+PatinaDomain make_strip_domain(int width, int height, double size_m,
+                               GridBoundary boundary = GridBoundary::open);
 
 /// The covered texels of `mesh`'s uv layout (rasterize_uv) as the domain, with the surface
 /// lattice continued across uv seams (surface_lattice.h). `mesh` must outlive the domain.

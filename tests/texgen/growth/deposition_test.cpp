@@ -10,6 +10,7 @@
 
 #include "test_util.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <numeric>
@@ -34,15 +35,17 @@ namespace {
         return std::sqrt(s / static_cast<double>(h.size()));
     }
 
-    /// Least-squares slope of log w against log t, w averaged over `seeds` runs on a 1+1D
-    /// strip of `length` nodes, over times (in monolayers) first .. last doubling.
-    double growth_exponent(GrowthModelKind model, int length, int first, int last, int seeds)
+    /// Least-squares slope of log w against log t, w averaged over `seeds` runs on a strip of
+    /// `length` x `rows` nodes (1+1D by default), periodic unless told otherwise, over
+    /// times (in monolayers) first .. last doubling.
+    double growth_exponent(GrowthModelKind model, int length, int first, int last, int seeds,
+                           int rows = 1, GridBoundary boundary = GridBoundary::periodic)
     {
-        const Lattice strip = make_grid_lattice(length, 1, 1.0f);
+        const Lattice strip = make_grid_lattice(length, rows, 1.0f, boundary);
         std::vector<uint64_t> counts;
         std::vector<double> times;
         for (int t = first; t <= last; t *= 2) {
-            counts.push_back(static_cast<uint64_t>(t) * length);
+            counts.push_back(static_cast<uint64_t>(t) * length * rows);
             times.push_back(t);
         }
         std::vector<double> w(times.size(), 0.0);
@@ -61,8 +64,9 @@ namespace {
             sxy += x * y;
         }
         const double beta = (n * sxy - sx * sy) / (n * sxx - sx * sx);
-        std::printf("[ measured ] %s beta = %.4f (L = %d, t = %d..%d, %d runs)\n",
-                    std::string(growth_model_name(model)).c_str(), beta, length, first, last,
+        std::printf("[ measured ] %s beta = %.4f (%d x %d, %s, t = %d..%d, %d runs)\n",
+                    std::string(growth_model_name(model)).c_str(), beta, length, rows,
+                    boundary == GridBoundary::periodic ? "periodic" : "open", first, last,
                     seeds);
         return beta;
     }
@@ -106,6 +110,112 @@ namespace {
         // 0.302 to 0.316).
         EXPECT_NEAR(growth_exponent(GrowthModelKind::BallisticDeposition, 16384, 32, 1024, 8),
                     1.0 / 3.0, 0.05);
+    }
+
+    TEST(Deposition, PeriodicStripHasNoEdgeLag)
+    {
+        // An open strip's edge nodes have 3 neighbours (corners 2), so BD's lateral sticking
+        // lifts them less often: after 64 monolayers on 256 x 256 the edge rows and columns
+        // lag the bulk by about 5 monolayers (2.5 at 16, 8-10 at 1024). On a periodic strip
+        // every node has 4 neighbours and the edges are bulk. Four runs each; the spread of
+        // one run's edge mean is about 1 monolayer.
+        const int L = 256;
+        const std::vector<uint64_t> counts = {64ull * L * L};
+        double lag[2] = {0.0, 0.0};
+        for (const GridBoundary b : {GridBoundary::open, GridBoundary::periodic}) {
+            const Lattice grid = make_grid_lattice(L, L, 1.0f, b);
+            for (int seed = 1; seed <= 4; ++seed) {
+                const auto h =
+                    deposit_heights(grid, GrowthModelKind::BallisticDeposition, {}, seed, counts)[0];
+                double edge = 0.0, bulk = 0.0;
+                int n_edge = 0, n_bulk = 0;
+                for (int y = 0; y < L; ++y) {
+                    for (int x = 0; x < L; ++x) {
+                        const double v = h[static_cast<size_t>(y) * L + x];
+                        if (x == 0 || y == 0 || x == L - 1 || y == L - 1) {
+                            edge += v;
+                            ++n_edge;
+                        } else if (x >= 16 && y >= 16 && x < L - 16 && y < L - 16) {
+                            bulk += v;
+                            ++n_bulk;
+                        }
+                    }
+                }
+                lag[static_cast<int>(b)] += (bulk / n_bulk - edge / n_edge) / 4.0;
+            }
+        }
+        std::printf("[ measured ] BD 256x256 after 64 layers, bulk - edge: open %.2f, periodic "
+                    "%.2f monolayers\n", lag[0], lag[1]);
+        EXPECT_GT(lag[0], 3.0);
+        EXPECT_LT(std::abs(lag[1]), 1.0);
+    }
+
+    TEST(Deposition, FamilyModelOnAPeriodicSquareGrowsLogarithmically)
+    {
+        // B&S 1995 ch. 5: in 2+1 dimensions the Edwards-Wilkinson class is marginal, beta = 0
+        // and w^2 = a + b ln t. On a periodic 256 x 256 lattice (saturation only at t ~ L^2):
+        // w^2 against ln t is a straight line (each doubling adds the same), and the log-log
+        // slope stays far below the 1+1D value 1/4.
+        const int L = 256;
+        const Lattice grid = make_grid_lattice(L, L, 1.0f, GridBoundary::periodic);
+        std::vector<uint64_t> counts;
+        std::vector<double> log_t;
+        for (int t = 4; t <= 512; t *= 2) {
+            counts.push_back(static_cast<uint64_t>(t) * L * L);
+            log_t.push_back(std::log(t));
+        }
+        std::vector<double> w2(counts.size(), 0.0);
+        for (int seed = 1; seed <= 4; ++seed) {
+            const auto h =
+                deposit_heights(grid, GrowthModelKind::RandomDepositionRelaxed, {}, seed, counts);
+            for (size_t k = 0; k < counts.size(); ++k)
+                w2[k] += width(h[k]) * width(h[k]) / 4.0;
+        }
+        // Least squares w^2 = a + b ln t, and its largest residual.
+        const double n = static_cast<double>(counts.size());
+        double sx = 0, sy = 0, sxx = 0, sxy = 0;
+        for (size_t k = 0; k < counts.size(); ++k) {
+            sx += log_t[k];
+            sy += w2[k];
+            sxx += log_t[k] * log_t[k];
+            sxy += log_t[k] * w2[k];
+        }
+        const double b = (n * sxy - sx * sy) / (n * sxx - sx * sx);
+        const double a = (sy - b * sx) / n;
+        double worst = 0.0;
+        for (size_t k = 0; k < counts.size(); ++k)
+            worst = std::max(worst, std::abs(w2[k] - (a + b * log_t[k])));
+        const double beta = 0.5 * std::log(w2.back() / w2.front()) / (log_t.back() - log_t.front());
+        std::printf("[ measured ] RDR 256x256 periodic: w^2 = %.4f + %.4f ln t (largest residual "
+                    "%.4f), log-log beta %.4f\n", a, b, worst, beta);
+        EXPECT_GT(b, 0.0);
+        EXPECT_LT(worst, 0.05 * (w2.back() - w2.front()));
+        EXPECT_LT(beta, 0.1);
+    }
+
+    TEST(Deposition, PeriodicGridNeighbours)
+    {
+        // Every node of a periodic grid has four neighbours, the step off an edge lands on
+        // the opposite edge, and the relation stays symmetric; an axis of 1 or 2 nodes does
+        // not wrap (a node would be its own or its only neighbour twice).
+        const Lattice g = make_grid_lattice(5, 4, 1.0f, GridBoundary::periodic);
+        for (size_t i = 0; i < g.size(); ++i) {
+            for (const int32_t j : g.neighbours[i]) {
+                ASSERT_GE(j, 0);
+                const auto& back = g.neighbours[static_cast<size_t>(j)];
+                EXPECT_NE(std::find(back.begin(), back.end(), static_cast<int32_t>(i)), back.end());
+            }
+        }
+        EXPECT_EQ(g.neighbours[4][0], 0);       // (4, 0) +x -> (0, 0)
+        EXPECT_EQ(g.neighbours[0][1], 4);       // (0, 0) -x -> (4, 0)
+        EXPECT_EQ(g.neighbours[16][2], 1);      // (1, 3) +y -> (1, 0)
+        EXPECT_EQ(g.neighbours[1][3], 16);      // (1, 0) -y -> (1, 3)
+        const Lattice line = make_grid_lattice(8, 1, 1.0f, GridBoundary::periodic);
+        EXPECT_EQ(line.neighbours[7][0], 0);
+        EXPECT_EQ(line.neighbours[0][2], -1);
+        EXPECT_EQ(line.neighbours[0][3], -1);
+        const Lattice open = make_grid_lattice(5, 4, 1.0f);
+        EXPECT_EQ(open.neighbours[4][0], -1);
     }
 
     TEST(Deposition, RandomDepositionMeanHeightIsExactlyParticlesPerNode)
