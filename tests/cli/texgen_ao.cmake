@@ -66,6 +66,15 @@ expect_in("${manifest}" "[maps.accessibility]")
 expect_in("${manifest}" "method = 'tangent-sphere'")
 expect_in("${manifest}" "[maps.offset]")
 expect_in("${manifest}" "voxels = 32")
+# Every texel map ends with its coverage channel, named in the manifest (issue: a baked 0
+# and an empty texel must differ).
+string(REGEX MATCHALL "coverage = 'coverage.A'" coverage_lines "${manifest}")
+list(LENGTH coverage_lines coverage_count)
+if(NOT coverage_count EQUAL 3)
+  message(FATAL_ERROR "3 maps, ${coverage_count} coverage entries in:\n${manifest}")
+endif()
+execute_process(COMMAND oiiotool --info -v "${out}/ao.exr" OUTPUT_VARIABLE header)
+expect_in("${header}" "channel list: ao, coverage.A")
 execute_process(COMMAND oiiotool -v --info "${out}/ao.exr" OUTPUT_VARIABLE header)
 expect_in("${header}" "rays: 16")
 

@@ -47,6 +47,7 @@ foreach(step cycle_0000 cycle_0002 cycle_0004)
   endforeach()
 endforeach()
 file(READ "${WORK_DIR}/series/cycle_0004/stack.toml" stack)
+expect_in("${stack}" "coverage = 'coverage.A'")
 expect_in("${stack}" "stone_crust")
 file(GLOB leftovers "${WORK_DIR}/series/*/*.tmp-*" "${WORK_DIR}/series/.patina-staging-*"
   "${WORK_DIR}/series/*/.patina-staging-*")

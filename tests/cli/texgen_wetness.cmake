@@ -58,6 +58,7 @@ endif()
 
 # Both maps are in the manifest, with their parameters.
 file(READ "${maps}/stack.toml" manifest)
+expect_in("${manifest}" "coverage = 'coverage.A'")
 foreach(part "[maps.wetness]" "[maps.deposit]" "spread_deg = 10" "sphere center=0.5,2,0"
         "disc center=0,3,0")
   string(FIND "${manifest}" "${part}" pos)

@@ -1,6 +1,8 @@
 // Exposure map -> doses -> table coordinates (see fade_map.h).
 #include "texgen/fade/fade_map.h"
 
+#include "texgen/stack/map_output.h"
+
 #include "core/image_io.h"
 #include "texgen/fade/fade_stack.h"
 
@@ -93,6 +95,11 @@ ExposureMap read_exposure_map(const fs::path& file, const std::string& channel)
     map.values.resize(static_cast<size_t>(map.width) * map.height);
     for (size_t i = 0; i < map.values.size(); ++i)
         map.values[i] = image.pixels[i * image.channels + c];
+    const int a = image.channel(kCoverageChannel);
+    map.coverage.assign(map.values.size(), 1.0f);
+    if (a >= 0)
+        for (size_t i = 0; i < map.coverage.size(); ++i)
+            map.coverage[i] = image.pixels[i * image.channels + a];
     return map;
 }
 
@@ -147,7 +154,7 @@ std::vector<float> make_dose_pixels(const ExposureMap& map, const DoseTable& tab
                                     void* progress_data)
 {
     const size_t width = static_cast<size_t>(map.width);
-    std::vector<float> pixels(map.values.size() * 2);
+    std::vector<float> pixels(map.values.size() * 3);
     const DoseRow row(table);
     std::atomic<size_t> bad{std::numeric_limits<size_t>::max()};
     tbb::parallel_for(tbb::blocked_range<size_t>(0, static_cast<size_t>(map.height), 16),
@@ -164,8 +171,10 @@ std::vector<float> make_dose_pixels(const ExposureMap& map, const DoseTable& tab
                                       continue;
                                   }
                                   const double dose = factor * v;
-                                  pixels[2 * i] = static_cast<float>(row(dose));
-                                  pixels[2 * i + 1] = static_cast<float>(dose);
+                                  pixels[3 * i] = static_cast<float>(row(dose));
+                                  pixels[3 * i + 1] = static_cast<float>(dose);
+                                  pixels[3 * i + 2] =
+                                      i < map.coverage.size() ? map.coverage[i] : 1.0f;
                               }
                           }
                           if (progress)

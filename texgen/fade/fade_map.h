@@ -21,6 +21,9 @@ struct ExposureMap {
     std::string channel;
     std::string units;              ///< "J/m^2" (exposure) or "W/m^2" (mean irradiance)
     std::vector<float> values;      ///< width x height, top row first
+    /// Per texel, the map's coverage channel (stack/map_output.h: 1 baked, 0 empty); all 1
+    /// for a map without one.
+    std::vector<float> coverage;
     double period_s = 0.0;          ///< patina:period_seconds, 0 when absent
     std::string illuminant;         ///< patina:illuminant, "" when absent
     std::vector<double> illuminant_nm, illuminant_value;  ///< patina:illuminant_spectrum
@@ -37,8 +40,8 @@ ExposureMap read_exposure_map(const std::filesystem::path& file, const std::stri
 /// Throws std::runtime_error saying which option is missing.
 double dose_factor(const ExposureMap& map, double scale, double duration_s);
 
-/// Per texel (coordinate, dose) pairs: dose = factor × value, coordinate = its fractional
-/// row in `table`; parallel over rows. Throws std::runtime_error naming the first texel
+/// Per texel (coordinate, dose, coverage): dose = factor × value, coordinate = its
+/// fractional row in `table`, coverage the exposure map's; parallel over rows. Throws std::runtime_error naming the first texel
 /// (x, y) that is NaN, infinite or negative. `progress` (may be null) is called with the
 /// number of rows done, from worker threads.
 std::vector<float> make_dose_pixels(const ExposureMap& map, const DoseTable& table,

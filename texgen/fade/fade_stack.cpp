@@ -1,6 +1,8 @@
 // Writing and reading fade stacks (format in fade_stack.h).
 #include "texgen/fade/fade_stack.h"
 
+#include "texgen/stack/map_output.h"
+
 #include "core/image_io.h"
 
 #include <fmt/format.h>
@@ -22,7 +24,8 @@ namespace fs = std::filesystem;
 namespace {
 
     const std::vector<std::string> kTableChannels = {"R_bottom", "R_top", "R_total", "T"};
-    const std::vector<std::string> kDoseChannels = {"coordinate", "dose"};
+    // The coverage channel last, as in every texel map (stack/map_output.h).
+    const std::vector<std::string> kDoseChannels = {"coordinate", "dose", kCoverageChannel};
 
     toml::array numbers(const std::vector<double>& values)
     {
@@ -93,9 +96,9 @@ void write_fade_stack(const fs::path& dir, const DoseTable& table, const FadeSta
                       const std::vector<float>& dose_pixels)
 {
     const size_t texels = static_cast<size_t>(info.width) * info.height;
-    if (info.width <= 0 || info.height <= 0 || dose_pixels.size() != 2 * texels)
+    if (info.width <= 0 || info.height <= 0 || dose_pixels.size() != 3 * texels)
         throw std::runtime_error(fmt::format("fade stack '{}': {} dose values for a {}x{} map",
-                                             dir.string(), dose_pixels.size() / 2, info.width,
+                                             dir.string(), dose_pixels.size() / 3, info.width,
                                              info.height));
     const size_t rows = table.doses().size(), columns = table.grid().size();
     if (info.substrate.size() != columns)
@@ -138,10 +141,12 @@ void write_fade_stack(const fs::path& dir, const DoseTable& table, const FadeSta
                     {"patina:colorspace", std::string("raw")},
                     {"patina:material", info.material},
                     {"patina:illuminant", info.illuminant},
+                    {"patina:coverage", std::string(kCoverageChannel)},
                     {"patina:description",
                      std::string("coordinate: fractional row of fade_table.exr; dose: radiant "
-                                 "exposure of the illuminant band, J/m^2")}};
-    make_texture_atomic(dir / kDoseMapFile, dose_pixels.data(), info.width, info.height, 2,
+                                 "exposure of the illuminant band, J/m^2; coverage: the "
+                                 "exposure map's")}};
+    make_texture_atomic(dir / kDoseMapFile, dose_pixels.data(), info.width, info.height, 3,
                         kDoseChannels, tex);
 
     // fade.toml, last: a stack is complete when its description exists
@@ -170,6 +175,7 @@ void write_fade_stack(const fs::path& dir, const DoseTable& table, const FadeSta
     toml::table substrate_section{{"reflectance", numbers(info.substrate)}};
     toml::table dose_map{{"file", kDoseMapFile},
                          {"channels", strings(kDoseChannels)},
+                         {"coverage", kCoverageChannel},
                          {"resolution", numbers({double(info.width), double(info.height)})},
                          {"min_dose", info.min_dose},
                          {"mean_dose", info.mean_dose},

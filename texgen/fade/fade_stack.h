@@ -95,8 +95,8 @@ double table_coordinate(const DoseTable& table, double dose_j_m2);
 /// (so its odd entries fall on `table`'s interval midpoints).
 double interpolation_error(const DoseTable& table, const DoseTable& fine);
 
-/// Write fade_table.exr, dose.exr (interleaved (coordinate, dose) pixels, `width` x
-/// `height`, top row first: make_dose_pixels) and, last, fade.toml into `dir` (created if
+/// Write fade_table.exr, dose.exr (interleaved (coordinate, dose, coverage) pixels, `width`
+/// x `height`, top row first: make_dose_pixels) and, last, fade.toml into `dir` (created if
 /// needed), each atomically. Throws std::runtime_error naming the file on failure.
 void write_fade_stack(const std::filesystem::path& dir, const DoseTable& table,
                       const FadeStackInfo& info, const std::vector<float>& dose_pixels);

@@ -174,6 +174,11 @@ void record_in_manifest(const fs::path& out_dir, const MapDescription& map,
     toml::array channels;
     for (const std::string& c : map.channels)
         channels.push_back(c);
+    if (!tiles.empty()) {
+        // Texel maps carry the coverage channel after their own (write_texel_map).
+        channels.push_back(kCoverageChannel);
+        entry.insert_or_assign("coverage", kCoverageChannel);
+    }
     entry.insert_or_assign("channels", std::move(channels));
     entry.insert_or_assign("units", map.units);
     entry.insert_or_assign("colorspace", "raw");

@@ -19,8 +19,9 @@ namespace fs = std::filesystem;
 namespace {
 
     /// Header attributes every map carries; a bake parameter may not reuse these names.
-    const std::set<std::string> kReservedKeys = {"map",  "baker",   "units",     "description",
-                                                 "udim", "padding", "colorspace"};
+    const std::set<std::string> kReservedKeys = {"map",     "baker",      "units",
+                                                 "description", "udim", "padding",
+                                                 "colorspace", "coverage"};
 
     std::string parameter_key(const std::string& key)
     {
@@ -36,12 +37,13 @@ namespace {
         if (map.channels.empty())
             throw std::runtime_error(
                 fmt::format("cannot write {} '{}': the map has no channels", what, map.name));
-        std::set<std::string> seen;
+        std::set<std::string> seen = {std::string(kCoverageChannel)};
         for (const std::string& c : map.channels)
             if (c.empty() || !seen.insert(c).second)
                 throw std::runtime_error(fmt::format(
-                    "cannot write {} '{}': channel names must be non-empty and distinct ('{}')",
-                    what, map.name, c));
+                    "cannot write {} '{}': channel names must be non-empty, distinct and not "
+                    "the coverage channel '{}' ('{}')",
+                    what, map.name, kCoverageChannel, c));
         for (const auto& [key, value] : map.parameters)
             if (kReservedKeys.count(parameter_key(key)))
                 throw std::runtime_error(fmt::format("cannot write {} '{}': parameter '{}' clashes "
@@ -137,6 +139,17 @@ std::vector<fs::path> write_texel_map(const fs::path& out_dir, const MapDescript
                 pixels[t * nc + c] = values[i][static_cast<size_t>(g) * nc + c];
         }
         pad_texels(pixels, tile.width, tile.height, static_cast<int>(nc), covered, options.padding);
+        // The coverage channel after the padded ones: the texel's covered fraction (1 inside
+        // an island, less at its borders, 0 where nothing is baked), never padded, so a
+        // consumer can tell a baked 0 from an empty texel.
+        const size_t nw = nc + 1;
+        std::vector<float> written(tile.texel_count() * nw);
+        for (size_t t = 0; t < tile.texel_count(); ++t) {
+            std::copy_n(&pixels[t * nc], nc, &written[t * nw]);
+            written[t * nw + nc] = tile.group_of_texel[t] >= 0 && t < tile.coverage.size()
+                                       ? tile.coverage[t]
+                                       : 0.0f;
+        }
 
         texture.metadata = {{"patina:map", map.name},
                             {"patina:baker", map.baker},
@@ -144,6 +157,7 @@ std::vector<fs::path> write_texel_map(const fs::path& out_dir, const MapDescript
                             {"patina:description", map.description},
                             {"patina:udim", tile.udim},
                             {"patina:padding", options.padding},
+                            {"patina:coverage", std::string(kCoverageChannel)},
                             // OpenEXR has no colour-space attribute and OIIO 2.4's EXR
                             // writer drops oiio:ColorSpace (readers then assume "Linear"):
                             // patina:colorspace is what survives. Maps are data, never colour.
@@ -153,8 +167,10 @@ std::vector<fs::path> write_texel_map(const fs::path& out_dir, const MapDescript
             texture.metadata.emplace_back("patina:" + parameter_key(key), value);
 
         const fs::path path = out_dir / map_file_name(map.name, tile.udim, lone);
-        make_texture_atomic(path, pixels.data(), tile.width, tile.height, static_cast<int>(nc),
-                            map.channels, texture);
+        std::vector<std::string> channels = map.channels;
+        channels.emplace_back(kCoverageChannel);
+        make_texture_atomic(path, written.data(), tile.width, tile.height, static_cast<int>(nw),
+                            channels, texture);
         files.push_back(path);
     }
     return files;

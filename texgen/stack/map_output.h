@@ -14,6 +14,14 @@
 
 namespace patina::texgen {
 
+/// The channel every texel map carries after its own: the texel's covered fraction, 1 where
+/// baked, the covered part of the texel at an island's border, 0 where nothing was baked
+/// (there the other channels hold padding or 0). It is the alpha (`A`) of an OpenEXR layer
+/// of its own, `coverage`: readers list a file's channels layer by layer, the unnamed layer
+/// first, so it comes after a map's own channels and never shifts their indices (a bare
+/// `A` would be listed before them, after R, G, B only).
+inline constexpr const char* kCoverageChannel = "coverage.A";
+
 /// What a map is, for its file header and the manifest.
 struct MapDescription {
     std::string name;                   ///< file stem and manifest key, e.g. "ao"
@@ -32,8 +40,10 @@ struct MapOutputOptions {
 
 /// Write one tiled, mip-mapped EXR per tile: `<out_dir>/<name>.exr` when the only tile is
 /// 1001, else `<out_dir>/<name>.<UDIM>.exr` per tile. `values[i]` holds tiles[i]'s groups,
-/// group-major with map.channels.size() channels (as bake_groups returns). Returns the
-/// files written. Every file is written under a temporary name and renamed.
+/// group-major with map.channels.size() channels (as bake_groups returns). The file holds
+/// those channels, padded (MapOutputOptions::padding), then the coverage channel
+/// kCoverageChannel from the tile's coverage, unpadded. Returns the files written. Every
+/// file is written under a temporary name and renamed.
 std::vector<std::filesystem::path> write_texel_map(const std::filesystem::path& out_dir,
                                                    const MapDescription& map,
                                                    const std::vector<TexelGrid>& tiles,

@@ -71,6 +71,7 @@ inline std::filesystem::path write_uniform_stack(const std::string& name, double
     for (int i = 0; i < 64; ++i) {
         pixels.push_back(static_cast<float>(table_coordinate(table, dose)));
         pixels.push_back(static_cast<float>(dose));
+        pixels.push_back(1.0f);  // coverage
     }
     write_fade_stack(dir, table, info, pixels);
     return dir / kFadeToml;

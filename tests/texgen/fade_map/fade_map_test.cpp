@@ -5,10 +5,12 @@
 #include "core/image_io.h"
 #include "test_util.h"
 #include "texgen/fade/fade_map.h"
+#include "texgen/stack/map_output.h"
 #include "texgen/fade/fade_stack.h"
 #include "texgen/fade/fading_simulation.h"
 
 #include <gtest/gtest.h>
+#include <toml++/toml.h>
 
 #include <cmath>
 #include <filesystem>
@@ -123,12 +125,58 @@ TEST(FadeMap, ExposureBecomesDoseAndRow)
     EXPECT_DOUBLE_EQ(range.min, 0.0);
     const DoseTable table = test_table(range.max, 16);
     const std::vector<float> pixels = make_dose_pixels(map, table, factor);
-    ASSERT_EQ(pixels.size(), 64u);
+    ASSERT_EQ(pixels.size(), 96u);
     for (int i = 0; i < 32; ++i) {
         const double dose = 3.5 * 1e5 * i;
-        EXPECT_NEAR(pixels[2 * i + 1], dose, 1e-6 * dose);
-        EXPECT_NEAR(pixels[2 * i], table_coordinate(table, dose), 1e-5);
+        EXPECT_NEAR(pixels[3 * i + 1], dose, 1e-6 * dose);
+        EXPECT_NEAR(pixels[3 * i], table_coordinate(table, dose), 1e-5);
+        EXPECT_EQ(pixels[3 * i + 2], map.coverage.at(static_cast<size_t>(i)));
     }
+}
+
+TEST(FadeMap, DoseMapCarriesTheExposureMapsCoverage)
+{
+    // An exposure map with a coverage channel (as every baker writes, stack/map_output.h):
+    // the dose map keeps it, so an empty texel (exposure 0, coverage 0) stays apart from a
+    // baked one that saw no light (exposure 0, coverage 1).
+    const fs::path dir = scratch("dose_coverage");
+    fs::create_directories(dir);
+    const int w = 8, h = 4;
+    std::vector<float> pixels;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            pixels.push_back(x < 4 ? 0.0f : 1e5f);                  // exposure
+            pixels.push_back(x == 0 ? 0.0f : x == 1 ? 0.25f : 1.0f);  // coverage
+        }
+    const fs::path file = dir / "exposure.exr";
+    write_image_atomic(file, pixels.data(), w, h, 2, {"exposure", patina::texgen::kCoverageChannel},
+                       OIIO::TypeDesc::FLOAT,
+                       {{"patina:units", std::string("J/m^2")},
+                        {"patina:period_seconds", std::string("86400")}});
+    const ExposureMap map = read_exposure_map(file, "");
+    const DoseTable table = test_table(1e5, 8);
+    const std::vector<float> dose = make_dose_pixels(map, table, 1.0);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const size_t i = static_cast<size_t>(y) * w + x;
+            EXPECT_EQ(dose[3 * i + 2], pixels[2 * i + 1]) << x << ", " << y;
+        }
+    FadeStackInfo info;
+    info.material = "test_magenta_layer";
+    info.illuminant = "D65";
+    info.substrate = fading_test_grid().sample(fading_test_material().substrate_reflectance);
+    info.width = w;
+    info.height = h;
+    write_fade_stack(dir / "out", table, info, dose);
+    const ImageData written = read_image(dir / "out" / kDoseMapFile);
+    EXPECT_EQ(written.channel_names.at(0), "coordinate");  // the plugin reads channel 0
+    const int a = written.channel(patina::texgen::kCoverageChannel);
+    ASSERT_EQ(a, 2);
+    EXPECT_EQ(written.at(0, 0, a), 0.0f);
+    EXPECT_EQ(written.at(1, 0, a), 0.25f);
+    EXPECT_EQ(written.at(2, 0, a), 1.0f);
+    const toml::table fade = toml::parse_file((dir / "out" / kFadeToml).string());
+    EXPECT_EQ(fade["dose_map"]["coverage"].value<std::string>(), patina::texgen::kCoverageChannel);
 }
 
 TEST(FadeMap, IrradianceMapsNeedADuration)
@@ -224,7 +272,7 @@ TEST(FadeStack, RefusesMismatchedSizesBeforeWriting)
                   .find("4x4"),
               std::string::npos);
     info.substrate.pop_back();
-    EXPECT_NE(message_of([&] { write_fade_stack(dir / "b", table, info, std::vector<float>(32)); })
+    EXPECT_NE(message_of([&] { write_fade_stack(dir / "b", table, info, std::vector<float>(48)); })
                   .find("substrate"),
               std::string::npos);
     EXPECT_FALSE(fs::exists(dir / "a" / kFadeTableFile));

@@ -5,6 +5,7 @@
 #include "texgen/patina/material_library.h"
 #include "texgen/patina/patina_domain.h"
 #include "texgen/patina/stack_writer.h"
+#include "texgen/stack/map_output.h"
 #include "shipped_materials.h"
 
 #include "core/image_io.h"
@@ -82,13 +83,18 @@ TEST(StackThickness, OneMapHoldsEveryLayerInOrder)
     ASSERT_EQ(layers->size(), 3u);
     const toml::array* channels = root["maps"]["thickness"]["channels"].as_array();
     ASSERT_NE(channels, nullptr);
-    ASSERT_EQ(channels->size(), 3u);
+    // The three layers, then the coverage channel every texel map ends with.
+    ASSERT_EQ(channels->size(), 4u);
+    EXPECT_EQ(channels->get(3)->value<std::string>(), patina::texgen::kCoverageChannel);
+    EXPECT_EQ(root["maps"]["thickness"]["coverage"].value<std::string>(),
+              patina::texgen::kCoverageChannel);
     EXPECT_EQ(root["maps"]["thickness"]["file"].value<std::string>(), "thickness.exr");
 
     // The file's channels in file order are the manifest's list, and channel l holds layer
     // l's thickness, as its own one-channel map does.
     const patina::ImageData image = patina::read_image(dir / "thickness.exr");
-    ASSERT_EQ(image.channels, 3);
+    ASSERT_EQ(image.channels, 4);
+    EXPECT_EQ(image.channel_names[3], patina::texgen::kCoverageChannel);
     for (size_t l = 0; l < 3; ++l) {
         const toml::table& layer = *layers->get(l)->as_table();
         const std::string channel = *layer["channel"].value<std::string>();
@@ -100,15 +106,15 @@ TEST(StackThickness, OneMapHoldsEveryLayerInOrder)
         ASSERT_EQ(own.width * own.height, image.width * image.height);
         for (int y = 0; y < side; ++y)
             for (int x = 0; x < side; ++x) {
-                const size_t p = static_cast<size_t>(y) * side + x;
                 // Texel (x, y) of the strip is node y * side + x, image row y from the top
                 // or the bottom: compare against the layer's own map, which the same writer
                 // orients, and against the node values as a set of exact floats.
-                EXPECT_EQ(image.pixels[p * 3 + l], own.pixels[p]) << l << " " << x << " " << y;
+                EXPECT_EQ(image.at(x, y, static_cast<int>(l)), own.at(x, y, 0))
+                    << l << " " << x << " " << y;
             }
         std::vector<float> got, want = step.layers[l].thickness_um;
         for (size_t p = 0; p < want.size(); ++p)
-            got.push_back(image.pixels[p * 3 + l]);
+            got.push_back(image.pixels[p * 4 + l]);
         std::sort(got.begin(), got.end());
         std::sort(want.begin(), want.end());
         EXPECT_EQ(got, want) << "layer " << l;

@@ -63,7 +63,9 @@ namespace {
         EXPECT_FALSE(ao["tiles"]);
         EXPECT_EQ(ao["domain"].value<std::string>(), "texel");
         EXPECT_EQ(ao["channels"][0].value<std::string>(), "ao");
-        EXPECT_EQ(ao["channels"].as_array()->size(), 1u);
+        EXPECT_EQ(ao["channels"][1].value<std::string>(), kCoverageChannel);
+        EXPECT_EQ(ao["channels"].as_array()->size(), 2u);
+        EXPECT_EQ(ao["coverage"].value<std::string>(), kCoverageChannel);
         EXPECT_EQ(ao["units"].value<std::string>(), "1");
         EXPECT_EQ(ao["colorspace"].value<std::string>(), "raw");
         EXPECT_EQ(ao["baker"].value<std::string>(), "ao");

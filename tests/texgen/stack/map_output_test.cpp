@@ -322,5 +322,70 @@ namespace {
         EXPECT_LT(narrow.min_on_surface[3], 0.99f);
     }
 
+    TEST(WriteTexelMap, CoverageChannelFollowsTheRasterAndIsNotPadded)
+    {
+        // The cube atlas at 120 x 120: island borders cut through texels. A map of zeros
+        // ("fully occluded" for ao) padded over everything: without the coverage channel
+        // the baked zeros and the empty texels would be the same.
+        const fs::path dir = scratch_dir("coverage");
+        const TexelGrid grid = atlas_cube_grid();
+        MapDescription map = thickness_map();
+        map.name = "ao";
+        map.channels = {"ao"};
+        std::vector<float> values(grid.groups.group_count(), 0.0f);
+        MapOutputOptions options;
+        options.padding = -1;
+        const auto files = write_texel_map(dir, map, {grid}, {values}, options);
+        const ImageData image = read_image(files.at(0));
+        ASSERT_EQ(image.channels, 2);
+        EXPECT_EQ(image.channel_names[0], "ao");  // the map's own channel keeps its index
+        const int a = image.channel(kCoverageChannel);
+        ASSERT_EQ(a, 1);
+        int partial = 0, empty = 0;
+        for (int y = 0; y < grid.height; ++y) {
+            for (int x = 0; x < grid.width; ++x) {
+                const size_t t = static_cast<size_t>(y) * grid.width + x;
+                const float alpha = image.at(x, y, a);
+                if (grid.group_of_texel[t] < 0) {
+                    EXPECT_EQ(alpha, 0.0f) << x << ", " << y;  // padding fills colour only
+                    ++empty;
+                } else {
+                    EXPECT_EQ(alpha, grid.coverage[t]) << x << ", " << y;
+                    EXPECT_GT(alpha, 0.0f);
+                    partial += alpha < 1.0f;
+                }
+            }
+        }
+        // Both kinds of texel are there to check: island borders and the gaps between.
+        EXPECT_GT(partial, 0);
+        EXPECT_GT(empty, 0);
+    }
+
+    TEST(WriteTexelMap, PaddedColourChannelsAndUnpaddedCoverage)
+    {
+        // Padding still spreads the map's values into the gaps (mip levels stay clean),
+        // while the coverage there stays 0.
+        const fs::path dir = scratch_dir("coverage_padding");
+        const TexelGrid grid = rect_grid(16, 16, {{2, 2, 6, 6}});
+        MapDescription map = thickness_map();
+        map.channels = {"thickness"};
+        std::vector<float> values(grid.groups.group_count(), 5.0f);
+        MapOutputOptions options;
+        options.padding = 2;
+        const auto files = write_texel_map(dir, map, {grid}, {values}, options);
+        const ImageData image = read_image(files.at(0));
+        const int a = image.channel(kCoverageChannel);
+        ASSERT_GE(a, 0);
+        EXPECT_EQ(image.at(3, 3, 0), 5.0f);
+        EXPECT_EQ(image.at(3, 3, a), 1.0f);
+        EXPECT_EQ(image.at(7, 3, 0), 5.0f);  // padded, one texel out
+        EXPECT_EQ(image.at(7, 3, a), 0.0f);
+        EXPECT_EQ(image.at(12, 12, 0), 0.0f);  // beyond the margin
+        EXPECT_EQ(image.at(12, 12, a), 0.0f);
+        // A map may not name a channel after the coverage channel.
+        map.channels = {"thickness", kCoverageChannel};
+        EXPECT_THROW(write_texel_map(dir, map, {grid}, {{}}, options), std::runtime_error);
+    }
+
 }  // namespace
 }  // namespace patina::texgen
