@@ -67,8 +67,11 @@ fs::path converted_texture(const fs::path& file, std::string_view colorspace,
         for (size_t k = 0; k < 3; ++k)
             rgb[i * 3 + k] = image.pixels[i * nc + (nc >= 3 ? k : 0)];
     to_working.apply(rgb.data(), npix);
+    // Back into the colour channels only: RGB, or the grey channel of a map with fewer
+    // than three (whose second channel may be a baked map's coverage, which stays as is).
+    const size_t colour = nc >= 3 ? 3 : 1;
     for (size_t i = 0; i < npix; ++i)
-        for (size_t k = 0; k < std::min<size_t>(nc, 3); ++k)
+        for (size_t k = 0; k < colour; ++k)
             image.pixels[i * nc + k] = rgb[i * 3 + k];
     TextureOptions opt;
     opt.format = OIIO::TypeDesc::FLOAT;  // half would round converted 8-bit values by ~5e-4
