@@ -69,3 +69,24 @@ TEST(TextureConversion, NonFiniteTexelIsNamed)
     patina::write_image_atomic(dir / "fine.exr", fine, 2, 2, 1, {"Y"}, OIIO::TypeDesc::FLOAT);
     EXPECT_NO_THROW(patina::check_finite_texels(dir / "fine.exr"));
 }
+
+TEST(TextureConversion, AGreyMapKeepsItsSecondChannel)
+{
+    // A baked map is its value and a coverage channel: converting the grey value must leave
+    // the coverage as it was (it is no colour).
+    const fs::path dir = fs::path(PATINA_TEST_BUILD_DIR) / "texture_conversion_grey";
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    setenv("PATINA_TEXTURE_CACHE", (dir / "cache").c_str(), 1);
+    const patina::ColorManager colors(fs::path(PATINA_SOURCE_DIR) / "ocio" / "config.ocio");
+    const fs::path src = dir / "ao.exr";
+    const float texel[2] = {0.5f, 0.25f};
+    patina::write_image_atomic(src, texel, 1, 1, 2, {"ao", "coverage.A"}, OIIO::TypeDesc::FLOAT);
+    const patina::ImageData img =
+        patina::read_image(patina::converted_texture(src, "srgb_texture", colors));
+    ASSERT_EQ(img.channels, 2);
+    // sRGB 0.5 is linear 0.214041 (IEC 61966-2-1), a grey in any RGB working space.
+    EXPECT_NEAR(img.at(0, 0, 0), 0.214041f, 2e-5f);
+    EXPECT_EQ(img.at(0, 0, img.channel("coverage.A")), 0.25f);
+    unsetenv("PATINA_TEXTURE_CACHE");
+}
