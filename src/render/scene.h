@@ -1,5 +1,5 @@
 // Scene files (TOML): plugins, shader instances, objects, camera, environment, film and
-// output. The format is described in the README ("Scene files").
+// output. The format is described in docs/scene-format.md.
 #pragma once
 
 #include "render/camera.h"

@@ -3,7 +3,7 @@
 // Dorsey & Hanrahan 1996 give theirs (§4.1): the colour of an optically thick layer R_inf,
 // an assumed backscattering S, and K from K/S = (1 - R_inf)^2 / (2 R_inf); a mixture mixes
 // K and S of its components by volume fraction. The file format is described at the top of
-// shaders/patina/copper.toml and in the README.
+// shaders/patina/copper.toml and in docs/patina-script.md.
 //
 // Every material is also resolved spectrally (what a renderer needs, written into stack.toml
 // by stack_writer): K, S and the specular colour on a 360-830 nm grid, R_inf uplifted from its

@@ -1,7 +1,7 @@
 // The names a patina script knows without declaring them: the built-in fields and functions
 // of its expressions, the growth models and rates of texture(...) (D&H 1996 §3.3), and the
 // keywords. One table each, so that the parser, its "did you mean" suggestions, the
-// interpreter and the README all read the same list; add a row here to add a name.
+// interpreter and docs/patina-script.md all read the same list; add a row here to add a name.
 #pragma once
 
 #include <span>

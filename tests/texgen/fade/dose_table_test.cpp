@@ -90,7 +90,7 @@ TEST(DoseTable, EntriesAndLocate)
 
 TEST(DoseTable, InterpolationErrorAgainstDirectSolve)
 {
-    // The documented error (README, dose_table.h): with the default 64 entries and 2
+    // The documented error (docs/fading.md, dose_table.h): with the default 64 entries and 2
     // substeps over 0-1e8 J/m^2 of D65 (knee 1e4), newsprint's reflectance and layer
     // spectra between entries are within 5e-4 of a direct solve with 4x finer steps
     // (measured: 1.9e-4).
