@@ -1,16 +1,20 @@
 #!/usr/bin/env bash
 # samples/stone: weathered stone of Dorsey et al. 1999, rendered with the slab_volume medium
 # and its stone_surface boundary (§5), each as a time series laid out in a contact strip.
-#   samples/stone/stone.sh [BUILD_DIR]     (default: build)
+#   samples/stone/stone.sh [BUILD_DIR]     (default: build; SPP=128 samples per pixel)
 #
 #  - a sandstone column (samples/stone/column.awk) whose bedding planes erode more on its
 #    wet side, rain coming from the front (figure 9): out/stone/column_strip.png, the wet
-#    front above the dry back, fresh stone on the left;
+#    front above the dry back, fresh stone on the left, 180 x 420 pixels a cell;
 #  - the project's statue in marble, lit from behind its head so that light shines through
-#    the thin parts, yellowing as it weathers (figures 10-11): out/stone/marble_strip.png.
+#    the thin parts, yellowing as it weathers (figures 10-11): out/stone/marble_strip.png,
+#    336 x 420 pixels a cell.
 #
 # patina-texgen stone writes one folder per step (volume.exr for the medium, eroded.obj for
-# the boundary); each is rendered with patina-render into out/stone/<subject>/<step>.png.
+# the boundary). Each step is rendered twice with patina-render, SPP/2 samples per pixel
+# under seeds 1 and 2; the picture is their mean (SPP samples), and their difference
+# measures its noise. out/stone/measurements.txt compares that noise with the change from
+# one step to the next (samples/stone/measure.sh).
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 root="$(cd "$here/../.." && pwd)"
@@ -18,6 +22,8 @@ build="$(cd "${1:-$root/build}" && pwd)"
 out="$root/out/stone"
 texgen="$build/bin/patina-texgen"
 render="$build/bin/patina-render"
+spp="${SPP:-128}"
+half=$(( (spp + 1) / 2 ))
 cycles=60
 steps=3
 mkdir -p "$out"
@@ -65,14 +71,24 @@ interior = "stone"
 EOF
 }
 
-# render_series SUBJECT VIEW FROM TO FOV WIDTH HEIGHT SKY MEDIUM SURFACE SPP: a PNG per step
+# render_series SUBJECT VIEW FROM TO FOV WIDTH HEIGHT SKY MEDIUM SURFACE: per step, two
+# renders of SPP/2 samples (seeds 1 and 2) and their mean as <view>.exr and <view>.png (the
+# renderer's default display, sRGB through the ACES 1.0 SDR view of ocio/config.ocio).
 render_series() {
-    local subject="$1" view="$2"
+    local subject="$1" view="$2" start=$SECONDS
     for dir in "$out/$subject"/cycle_*; do
-        scene "$subject" "$dir" "$8" "$3" "$4" "$5" "$6" "$7" "$9" "${10}" "${11}" > "$dir/$view.toml"
-        "$render" "$dir/$view.toml" --output "$dir/$view.exr" --quiet
+        scene "$subject" "$dir" "$8" "$3" "$4" "$5" "$6" "$7" "$9" "${10}" "$half" > "$dir/$view.toml"
+        for seed in 1 2; do
+            "$render" "$dir/$view.toml" --seed "$seed" --output "$dir/$view.s$seed.exr" --quiet
+        done
+        oiiotool "$dir/$view.s1.exr" "$dir/$view.s2.exr" --add --mulc 0.5 -o "$dir/$view.exr"
+        oiiotool --colorconfig "$root/ocio/config.ocio" "$dir/$view.exr" --iscolorspace ACEScg \
+            --ociodisplay sRGB "ACES 1.0 - SDR Video" -d uint8 -o "$dir/$view.png"
     done
+    echo "$subject $view: $(( SECONDS - start )) s for $(ls -d "$out/$subject"/cycle_* | wc -l)" \
+        "steps at ${6}x${7}, $spp samples per pixel" >> "$out/timings.txt"
 }
+: > "$out/timings.txt"
 
 # --- Sandstone column: rain from the front (+z) and above wets the front; deposits make
 # black crusts where it stays dry. Slabs on a coarse copy of the column. Beds of 15 cm on a
@@ -93,12 +109,12 @@ backward_k = -0.2
 forward_weight = 0.6
 crust_gain = 500.0
 iron_gain = 0.35'
-render_series column front "[0.0, 1.05, 5.6]" "[0.0, 1.0, 0.0]" 22 96 224 "$out/sky_column.exr" \
+render_series column front "[0.0, 1.05, 5.6]" "[0.0, 1.0, 0.0]" 22 180 420 "$out/sky_column.exr" \
     "$sandstone" "eta = 1.55
-roughness_exponent = 3.0" 32
-render_series column back "[0.0, 1.05, -5.6]" "[0.0, 1.0, 0.0]" 22 96 224 "$out/sky_column.exr" \
+roughness_exponent = 3.0"
+render_series column back "[0.0, 1.05, -5.6]" "[0.0, 1.0, 0.0]" 22 180 420 "$out/sky_column.exr" \
     "$sandstone" "eta = 1.55
-roughness_exponent = 3.0" 32
+roughness_exponent = 3.0"
 
 # --- Marble statue: slabs on a coarse copy of the statue; rain from above.
 "$texgen" mesh statue -o "$out/statue.obj"
@@ -108,7 +124,7 @@ roughness_exponent = 3.0" 32
     --erosion-events 0.01 \
     --cycles "$cycles" --steps "$steps" --tangential-res 6 --depth-res 6 --depth 0.04 \
     --grid 96 --map-resolution 0 --seed 1 --quiet
-render_series marble backlit "[0.0, 1.75, 3.4]" "[0.0, 1.6, 0.0]" 21 100 125 \
+render_series marble backlit "[0.0, 1.75, 3.4]" "[0.0, 1.6, 0.0]" 21 336 420 \
     "$out/sky_marble.exr" 'sigma_t = 15.0
 stone_albedo = [0.995, 0.993, 0.99]
 iron_albedo = [0.95, 0.80, 0.50]
@@ -118,7 +134,7 @@ backward_k = -0.2
 forward_weight = 0.8
 crust_gain = 1.0
 iron_gain = 1.0' "eta = 1.5
-roughness_exponent = 2.0" 64
+roughness_exponent = 2.0"
 
 # --- Contact strips: time runs left to right
 front=() back=() marble=()
@@ -127,5 +143,12 @@ for dir in "$out/marble"/cycle_*; do marble+=("$dir/backlit.png"); done
 n=${#front[@]}
 oiiotool "${front[@]}" "${back[@]}" --mosaic:pad=4 "${n}x2" -o "$out/column_strip.png"
 oiiotool "${marble[@]}" --mosaic:pad=4 "${#marble[@]}x1" -o "$out/marble_strip.png"
+# --- Noise against change, over the stone in each picture (boxes: x0 y0 x1 y1 in pixels)
+{
+    "$here/measure.sh" column front 60 40 120 380 "$out"/column/cycle_*
+    "$here/measure.sh" column back 60 40 120 380 "$out"/column/cycle_*
+    "$here/measure.sh" marble backlit 110 90 230 400 "$out"/marble/cycle_*
+} | tee "$out/measurements.txt"
+cat "$out/timings.txt"
 echo "wrote $out/column_strip.png (wet front above dry back, 0-$cycles cycles) and" \
     "$out/marble_strip.png (backlit marble, 0-$cycles cycles)"
