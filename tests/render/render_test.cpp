@@ -269,7 +269,7 @@ TEST(Render, UniformSkyAloneMisIsBitwiseBsdfSampling)
 // variance of Y, estimated from two renders of different seeds as mean((a - b)²) / 2, is
 // lower without the sky's light samples at the same samples per pixel: measured here 0.32 of
 // it (0.00127 against 0.00392). On the benchmark's statue the RMS error against a 1024-spp
-// reference fell from 0.080 to 0.070 at 16 spp (bench/README.md).
+// reference falls from 0.080 to 0.070 at 16 spp (measured with bench/render_vs_embree.sh --keep).
 TEST(Render, UniformSkyLeftToBsdfSamplingIsLessNoisy)
 {
     auto variance = [](bool sample_sky) {
