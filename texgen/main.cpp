@@ -4,6 +4,7 @@
 
 #include "core/cancel.h"
 #include "core/cli_errors.h"
+#include "core/manual_page.h"
 #include "core/output_transaction.h"
 #include "texgen/patina/script_error.h"
 
@@ -32,6 +33,17 @@ int main(int argc, char** argv)
     pt::register_stone_command(app);
     pt::register_flatten_command(app);
     pt::register_fade_command(app);
+
+    // Each command's --help ends with its page of the manual.
+    app.footer(patina::manual_footer("texgen.md"));
+    for (const auto& [command, page] :
+         {std::pair{"mesh", "texgen.md"}, std::pair{"uv-check", "texgen.md"},
+          std::pair{"ao", "texgen-ao.md"}, std::pair{"accessibility", "texgen-ao.md"},
+          std::pair{"sun", "texgen-exposure.md"}, std::pair{"exposure", "texgen-exposure.md"},
+          std::pair{"wetness", "texgen-wetness.md"}, std::pair{"deposit", "texgen-wetness.md"},
+          std::pair{"patina", "patina-script.md"}, std::pair{"stone", "stone.md"},
+          std::pair{"flatten", "flatten.md"}, std::pair{"fade", "fading.md"}})
+        app.get_subcommand(command)->footer(patina::manual_footer(page));
 
     patina::install_cancel_handler();
     try {

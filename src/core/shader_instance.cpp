@@ -406,39 +406,90 @@ std::shared_ptr<ShaderInstance> create_shader_instance(const PluginRegistry& reg
     return std::make_shared<ShaderInstance>(*shader, instance, std::string(label));
 }
 
+namespace {
+
+    /// A parameter's default and range as the listings print them.
+    struct ParamText {
+        std::string def, range;
+    };
+
+    /// `long_tables`: a tabulated default with its wavelength range, as the reference prints it.
+    ParamText param_text(const PatinaParamDecl& d, bool long_tables = false)
+    {
+        ParamText t;
+        switch (d.type) {
+        case PATINA_PARAM_COLOR:
+            t.def = fmt::format("[{}, {}, {}]", d.default_value[0], d.default_value[1],
+                                d.default_value[2]);
+            break;
+        case PATINA_PARAM_SPECTRUM:
+            if (d.default_spectrum && long_tables && d.default_spectrum->count > 0)
+                t.def = fmt::format("table of {} values, {}-{} nm", d.default_spectrum->count,
+                                    d.default_spectrum->lambda_nm[0],
+                                    d.default_spectrum->lambda_nm[d.default_spectrum->count - 1]);
+            else if (d.default_spectrum)
+                t.def = fmt::format("table of {}", d.default_spectrum->count);
+            else
+                t.def = fmt::format("{}", d.default_value[0]);
+            break;
+        case PATINA_PARAM_STRING:
+        case PATINA_PARAM_TEXTURE:
+        case PATINA_PARAM_FILE:
+            t.def = fmt::format("\"{}\"", d.default_string ? d.default_string : "");
+            break;
+        case PATINA_PARAM_BOOL:
+            t.def = d.default_value[0] != 0.0f ? "true" : "false";
+            break;
+        default:
+            t.def = fmt::format("{}", d.default_value[0]);
+        }
+        if (d.type == PATINA_PARAM_FLOAT || d.type == PATINA_PARAM_INT ||
+            d.type == PATINA_PARAM_COLOR || d.type == PATINA_PARAM_SPECTRUM)
+            t.range = fmt::format("[{}, {}]", d.min_value, d.max_value);
+        return t;
+    }
+
+    /// Text for a Markdown table cell: no line breaks, '|' escaped.
+    std::string cell(const char* text)
+    {
+        std::string out;
+        for (const char* c = text ? text : ""; *c; ++c) {
+            if (*c == '|')
+                out += "\\|";
+            else if (*c == '\n' || *c == '\r')
+                out += ' ';
+            else
+                out += *c;
+        }
+        return out;
+    }
+
+}  // namespace
+
 std::string describe_shader(const PatinaShaderDesc& desc)
 {
     std::string out;
     for (int i = 0; i < desc.param_count; ++i) {
         const PatinaParamDecl& d = desc.params[i];
-        std::string def;
-        switch (d.type) {
-        case PATINA_PARAM_COLOR:
-            def = fmt::format("[{}, {}, {}]", d.default_value[0], d.default_value[1],
-                              d.default_value[2]);
-            break;
-        case PATINA_PARAM_SPECTRUM:
-            def = d.default_spectrum ? fmt::format("table of {}", d.default_spectrum->count)
-                                     : fmt::format("{}", d.default_value[0]);
-            break;
-        case PATINA_PARAM_STRING:
-        case PATINA_PARAM_TEXTURE:
-        case PATINA_PARAM_FILE:
-            def = fmt::format("\"{}\"", d.default_string ? d.default_string : "");
-            break;
-        case PATINA_PARAM_BOOL:
-            def = d.default_value[0] != 0.0f ? "true" : "false";
-            break;
-        default:
-            def = fmt::format("{}", d.default_value[0]);
-        }
-        std::string range;
-        if (d.type == PATINA_PARAM_FLOAT || d.type == PATINA_PARAM_INT ||
-            d.type == PATINA_PARAM_COLOR || d.type == PATINA_PARAM_SPECTRUM)
-            range = fmt::format("[{}, {}]", d.min_value, d.max_value);
+        const ParamText t = param_text(d);
         out += fmt::format("    {:<20} {:<9} default {:<16} {:<16} {:<12} {}\n", d.name,
-                           type_name(d.type), def, range, d.colorspace ? d.colorspace : "",
+                           type_name(d.type), t.def, t.range, d.colorspace ? d.colorspace : "",
                            d.help ? d.help : "");
+    }
+    return out;
+}
+
+std::string describe_shader_markdown(const PatinaShaderDesc& desc)
+{
+    if (desc.param_count == 0)
+        return "No parameters.\n";
+    std::string out = "| parameter | type | default | range | colour space or units | meaning |\n"
+                      "|---|---|---|---|---|---|\n";
+    for (int i = 0; i < desc.param_count; ++i) {
+        const PatinaParamDecl& d = desc.params[i];
+        const ParamText t = param_text(d, true);
+        out += fmt::format("| `{}` | {} | `{}` | {} | {} | {} |\n", d.name, type_name(d.type),
+                           cell(t.def.c_str()), t.range, cell(d.colorspace), cell(d.help));
     }
     return out;
 }

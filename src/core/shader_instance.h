@@ -65,5 +65,7 @@ std::shared_ptr<ShaderInstance> create_shader_instance(const PluginRegistry& reg
 
 /// One line per parameter: "name  type  default  [min, max]  colour space/units  help".
 std::string describe_shader(const PatinaShaderDesc& desc);
+/// The same as a Markdown table, one row per parameter (docs/shaders.md).
+std::string describe_shader_markdown(const PatinaShaderDesc& desc);
 
 }  // namespace patina

@@ -4,6 +4,7 @@
 
 #include "core/cancel.h"
 #include "core/cli_errors.h"
+#include "core/manual_page.h"
 #include "core/host.h"
 
 #include <CLI/CLI.hpp>
@@ -16,6 +17,7 @@ int main(int argc, char** argv)
     namespace pr = patina::render;
     CLI::App app{"patina-render: spectral path tracer with Patina shading plugins"};
     app.set_version_flag("--version", std::string("patina-render ") + PATINA_VERSION_STRING);
+    app.footer(patina::manual_footer("render.md") + "; scenes: docs/scene-format.md");
 
     std::string scene_file;
     bool list = false;
@@ -26,6 +28,11 @@ int main(int argc, char** argv)
 
     app.add_option("scene", scene_file, "scene file (TOML; '#' runs become the frame number with --frames)");
     app.add_flag("--list-shaders", list, "print every shader the plugins provide, with parameters");
+    std::string list_format = "text";
+    app.add_option("--format", list_format,
+                   "with --list-shaders: text, or markdown (the shader reference, docs/shaders.md)")
+        ->check(CLI::IsMember({"text", "markdown"}))
+        ->needs("--list-shaders");
     app.add_option("--plugin-path", plugin_paths,
                    "a folder of plugins to load (repeatable; also $PATINA_PLUGIN_PATH)");
     app.add_flag("--allow-scene-plugins", search.allow_scene_plugins,
@@ -73,7 +80,10 @@ int main(int argc, char** argv)
         if (list) {
             patina::PluginRegistry registry(patina::default_host().c_host());
             pr::load_plugins(registry, search);
-            std::fputs(pr::list_shaders(registry).c_str(), stdout);
+            const std::string text = list_format == "markdown"
+                                         ? pr::list_shaders_markdown(registry)
+                                         : pr::list_shaders(registry);
+            std::fputs(text.c_str(), stdout);
             return 0;
         }
         pr::render_scene_file(scene_file, search, options);

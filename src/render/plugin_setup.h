@@ -48,5 +48,9 @@ void load_plugins(PluginRegistry& registry, const PluginSearch& search);
 
 /// The `--list-shaders` text: every shader, its kind, plugin file and parameters.
 std::string list_shaders(const PluginRegistry& registry);
+/// The same as the Markdown shader reference, docs/shaders.md: one section per shader with
+/// its kind, plugin, help and parameter table, in the registry's order. Nothing of the
+/// machine in it (the plugin's name, not its path), so that the file can be committed.
+std::string list_shaders_markdown(const PluginRegistry& registry);
 
 }  // namespace patina::render

@@ -1,107 +1,15 @@
-// The basic plugin as a host sees it: symbols, version, descriptor table, parameter metadata,
-// defaults that create instances, and a README that says what the metadata says.
+// The basic plugin as a host sees it: symbols, version, descriptor table, parameter metadata
+// and defaults that create instances (docs/shaders.md, generated from the metadata, is
+// checked by cli.shader_reference).
 #include "basic_plugin.h"
 
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <regex>
 #include <set>
-#include <sstream>
 
 namespace patina::test {
 namespace {
-
-    const char* type_name(PatinaParamType type)
-    {
-        switch (type) {
-        case PATINA_PARAM_FLOAT:
-            return "float";
-        case PATINA_PARAM_INT:
-            return "int";
-        case PATINA_PARAM_BOOL:
-            return "bool";
-        case PATINA_PARAM_COLOR:
-            return "color";
-        case PATINA_PARAM_SPECTRUM:
-            return "spectrum";
-        case PATINA_PARAM_STRING:
-            return "string";
-        case PATINA_PARAM_TEXTURE:
-            return "texture";
-        case PATINA_PARAM_FILE:
-            return "file";
-        }
-        return "?";
-    }
-
-    const char* kind_name(PatinaShaderKind kind)
-    {
-        switch (kind) {
-        case PATINA_SHADER_BSDF:
-            return "bsdf";
-        case PATINA_SHADER_MEDIUM:
-            return "medium";
-        case PATINA_SHADER_EMITTER:
-            return "emitter";
-        case PATINA_SHADER_TEXTURE:
-            return "texture";
-        }
-        return "?";
-    }
-
-    /// One README table row, built from the metadata alone.
-    std::string readme_row(const PatinaParamDecl& d)
-    {
-        char def[128] = "", range[64] = "";
-        switch (d.type) {
-        case PATINA_PARAM_FLOAT:
-            std::snprintf(def, sizeof def, "%g", d.default_value[0]);
-            break;
-        case PATINA_PARAM_INT:
-            std::snprintf(def, sizeof def, "%d", int(d.default_value[0]));
-            break;
-        case PATINA_PARAM_BOOL:
-            std::snprintf(def, sizeof def, "%s", d.default_value[0] != 0.0f ? "true" : "false");
-            break;
-        case PATINA_PARAM_COLOR:
-            std::snprintf(def, sizeof def, "%g %g %g", d.default_value[0], d.default_value[1],
-                          d.default_value[2]);
-            break;
-        case PATINA_PARAM_SPECTRUM:
-            if (d.default_spectrum)
-                std::snprintf(def, sizeof def, "table of %d values, %g-%g nm",
-                              d.default_spectrum->count, d.default_spectrum->lambda_nm[0],
-                              d.default_spectrum->lambda_nm[d.default_spectrum->count - 1]);
-            else
-                std::snprintf(def, sizeof def, "%g", d.default_value[0]);
-            break;
-        case PATINA_PARAM_STRING:
-        case PATINA_PARAM_TEXTURE:
-        case PATINA_PARAM_FILE:
-            std::snprintf(def, sizeof def, "%s", d.default_string ? d.default_string : "");
-            break;
-        }
-        if (d.type == PATINA_PARAM_FLOAT || d.type == PATINA_PARAM_INT ||
-            d.type == PATINA_PARAM_COLOR || d.type == PATINA_PARAM_SPECTRUM)
-            std::snprintf(range, sizeof range, "[%g, %g]", d.min_value, d.max_value);
-        std::ostringstream row;
-        row << "| `" << d.name << "` | " << type_name(d.type) << " | " << def << " | " << range
-            << " | " << (d.colorspace ? d.colorspace : "") << " | " << d.help << " |";
-        return row.str();
-    }
-
-    std::string readme_section(const PatinaShaderDesc& s)
-    {
-        std::ostringstream out;
-        out << "## " << s.name << " (" << kind_name(s.kind) << ")\n\n"
-            << s.help << "\n\n"
-            << "| parameter | type | default | range | colour space / units | description |\n"
-            << "|---|---|---|---|---|---|\n";
-        for (int i = 0; i < s.param_count; ++i)
-            out << readme_row(s.params[i]) << "\n";
-        return out.str();
-    }
 
     TEST(BasicPlugin, LoadsWithTheHostsAbiVersion)
     {
@@ -207,33 +115,6 @@ namespace {
             EXPECT_TRUE(instance) << s.name;
             EXPECT_TRUE(test_host().errors.empty()) << s.name << ": " << test_host().errors.front();
         }
-    }
-
-    TEST(BasicPlugin, ReadmeListsTheMetadata)
-    {
-        // README.md states each parameter with the same text as the metadata (--list-shaders)
-        std::ifstream in(std::string(PATINA_SOURCE_DIR) + "/plugins/basic/README.md");
-        ASSERT_TRUE(in) << "plugins/basic/README.md is missing";
-        std::stringstream buffer;
-        buffer << in.rdbuf();
-        const std::string readme = buffer.str();
-        const LoadedPlugin& p = basic_plugin();
-        ASSERT_TRUE(p.info) << p.error;
-        for (int si = 0; si < p.info->shader_count; ++si) {
-            const std::string section = readme_section(p.info->shaders[si]);
-            EXPECT_NE(readme.find(section), std::string::npos)
-                << "README.md lacks or differs from:\n"
-                << section;
-        }
-    }
-
-    // Run with --gtest_also_run_disabled_tests to print the README's shader sections.
-    TEST(BasicPlugin, DISABLED_PrintReadmeSections)
-    {
-        const LoadedPlugin& p = basic_plugin();
-        ASSERT_TRUE(p.info) << p.error;
-        for (int si = 0; si < p.info->shader_count; ++si)
-            std::printf("%s\n", readme_section(p.info->shaders[si]).c_str());
     }
 
 } // namespace
