@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
 # Noise against weathering in a rendered time series (samples/stone/stone.sh):
 #   measure.sh SUBJECT VIEW X0 Y0 X1 Y1 STEP_DIR...
-# Each STEP_DIR holds VIEW.s1.exr and VIEW.s2.exr, two renders of the same picture with
-# different seeds, and VIEW.exr, their mean. Over the pixel box
-# [X0, X1) x [Y0, Y1) (the stone), in luminance Y of the ACEScg pictures (AP1 weights,
-# SMPTE ST 2065-1):
+# Each STEP_DIR holds VIEW.s1.png and VIEW.s2.png, two renders of the same picture with
+# different seeds, and VIEW.png, the picture of their mean, all display-referred (sRGB
+# through the ACES 1.0 SDR view, what a viewer sees; in the scene-linear EXRs a few
+# bright paths through a backlit statue would dominate every statistic). Over the pixel box
+# [X0, X1) x [Y0, Y1) (the stone), in luma Y' (Rec. 709 weights, values in [0, 1]):
 #   noise of a picture = rms(s1 - s2) / 2, the per-pixel standard deviation of the mean;
 #   change of a step   = the rms per-pixel difference D = mean_k - mean_k+1 between
 #                        consecutive pictures, less the part noise accounts for: with
@@ -16,7 +17,7 @@ set -euo pipefail
 label="$1 $2" view="$2" x0="$3" y0="$4" x1="$5" y1="$6"
 shift 6
 box="$((x1 - x0))x$((y1 - y0))+${x0}+${y0}"
-luminance="--chsum:weight=0.2722287,0.6740818,0.0536895"
+luminance="--chsum:weight=0.2126,0.7152,0.0722"
 
 # rms A B: the rms over the box of the luminance of A - B
 rms() {
@@ -43,13 +44,13 @@ previous="" previous_noise=""
 for dir in "$@"; do
     step="$dir/$view"
     name="$(basename "$dir")"
-    noise=$(awk -v d="$(rms "$step.s1.exr" "$step.s2.exr")" 'BEGIN{printf "%.5f", d / 2}')
-    read -r r g b <<< "$(mean "$step.exr")"
-    printf '%s %s: mean RGB %.4f %.4f %.4f (B/R %.3f), noise %.4f\n' "$label" "$name" \
+    noise=$(awk -v d="$(rms "$step.s1.png" "$step.s2.png")" 'BEGIN{printf "%.5f", d / 2}')
+    read -r r g b <<< "$(mean "$step.png")"
+    printf '%s %s: mean R'"'"'G'"'"'B'"'"' %.4f %.4f %.4f (B/R %.3f), noise %.4f\n' "$label" "$name" \
         "$r" "$g" "$b" "$(awk -v r="$r" -v b="$b" 'BEGIN{print b / r}')" "$noise"
     if [ -n "$previous" ]; then
-        read -r spread d <<< "$(rms_of_differences "$previous.s1.exr" "$step.s1.exr" \
-                                                    "$previous.s2.exr" "$step.s2.exr")"
+        read -r spread d <<< "$(rms_of_differences "$previous.s1.png" "$step.s1.png" \
+                                                    "$previous.s2.png" "$step.s2.png")"
         awk -v l="$label" -v from="$(basename "$(dirname "$previous")")" -v to="$name" \
             -v d="$d" -v v="$spread" -v n1="$previous_noise" -v n2="$noise" 'BEGIN {
                 v = v / 2; c2 = d * d - v * v; c = c2 > 0 ? sqrt(c2) : 0;

@@ -11,10 +11,12 @@
 #    336 x 420 pixels a cell.
 #
 # patina-texgen stone writes one folder per step (volume.exr for the medium, eroded.obj for
-# the boundary). Each step is rendered twice with patina-render, SPP/2 samples per pixel
-# under seeds 1 and 2; the picture is their mean (SPP samples), and their difference
-# measures its noise. out/stone/measurements.txt compares that noise with the change from
-# one step to the next (samples/stone/measure.sh).
+# the boundary): 60 wet/dry cycles in 2 steps, 0, 30 and 60 cycles, as far apart as the
+# weathering needs to show above the noise. Each step is rendered twice with patina-render,
+# SPP/2 samples per pixel under seeds 1 and 2; the picture is their mean (SPP samples), and
+# their difference measures its noise. out/stone/measurements.txt compares that noise with
+# the change from one step to the next (samples/stone/measure.sh), in the display-referred
+# pictures.
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 root="$(cd "$here/../.." && pwd)"
@@ -25,7 +27,7 @@ render="$build/bin/patina-render"
 spp="${SPP:-128}"
 half=$(( (spp + 1) / 2 ))
 cycles=60
-steps=3
+steps=2
 mkdir -p "$out"
 
 # Skies (lat-long, +y up, the centre column looking along -z; oiiotool draws them): a soft
