@@ -11,7 +11,7 @@
 //   bench_bake_ao [--resolution N] [--rays R] [--threads T] [--rings K]
 #include "core/embree_scene.h"
 #include "core/mesh.h"
-#include "core/statue_mesh.h"
+#include "texgen/meshes/statue_mesh.h"
 #include "texgen/ao/ao_baker.h"
 #include "texgen/bake/bake_driver.h"
 #include "texgen/texels/texel_grid.h"

@@ -4,8 +4,8 @@
 
 #include "core/cli_errors.h"
 #include "core/mesh_export.h"
-#include "core/statue_mesh.h"
-#include "core/tower_mesh.h"
+#include "texgen/meshes/statue_mesh.h"
+#include "texgen/meshes/tower_mesh.h"
 
 #include <cstdio>
 #include <filesystem>

@@ -1,7 +1,7 @@
 // Ctrl-C or a farm's kill while a bake runs: patina-texgen stops, exits with 130 and leaves
 // no map, no manifest and no temporary file behind (issue 4, "Progress and cancellation").
 #include "core/mesh_export.h"
-#include "core/statue_mesh.h"
+#include "texgen/meshes/statue_mesh.h"
 
 #include <gtest/gtest.h>
 
@@ -55,10 +55,10 @@ TEST(Cancel, InterruptOrTerminateLeavesNoFile)
     const fs::path dir = fs::path(PATINA_TEST_BUILD_DIR) / "cancel_test";
     fs::remove_all(dir);
     fs::create_directories(dir);
-    StatueOptions o;
+    texgen::StatueOptions o;
     o.rings = 60;
     o.segments = 48;
-    save_mesh(dir / "statue.obj", make_statue(Imath::V3f(0.0f), o));
+    save_mesh(dir / "statue.obj", texgen::make_statue(Imath::V3f(0.0f), o));
 
     for (const int sig : {SIGINT, SIGTERM}) {
         const fs::path out = dir / ("maps_" + std::to_string(sig));

@@ -5,7 +5,7 @@
 
 #include "core/mesh.h"
 
-namespace patina {
+namespace patina::texgen {
 
 struct TowerOptions {
     float width = 1.0f;         ///< side of the square shaft (m)
@@ -21,4 +21,4 @@ struct TowerOptions {
 /// roof faces above them in v in [0.52, 0.98], each face its own island with gaps between.
 TriangleMesh make_tower(const Imath::V3f& base, const TowerOptions& options = {});
 
-}  // namespace patina
+}  // namespace patina::texgen

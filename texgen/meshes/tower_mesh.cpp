@@ -1,4 +1,4 @@
-#include "core/tower_mesh.h"
+#include "texgen/meshes/tower_mesh.h"
 
 #include <Imath/ImathVec.h>
 
@@ -6,7 +6,7 @@
 #include <cmath>
 #include <stdexcept>
 
-namespace patina {
+namespace patina::texgen {
 
 namespace {
 
@@ -115,4 +115,4 @@ TriangleMesh make_tower(const Imath::V3f& base, const TowerOptions& o)
     return m;
 }
 
-}  // namespace patina
+}  // namespace patina::texgen

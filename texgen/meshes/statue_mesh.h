@@ -6,7 +6,7 @@
 
 #include "core/mesh.h"
 
-namespace patina {
+namespace patina::texgen {
 
 struct StatueOptions {
     float height = 2.0f;     ///< m, from the bottom of the plinth to the top of the head
@@ -22,4 +22,4 @@ struct StatueOptions {
 /// Smooth vertex normals (the seam at u = 0/1 shares them); outward winding.
 TriangleMesh make_statue(const Imath::V3f& base_center, const StatueOptions& options = {});
 
-}  // namespace patina
+}  // namespace patina::texgen

@@ -1,4 +1,4 @@
-#include "core/statue_mesh.h"
+#include "texgen/meshes/statue_mesh.h"
 
 #include <fmt/format.h>
 
@@ -8,7 +8,7 @@
 #include <stdexcept>
 #include <vector>
 
-namespace patina {
+namespace patina::texgen {
 
 namespace {
 
@@ -134,4 +134,4 @@ TriangleMesh make_statue(const Imath::V3f& base, const StatueOptions& o)
     return m;
 }
 
-}  // namespace patina
+}  // namespace patina::texgen

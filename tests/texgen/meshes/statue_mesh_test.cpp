@@ -1,5 +1,5 @@
 #include "core/mesh_export.h"
-#include "core/statue_mesh.h"
+#include "texgen/meshes/statue_mesh.h"
 
 #include <gtest/gtest.h>
 
@@ -8,7 +8,7 @@
 #include <cmath>
 #include <filesystem>
 
-namespace patina {
+namespace patina::texgen {
 namespace {
 
 // Signed volume by the divergence theorem: sum over triangles of p0 . (p1 x p2) / 6.
@@ -95,4 +95,4 @@ TEST(MeshExport, UnknownExtensionIsNamed)
 }
 
 }  // namespace
-}  // namespace patina
+}  // namespace patina::texgen
