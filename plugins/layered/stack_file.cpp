@@ -1,5 +1,7 @@
 #include "stack_file.h"
 
+#include "formats/toml_location.h"
+
 #include <toml++/toml.h>
 
 #include <cmath>
@@ -12,29 +14,17 @@ namespace fs = std::filesystem;
 
 namespace {
 
-    std::string where(const fs::path& file, const toml::node& node)
-    {
-        const toml::source_region& r = node.source();
-        if (!r.begin)
-            return file.string();
-        return file.string() + ":" + std::to_string(r.begin.line) + ":" +
-               std::to_string(r.begin.column);
-    }
-
-    [[noreturn]] void fail(const fs::path& file, const toml::node& node, const std::string& what)
-    {
-        throw std::runtime_error(where(file, node) + ": " + what);
-    }
+    using formats::toml_fail;
 
     std::string string_of(const fs::path& file, const toml::table& t, const char* key,
                           const std::string& context)
     {
         const toml::node* n = t.get(key);
         if (!n)
-            fail(file, t, context + " has no '" + key + "'");
+            toml_fail(file, &t, context + " has no '" + key + "'");
         const auto s = n->value<std::string>();
         if (!s || s->empty())
-            fail(file, *n, context + ": '" + key + "' must be a non-empty string");
+            toml_fail(file, n, context + ": '" + key + "' must be a non-empty string");
         return *s;
     }
 
@@ -45,20 +35,20 @@ namespace {
         const toml::node* n = t.get(key);
         if (!n) {
             if (required)
-                fail(file, t, context + " has no '" + key + "'");
+                toml_fail(file, &t, context + " has no '" + key + "'");
             return {};
         }
         const toml::array* a = n->as_array();
         if (!a || a->empty())
-            fail(file, *n, context + ": '" + key + "' must be an array of numbers");
+            toml_fail(file, n, context + ": '" + key + "' must be an array of numbers");
         if (size && a->size() != size)
-            fail(file, *n, context + ": '" + key + "' has " + std::to_string(a->size()) +
+            toml_fail(file, n, context + ": '" + key + "' has " + std::to_string(a->size()) +
                                " values for " + std::to_string(size) + " wavelengths");
         std::vector<float> out;
         for (const toml::node& v : *a) {
             const auto x = v.value<double>();
             if (!x || !std::isfinite(*x) || *x < 0.0)
-                fail(file, v, context + ": '" + key + "' must hold finite numbers >= 0");
+                toml_fail(file, &v, context + ": '" + key + "' must hold finite numbers >= 0");
             out.push_back(static_cast<float>(*x));
         }
         return out;
@@ -73,13 +63,13 @@ namespace {
         if (const toml::node* metal = t.get("metal")) {
             const auto b = metal->value<bool>();
             if (!b)
-                fail(file, *metal, context + ": 'metal' must be true or false");
+                toml_fail(file, &*metal, context + ": 'metal' must be true or false");
             m.metal = *b;
         }
         m.lambda_nm = numbers_of(file, t, "wavelengths_nm", context, 0, true);
         for (size_t i = 1; i < m.lambda_nm.size(); ++i)
             if (!(m.lambda_nm[i] > m.lambda_nm[i - 1]))
-                fail(file, *t.get("wavelengths_nm"),
+                toml_fail(file, &*t.get("wavelengths_nm"),
                      context + ": 'wavelengths_nm' must increase strictly");
         const size_t count = m.lambda_nm.size();
         if (m.metal) {
@@ -87,7 +77,7 @@ namespace {
             m.k = numbers_of(file, t, "k", context, count, true);
             for (size_t i = 0; i < count; ++i)
                 if (m.n[i] == 0.0f && m.k[i] == 0.0f)
-                    fail(file, *t.get("n"), context + ": n + ik vanishes at " +
+                    toml_fail(file, &*t.get("n"), context + ": n + ik vanishes at " +
                                                 std::to_string(m.lambda_nm[i]) + " nm");
         } else {
             m.absorption_per_um = numbers_of(file, t, "absorption_per_um", context, count, true);
@@ -96,13 +86,13 @@ namespace {
         m.specular = numbers_of(file, t, "specular", context, count, !m.metal);
         for (float s : m.specular)
             if (s > 1.0f)
-                fail(file, *t.get("specular"), context + ": 'specular' must lie in [0, 1]");
+                toml_fail(file, &*t.get("specular"), context + ": 'specular' must lie in [0, 1]");
         const toml::node* r = t.get("roughness");
         if (!r)
-            fail(file, t, context + " has no 'roughness'");
+            toml_fail(file, &t, context + " has no 'roughness'");
         const auto rv = r->value<double>();
         if (!rv || !(*rv >= 0.0 && *rv <= 1.0))
-            fail(file, *r, context + ": 'roughness' must be a number in [0, 1]");
+            toml_fail(file, &*r, context + ": 'roughness' must be a number in [0, 1]");
         m.roughness = static_cast<float>(*rv);
         return m;
     }
@@ -113,17 +103,17 @@ namespace {
     {
         if (const auto index = c.value<int64_t>()) {
             if (*index < 0 || *index > 1023)
-                fail(file, c, context + ": 'channel' must be an index in [0, 1023]");
+                toml_fail(file, &c, context + ": 'channel' must be an index in [0, 1023]");
             return static_cast<int>(*index);
         }
         const auto name = c.value<std::string>();
         if (!name)
-            fail(file, c, context + ": 'channel' must be an index or a channel name");
+            toml_fail(file, &c, context + ": 'channel' must be an index or a channel name");
         if (const toml::array* names = map["channels"].as_array())
             for (size_t i = 0; i < names->size(); ++i)
                 if (names->get(i)->value<std::string>() == *name)
                     return static_cast<int>(i);
-        fail(file, c, context + ": channel '" + *name + "' is not in its map's 'channels'");
+        toml_fail(file, &c, context + ": channel '" + *name + "' is not in its map's 'channels'");
     }
 
 }  // namespace
@@ -132,14 +122,7 @@ StackFile read_stack_file(const fs::path& path)
 {
     StackFile stack;
     stack.path = path;
-    toml::table root;
-    try {
-        root = toml::parse_file(path.string());
-    } catch (const toml::parse_error& e) {
-        const auto& b = e.source().begin;
-        throw std::runtime_error(path.string() + ":" + std::to_string(b.line) + ":" +
-                                 std::to_string(b.column) + ": " + std::string(e.description()));
-    }
+    const toml::table root = formats::parse_toml_file(path);
     const toml::table* patina = root["patina"].as_table();
     if (!patina)
         throw std::runtime_error(path.string() +
@@ -148,7 +131,7 @@ StackFile read_stack_file(const fs::path& path)
     stack.base = string_of(path, *patina, "base", "[patina]");
     const toml::table* materials = (*patina)["materials"].as_table();
     if (!materials)
-        fail(path, *patina,
+        toml_fail(path, patina,
              "[patina] has no [patina.materials] table (written by patina-texgen 0.2 and "
              "later: run the patina script again)");
     const toml::table* maps = root["maps"].as_table();
@@ -158,34 +141,34 @@ StackFile read_stack_file(const fs::path& path)
             return;
         const toml::table* m = (*materials)[name].as_table();
         if (!m)
-            fail(path, at, "material '" + name + "' has no [patina.materials.\"" + name +
+            toml_fail(path, &at, "material '" + name + "' has no [patina.materials.\"" + name +
                                "\"] table");
         stack.materials.emplace(name, material_of(path, name, *m));
     };
     need_material(stack.base, *patina->get("base"));
     if (!stack.materials.at(stack.base).metal &&
         stack.materials.at(stack.base).absorption_per_um.empty())
-        fail(path, *patina->get("base"), "the base has no optical description");
+        toml_fail(path, &*patina->get("base"), "the base has no optical description");
 
     if (const toml::node* layers_node = patina->get("layers")) {
         const toml::array* layers = layers_node->as_array();
         if (!layers)
-            fail(path, *layers_node, "[patina] 'layers' must be an array of tables");
+            toml_fail(path, &*layers_node, "[patina] 'layers' must be an array of tables");
         for (size_t i = 0; i < layers->size(); ++i) {
             const toml::table* l = layers->get(i)->as_table();
             const std::string context = "layer " + std::to_string(i + 1);
             if (!l)
-                fail(path, *layers->get(i), context + " must be a table");
+                toml_fail(path, &*layers->get(i), context + " must be a table");
             StackLayer layer;
             layer.material = string_of(path, *l, "material", context);
             need_material(layer.material, *l->get("material"));
             if (stack.materials.at(layer.material).metal)
-                fail(path, *l->get("material"),
+                toml_fail(path, &*l->get("material"),
                      context + ": the metal '" + layer.material + "' cannot be a layer");
             const std::string map = string_of(path, *l, "map", context);
             const toml::table* entry = maps ? (*maps)[map].as_table() : nullptr;
             if (!entry)
-                fail(path, *l->get("map"), context + ": map '" + map + "' has no [maps." +
+                toml_fail(path, &*l->get("map"), context + ": map '" + map + "' has no [maps." +
                                                map + "] entry");
             const char* key = entry->contains("file") ? "file" : "pattern";
             const fs::path file = string_of(path, *entry, key, "[maps." + map + "]");

@@ -2,6 +2,8 @@
 // host->read_image and the dose map through host->open_texture.
 #include "fade_table.h"
 
+#include "formats/toml_location.h"
+
 #include <toml++/toml.h>
 
 #include <algorithm>
@@ -56,8 +58,7 @@ std::string FadeTable::load(const PatinaHost* host, const char* path)
     try {
         root = toml::parse_file(where);
     } catch (const toml::parse_error& e) {
-        return where + ":" + std::to_string(e.source().begin.line) + ": " +
-               std::string(e.description());
+        return formats::toml_where(where, e.source().begin) + ": " + std::string(e.description());
     }
     const std::optional<int64_t> format = root["fade"]["format"].value<int64_t>();
     if (!format || *format != 1)

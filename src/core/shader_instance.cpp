@@ -1,5 +1,7 @@
 #include "core/shader_instance.h"
 
+#include "formats/toml_location.h"
+
 #include "core/color_management.h"
 #include "core/host.h"
 
@@ -62,10 +64,9 @@ namespace {
         [[noreturn]] void fail(const toml::node* node, std::string_view param,
                                std::string_view problem) const
         {
-            std::string where = source.file.empty() ? std::string("<params>") : source.file;
-            if (node && node->source().begin)
-                where += fmt::format(":{}:{}", node->source().begin.line,
-                                     node->source().begin.column);
+            const std::string where =
+                formats::toml_where(source.file.empty() ? std::string("<params>") : source.file,
+                                    node);
             std::string what = param.empty() ? std::string()
                                              : fmt::format("parameter '{}': ", param);
             throw ParamError(fmt::format("{}: shader '{}' ({}): {}{}", where, label, shader,

@@ -1,5 +1,7 @@
 #include "render/plugin_setup.h"
 
+#include "formats/toml_location.h"
+
 #include "core/one_line.h"
 #include "core/shader_instance.h"
 
@@ -40,18 +42,16 @@ std::vector<fs::path> trusted_scene_plugin_dirs()
         return {};
     toml::table root;
     try {
-        root = toml::parse_file(file.string());
-    } catch (const toml::parse_error& e) {
-        throw PluginError(fmt::format("{}:{}:{}: {}", file.string(), e.source().begin.line,
-                                      e.source().begin.column, e.description()));
+        root = formats::parse_toml_file(file);
+    } catch (const std::runtime_error& e) {
+        throw PluginError(e.what());
     }
     std::vector<fs::path> dirs;
     const toml::node* list = root.get("scene_plugin_dirs");
     if (!list)
         return dirs;
     auto fail = [&](const toml::node& node, const std::string& what) {
-        throw PluginError(fmt::format("{}:{}:{}: {}", file.string(), node.source().begin.line,
-                                      node.source().begin.column, what));
+        throw PluginError(formats::toml_where(file, &node) + ": " + what);
     };
     const toml::array* a = list->as_array();
     if (!a)

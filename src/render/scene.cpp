@@ -33,12 +33,7 @@ SceneFile parse_scene_file(const fs::path& path)
     std::error_code ec;
     if (!fs::is_regular_file(path, ec))
         throw std::runtime_error(fmt::format("scene file '{}' does not exist", path.string()));
-    try {
-        file.root = toml::parse_file(path.string());
-    } catch (const toml::parse_error& e) {
-        throw std::runtime_error(fmt::format("{}:{}:{}: {}", path.string(), e.source().begin.line,
-                                             e.source().begin.column, e.description()));
-    }
+    file.root = formats::parse_toml_file(path);
     const TomlReader w{file.path};
     w.check_keys(file.root, "scene", {"plugins", "film", "render", "camera", "environment", "sun",
                                       "output", "shader", "object"});
@@ -48,8 +43,7 @@ SceneFile parse_scene_file(const fs::path& path)
             const toml::array* a = list->as_array();
             if (!a)
                 w.fail(list, "[plugins] path must be an array of folder names");
-            file.plugins_where = fmt::format("{}:{}:{}", path.string(), list->source().begin.line,
-                                             list->source().begin.column);
+            file.plugins_where = formats::toml_where(path, list);
             for (const toml::node& e : *a) {
                 if (!e.is_string())
                     w.fail(&e, "[plugins] path entries must be strings");

@@ -6,6 +6,8 @@
 #include <fmt/format.h>
 #include <toml++/toml.h>
 
+#include "formats/toml_location.h"
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -22,10 +24,7 @@ struct TomlReader {
 
     [[noreturn]] void fail(const toml::node* node, std::string_view what) const
     {
-        std::string at = file.string();
-        if (node && node->source().begin)
-            at += fmt::format(":{}:{}", node->source().begin.line, node->source().begin.column);
-        throw std::runtime_error(fmt::format("{}: {}", at, what));
+        formats::toml_fail(file, node, what);
     }
 
     // Unknown keys are errors: a misspelt setting must not silently fall back.

@@ -1,5 +1,7 @@
 #include "texgen/deposit/deposit_sources.h"
 
+#include "formats/toml_location.h"
+
 #include <fmt/format.h>
 #include <toml++/toml.h>
 
@@ -182,13 +184,6 @@ namespace {
         return fmt::format("{},{},{}", v.x, v.y, v.z);
     }
 
-    std::string toml_where(const fs::path& path, const toml::source_region& region)
-    {
-        if (!region.begin)
-            return path.string();
-        return fmt::format("{}:{}:{}", path.string(), region.begin.line, region.begin.column);
-    }
-
 } // namespace
 
 std::string DepositSource::describe() const
@@ -257,13 +252,13 @@ std::vector<DepositSource> load_sources_file(const fs::path& path)
         root = toml::parse_file(path.string());
     } catch (const toml::parse_error& e) {
         throw std::runtime_error(
-            fmt::format("{}: {}", toml_where(path, e.source()), e.description()));
+            fmt::format("{}: {}", formats::toml_where(path, e.source().begin), e.description()));
     }
     for (auto&& [key, node] : root)
         if (key.str() != "source")
             throw std::runtime_error(fmt::format("{}: unknown key '{}' (a sources file holds "
                                                  "[[source]] tables only)",
-                                                 toml_where(path, node.source()), key.str()));
+                                                 formats::toml_where(path, node.source().begin), key.str()));
     const toml::node* list = root.get("source");
     if (!list)
         throw std::runtime_error(fmt::format("{}: no [[source]] table", path.string()));
@@ -271,12 +266,12 @@ std::vector<DepositSource> load_sources_file(const fs::path& path)
     if (!tables)
         throw std::runtime_error(fmt::format("{}: 'source' must be an array of tables "
                                              "([[source]])",
-                                             toml_where(path, list->source())));
+                                             formats::toml_where(path, list->source().begin)));
 
     std::vector<DepositSource> sources;
     for (const toml::node& item : *tables) {
         const toml::table* t = item.as_table();
-        const std::string where = toml_where(path, item.source());
+        const std::string where = formats::toml_where(path, item.source().begin);
         if (!t)
             throw std::runtime_error(
                 fmt::format("{}: each source must be a table ([[source]])", where));
@@ -286,23 +281,23 @@ std::vector<DepositSource> load_sources_file(const fs::path& path)
                 "{}: [[source]] needs 'type' (sphere, disc, rectangle or directional)", where));
         if (!type->is_string())
             throw std::runtime_error(
-                fmt::format("{}: 'type' must be a string", toml_where(path, type->source())));
+                fmt::format("{}: 'type' must be a string", formats::toml_where(path, type->source().begin)));
         const DepositSource::Kind kind =
-            kind_of(**type->as_string(), toml_where(path, type->source()));
+            kind_of(**type->as_string(), formats::toml_where(path, type->source().begin));
         std::vector<Field> fields;
         for (auto&& [key, value] : *t) {
             if (key.str() == "type")
                 continue;
             Field f;
             f.key = std::string(key.str());
-            f.where = toml_where(path, value.source());
+            f.where = formats::toml_where(path, value.source().begin);
             if (value.is_number()) {
                 f.numbers.push_back(*value.value<double>());
             } else if (const toml::array* a = value.as_array()) {
                 for (const toml::node& e : *a) {
                     if (!e.is_number())
                         throw std::runtime_error(fmt::format("{}: '{}' must hold numbers",
-                                                             toml_where(path, e.source()), f.key));
+                                                             formats::toml_where(path, e.source().begin), f.key));
                     f.numbers.push_back(*e.value<double>());
                 }
             } else {

@@ -1,5 +1,7 @@
 #include "texgen/fade/fade_material.h"
 
+#include "formats/toml_location.h"
+
 #include "core/shader_library.h"
 
 #include <fmt/format.h>
@@ -87,9 +89,7 @@ public:
     [[noreturn]] void fail(const toml::node& node, const std::string& key,
                            const std::string& what) const
     {
-        const toml::source_position& b = node.source().begin;
-        throw std::runtime_error(
-            fmt::format("{}:{}:{}: {}: {}", file_.string(), b.line, b.column, key, what));
+        formats::toml_fail(file_, &node, key + ": " + what);
     }
 
     void only_keys(const toml::table& t, const std::string& where,
@@ -179,14 +179,7 @@ private:
 
 void FadeLibrary::load(const fs::path& file)
 {
-    toml::table root;
-    try {
-        root = toml::parse_file(file.string());
-    } catch (const toml::parse_error& e) {
-        const auto& b = e.source().begin;
-        throw std::runtime_error(fmt::format("{}:{}:{}: {}", file.string(), b.line, b.column,
-                                             e.description()));
-    }
+    const toml::table root = formats::parse_toml_file(file);
     const Reader rd(file);
     rd.only_keys(root, "(top level)", {"library", "colorants", "materials", "rate_sets"});
     if (const toml::node* lib = root.get("library"))

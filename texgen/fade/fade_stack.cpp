@@ -2,6 +2,7 @@
 #include "texgen/fade/fade_stack.h"
 
 #include "texgen/stack/map_output.h"
+#include "formats/toml_location.h"
 
 #include "core/image_io.h"
 
@@ -202,13 +203,7 @@ void write_fade_stack(const fs::path& dir, const DoseTable& table, const FadeSta
 FadeStack read_fade_stack(const fs::path& dir)
 {
     const fs::path file = dir / kFadeToml;
-    toml::table root;
-    try {
-        root = toml::parse_file(file.string());
-    } catch (const toml::parse_error& e) {
-        throw std::runtime_error(fmt::format("{}:{}: {}", file.string(), e.source().begin.line,
-                                             e.description()));
-    }
+    const toml::table root = formats::parse_toml_file(file);
     FadeStack s;
     s.wavelength_nm = read_numbers(root, "table", "wavelength_nm", file);
     s.doses = read_numbers(root, "table", "dose", file);

@@ -5,6 +5,7 @@
 #include "core/cancel.h"
 #include "core/image_io.h"
 #include "texgen/stack/manifest.h"
+#include "formats/toml_location.h"
 
 #include <fmt/format.h>
 #include <toml++/toml.h>
@@ -46,8 +47,8 @@ namespace {
         try {
             return toml::parse_file(file.string());
         } catch (const toml::parse_error& e) {
-            throw std::runtime_error(fmt::format("cannot update manifest '{}': line {}: {}",
-                                                 path.string(), e.source().begin.line,
+            throw std::runtime_error(fmt::format("cannot update manifest {}: {}",
+                                                 formats::toml_where(path, e.source().begin),
                                                  e.description()));
         }
     }

@@ -1,5 +1,7 @@
 #include "texgen/patina/material_library.h"
 
+#include "formats/toml_location.h"
+
 #include "core/kubelka_munk.h"
 #include "core/shader_library.h"
 #include "texgen/patina/stack_materials.h"
@@ -18,31 +20,20 @@ namespace fs = std::filesystem;
 
 namespace {
 
-    std::string where(const fs::path& file, const toml::node& node)
-    {
-        const toml::source_region& region = node.source();
-        if (!region.begin)
-            return file.string();
-        return fmt::format("{}:{}:{}", file.string(), region.begin.line, region.begin.column);
-    }
-
-    [[noreturn]] void fail(const fs::path& file, const toml::node& node, const std::string& what)
-    {
-        throw std::runtime_error(fmt::format("{}: {}", where(file, node), what));
-    }
+    using formats::toml_fail;
 
     double number_of(const fs::path& file, const toml::node& node, const std::string& key)
     {
         if (const auto v = node.value<double>())
             return *v;
-        fail(file, node, fmt::format("'{}' must be a number", key));
+        toml_fail(file, &node, fmt::format("'{}' must be a number", key));
     }
 
     Imath::V3f triple_of(const fs::path& file, const toml::node& node, const std::string& key)
     {
         const toml::array* a = node.as_array();
         if (!a || a->size() != 3)
-            fail(file, node, fmt::format("'{}' must be an array of 3 numbers", key));
+            toml_fail(file, &node, fmt::format("'{}' must be an array of 3 numbers", key));
         Imath::V3f v;
         for (int c = 0; c < 3; ++c)
             v[c] = static_cast<float>(number_of(file, *a->get(c), key));
@@ -61,15 +52,15 @@ namespace {
     {
         const toml::array* a = node.as_array();
         if (!a || a->empty())
-            fail(file, node, fmt::format("'{}' must be an array of numbers", key));
+            toml_fail(file, &node, fmt::format("'{}' must be an array of numbers", key));
         if (size && a->size() != size)
-            fail(file, node, fmt::format("'{}' has {} values for {} wavelengths (wavelengths_nm)",
+            toml_fail(file, &node, fmt::format("'{}' has {} values for {} wavelengths (wavelengths_nm)",
                                          key, a->size(), size));
         std::vector<float> out;
         for (const toml::node& v : *a) {
             const double x = number_of(file, v, key);
             if (!std::isfinite(x) || x < 0.0)
-                fail(file, v, fmt::format("'{}' must hold finite numbers >= 0", key));
+                toml_fail(file, &v, fmt::format("'{}' must hold finite numbers >= 0", key));
             out.push_back(static_cast<float>(x));
         }
         return out;
@@ -79,17 +70,10 @@ namespace {
 
 void MaterialLibrary::load(const fs::path& file, const ColorManager& colors)
 {
-    toml::table root;
-    try {
-        root = toml::parse_file(file.string());
-    } catch (const toml::parse_error& e) {
-        const auto& b = e.source().begin;
-        throw std::runtime_error(
-            fmt::format("{}:{}:{}: {}", file.string(), b.line, b.column, e.description()));
-    }
+    const toml::table root = formats::parse_toml_file(file);
     for (const auto& [key, node] : root)
         if (key.str() != "library" && key.str() != "materials")
-            fail(file, node, fmt::format("unknown table '{}' (expected [library] and "
+            toml_fail(file, &node, fmt::format("unknown table '{}' (expected [library] and "
                                          "[materials.<name>])", key.str()));
     const toml::table* table = root["materials"].as_table();
     if (!table)
@@ -100,13 +84,13 @@ void MaterialLibrary::load(const fs::path& file, const ColorManager& colors)
     for (const auto& [key, node] : *table) {
         const toml::table* m = node.as_table();
         if (!m)
-            fail(file, node, fmt::format("materials.{} must be a table", key.str()));
+            toml_fail(file, &node, fmt::format("materials.{} must be a table", key.str()));
         (m->contains("mixture") ? mixtures : plain).emplace_back(std::string(key.str()), m);
     }
 
     auto add_name = [&](const std::string& name, size_t index, const toml::node& node) {
         if (by_name_.count(name))
-            fail(file, node, fmt::format("material name '{}' is already defined (in {})", name,
+            toml_fail(file, &node, fmt::format("material name '{}' is already defined (in {})", name,
                                          materials_[by_name_.at(name)].file.string()));
         by_name_[name] = index;
     };
@@ -114,7 +98,7 @@ void MaterialLibrary::load(const fs::path& file, const ColorManager& colors)
     auto define = [&](const std::string& name, const toml::table& m, bool mixture) {
         for (const auto& [k, v] : m)
             if (!kMaterialKeys.count(std::string(k.str())))
-                fail(file, v, fmt::format("material '{}': unknown key '{}' (known: kind, "
+                toml_fail(file, &v, fmt::format("material '{}': unknown key '{}' (known: kind, "
                                           "names, color, color_space, scattering, mixture, "
                                           "roughness, specular, description, wavelengths_nm, "
                                           "n, k, r_inf)",
@@ -125,18 +109,18 @@ void MaterialLibrary::load(const fs::path& file, const ColorManager& colors)
         if (const toml::node* kind = m.get("kind")) {
             const auto s = kind->value<std::string>();
             if (!s || (*s != "metal" && *s != "layer"))
-                fail(file, *kind, fmt::format("material '{}': kind must be \"metal\" or "
+                toml_fail(file, kind, fmt::format("material '{}': kind must be \"metal\" or "
                                               "\"layer\"", name));
             mat.is_metal = *s == "metal";
         }
         if (const toml::node* names = m.get("names")) {
             const toml::array* a = names->as_array();
             if (!a)
-                fail(file, *names, "'names' must be an array of strings");
+                toml_fail(file, names, "'names' must be an array of strings");
             for (const toml::node& n : *a) {
                 const auto s = n.value<std::string>();
                 if (!s || s->empty())
-                    fail(file, n, "'names' must be an array of non-empty strings");
+                    toml_fail(file, &n, "'names' must be an array of non-empty strings");
                 mat.aliases.push_back(*s);
             }
         }
@@ -145,7 +129,7 @@ void MaterialLibrary::load(const fs::path& file, const ColorManager& colors)
         if (const toml::node* r = m.get("roughness")) {
             mat.roughness = static_cast<float>(number_of(file, *r, "roughness"));
             if (!(mat.roughness > 0.0f && mat.roughness <= 1.0f))
-                fail(file, *r, fmt::format("material '{}': roughness must be in (0, 1]", name));
+                toml_fail(file, r, fmt::format("material '{}': roughness must be in (0, 1]", name));
         }
         if (const toml::node* s = m.get("specular"))
             mat.specular = triple_of(file, *s, "specular");
@@ -156,15 +140,15 @@ void MaterialLibrary::load(const fs::path& file, const ColorManager& colors)
             table_nm = table_of(file, *w, "wavelengths_nm", 0);
             for (size_t i = 1; i < table_nm.size(); ++i)
                 if (!(table_nm[i] > table_nm[i - 1]))
-                    fail(file, *w, "'wavelengths_nm' must increase strictly");
+                    toml_fail(file, w, "'wavelengths_nm' must increase strictly");
         }
         for (const char* key : {"n", "k", "r_inf"})
             if (const toml::node* t = m.get(key)) {
                 if (table_nm.empty())
-                    fail(file, *t, fmt::format("material '{}': '{}' needs 'wavelengths_nm'",
+                    toml_fail(file, t, fmt::format("material '{}': '{}' needs 'wavelengths_nm'",
                                                name, key));
                 if ((std::string(key) == "r_inf") == mat.is_metal || mixture)
-                    fail(file, *t, fmt::format("material '{}': '{}' is for {}", name, key,
+                    toml_fail(file, t, fmt::format("material '{}': '{}' is for {}", name, key,
                                                std::string(key) == "r_inf"
                                                    ? "a layer that is not a mixture"
                                                    : "a metal"));
@@ -173,10 +157,10 @@ void MaterialLibrary::load(const fs::path& file, const ColorManager& colors)
                  : std::string(key) == "k" ? k_table : r_table) = std::move(v);
             }
         if (n_table.empty() != k_table.empty())
-            fail(file, m, fmt::format("material '{}': give both 'n' and 'k' or neither", name));
+            toml_fail(file, &m, fmt::format("material '{}': give both 'n' and 'k' or neither", name));
         for (float r : r_table)
             if (!(r > 0.0f && r <= 1.0f))
-                fail(file, *m.get("r_inf"), fmt::format("material '{}': r_inf must lie in "
+                toml_fail(file, m.get("r_inf"), fmt::format("material '{}': r_inf must lie in "
                                                         "(0, 1]", name));
 
         if (mixture) {
@@ -184,9 +168,9 @@ void MaterialLibrary::load(const fs::path& file, const ColorManager& colors)
             const toml::node* mix_node = m.get("mixture");
             const toml::table* mix = mix_node->as_table();
             if (!mix || mix->empty())
-                fail(file, *mix_node, "'mixture' must be a table of material = fraction");
+                toml_fail(file, mix_node, "'mixture' must be a table of material = fraction");
             if (m.contains("color") || m.contains("scattering") || mat.is_metal)
-                fail(file, *mix_node, fmt::format("material '{}': a mixture takes its colour "
+                toml_fail(file, mix_node, fmt::format("material '{}': a mixture takes its colour "
                                                   "and scattering from its components", name));
             double sum = 0.0;
             Imath::V3f K(0.0f), S(0.0f);
@@ -196,16 +180,16 @@ void MaterialLibrary::load(const fs::path& file, const ColorManager& colors)
             for (const auto& [component, fraction_node] : *mix) {
                 const PatinaMaterial* c = find(std::string(component.str()));
                 if (!c)
-                    fail(file, fraction_node, fmt::format("material '{}': mixture names "
+                    toml_fail(file, &fraction_node, fmt::format("material '{}': mixture names "
                                                           "unknown material '{}'",
                                                           name, component.str()));
                 if (c->is_metal)
-                    fail(file, fraction_node, fmt::format("material '{}': a mixture cannot "
+                    toml_fail(file, &fraction_node, fmt::format("material '{}': a mixture cannot "
                                                           "hold the metal '{}'",
                                                           name, component.str()));
                 const double f = number_of(file, fraction_node, "mixture fraction");
                 if (!(f > 0.0 && f <= 1.0))
-                    fail(file, fraction_node, "a mixture fraction must be in (0, 1]");
+                    toml_fail(file, &fraction_node, "a mixture fraction must be in (0, 1]");
                 sum += f;
                 K += c->absorption * static_cast<float>(f);
                 S += c->scattering * static_cast<float>(f);
@@ -218,7 +202,7 @@ void MaterialLibrary::load(const fs::path& file, const ColorManager& colors)
                 mat.spectral.r_infinity.push_back(km_r_infinity(
                     mat.spectral.absorption[i] / mat.spectral.scattering[i]));
             if (std::abs(sum - 1.0) > 1e-3)
-                fail(file, *mix_node, fmt::format("material '{}': mixture fractions sum to {} "
+                toml_fail(file, mix_node, fmt::format("material '{}': mixture fractions sum to {} "
                                                   "(must be 1)", name, sum));
             mat.absorption = K;
             mat.scattering = S;
@@ -227,12 +211,12 @@ void MaterialLibrary::load(const fs::path& file, const ColorManager& colors)
         } else {
             const toml::node* color = m.get("color");
             if (!color)
-                fail(file, m, fmt::format("material '{}' has no 'color' (R_inf, or a metal's "
+                toml_fail(file, &m, fmt::format("material '{}' has no 'color' (R_inf, or a metal's "
                                           "reflectance) and no 'mixture'", name));
             Imath::V3f c = triple_of(file, *color, "color");
             for (int i = 0; i < 3; ++i)
                 if (!(c[i] > 0.0f && c[i] <= 1.0f))
-                    fail(file, *color, fmt::format("material '{}': colour components must be in "
+                    toml_fail(file, color, fmt::format("material '{}': colour components must be in "
                                                    "(0, 1]", name));
             std::string space = "srgb_texture";
             if (const toml::node* cs = m.get("color_space"))
@@ -240,7 +224,7 @@ void MaterialLibrary::load(const fs::path& file, const ColorManager& colors)
             try {
                 colors.convert(space, "lin_rec709", &c.x, 1);
             } catch (const std::exception& e) {
-                fail(file, m.get("color_space") ? *m.get("color_space") : *color, e.what());
+                toml_fail(file, m.get("color_space") ? m.get("color_space") : color, e.what());
             }
             // Keep R_inf inside (0, 1): K/S is infinite at 0 and 0 at 1.
             for (int i = 0; i < 3; ++i)
@@ -249,11 +233,11 @@ void MaterialLibrary::load(const fs::path& file, const ColorManager& colors)
             if (!mat.is_metal) {
                 const toml::node* s = m.get("scattering");
                 if (!s)
-                    fail(file, m, fmt::format("material '{}' has no 'scattering' (S, 1/µm)",
+                    toml_fail(file, &m, fmt::format("material '{}' has no 'scattering' (S, 1/µm)",
                                               name));
                 const float S = static_cast<float>(number_of(file, *s, "scattering"));
                 if (!(S > 0.0f) || !std::isfinite(S))
-                    fail(file, *s, fmt::format("material '{}': scattering must be positive",
+                    toml_fail(file, s, fmt::format("material '{}': scattering must be positive",
                                                name));
                 mat.scattering = Imath::V3f(S);
                 // K/S from R_inf (D&H 1996 §4.1), with the assumed S.

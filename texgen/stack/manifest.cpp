@@ -2,6 +2,7 @@
 
 #include "core/output_transaction.h"
 #include "texgen/stack/map_output.h"
+#include "formats/toml_location.h"
 
 #include "core/cancel.h"
 
@@ -94,17 +95,15 @@ namespace {
         try {
             root = toml::parse_file(file.string());
         } catch (const toml::parse_error& e) {
-            throw std::runtime_error(fmt::format("cannot update manifest {}:{}:{}: {} (fix or "
+            throw std::runtime_error(fmt::format("cannot update manifest {}: {} (fix or "
                                                  "remove the file; it was left unchanged)",
-                                                 path.string(), e.source().begin.line,
-                                                 e.source().begin.column, e.description()));
+                                                 formats::toml_where(path, e.source().begin),
+                                                 e.description()));
         }
         auto fail = [&](const toml::node* node, const std::string& what) {
-            const toml::source_region& where = node->source();
-            throw std::runtime_error(fmt::format("cannot update manifest {}:{}:{}: {} (fix or "
+            throw std::runtime_error(fmt::format("cannot update manifest {}: {} (fix or "
                                                  "remove the file; it was left unchanged)",
-                                                 path.string(), where.begin.line,
-                                                 where.begin.column, what));
+                                                 formats::toml_where(path, node), what));
         };
         if (const toml::node* stack = root.get("stack")) {
             if (!stack->is_table())

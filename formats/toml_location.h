@@ -1,0 +1,54 @@
+// Where a value sits in a TOML file, for error messages in the one form every reader of
+// Patina's TOML files uses (scenes, shader parameters, texture-stack manifests, fade
+// stacks, material libraries): "<file>:<line>:<column>: <what>". Header-only: plugins
+// include it as they include the other readers of the file-format library.
+#pragma once
+
+#include <toml++/toml.h>
+
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+
+namespace patina::formats {
+
+/// "file:line:column" of a position; just "file" when toml++ knows no position.
+inline std::string toml_where(const std::filesystem::path& file, const toml::source_position& at)
+{
+    // Appended piece by piece: ":" + std::to_string(...) trips a false -Wrestrict of GCC 12.
+    std::string out = file.string();
+    if (at) {
+        out += ':';
+        out += std::to_string(at.line);
+        out += ':';
+        out += std::to_string(at.column);
+    }
+    return out;
+}
+
+/// "file:line:column" of a node (where its value begins); "file" for a null node.
+inline std::string toml_where(const std::filesystem::path& file, const toml::node* node)
+{
+    return node ? toml_where(file, node->source().begin) : file.string();
+}
+
+/// Throws std::runtime_error("file:line:column: what").
+[[noreturn]] inline void toml_fail(const std::filesystem::path& file, const toml::node* node,
+                                   std::string_view what)
+{
+    throw std::runtime_error(toml_where(file, node) + ": " + std::string(what));
+}
+
+/// The parsed file, or std::runtime_error("file:line:column: <toml++'s description>").
+inline toml::table parse_toml_file(const std::filesystem::path& file)
+{
+    try {
+        return toml::parse_file(file.string());
+    } catch (const toml::parse_error& e) {
+        throw std::runtime_error(toml_where(file, e.source().begin) + ": " +
+                                 std::string(e.description()));
+    }
+}
+
+}  // namespace patina::formats
