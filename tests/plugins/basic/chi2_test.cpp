@@ -1,9 +1,9 @@
 // Chi-square tests: every sampling routine of the basic plugin and of the shading headers
-// against its pdf (see chi2.h). All cases share one Šidák-corrected significance level of
-// 1% over the whole table, so a correct sampler fails this suite with probability 1%
-// (and, the seeds being fixed, deterministically passes or fails).
+// against its pdf (see patina/testing/chi2.h). All cases share one Šidák-corrected
+// significance level of 1% over the whole table, so a correct sampler fails this suite with
+// probability 1% (and, the seeds being fixed, deterministically passes or fails).
 #include "basic_plugin.h"
-#include "chi2.h"
+#include <patina/testing/chi2.h>
 
 #include <patina/shading/microfacet.h>
 #include <patina/shading/sampling.h>

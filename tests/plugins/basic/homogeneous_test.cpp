@@ -3,7 +3,7 @@
 // phase function (normalisation, exact inverse cdf, chi-square, direction convention,
 // reciprocity), edge cases without NaN/Inf, and bad values refused at create.
 #include "basic_plugin.h"
-#include "chi2.h"
+#include <patina/testing/chi2.h>
 
 #include <patina/shading/phase.h>
 

@@ -1,8 +1,9 @@
-// Sampling of the layered shader: chi-square test of `sample` against `pdf` (chi2.h of the
-// basic plugin's tests), and sample returning exactly what eval and pdf say.
+// Sampling of the layered shader: chi-square test of `sample` against `pdf`
+// (patina/testing/chi2.h, as every BSDF's), and sample returning exactly what eval and pdf
+// say.
 #include "layered_fixture.h"
 
-#include "../basic/chi2.h"
+#include <patina/testing/chi2.h>
 
 namespace patina::test {
 namespace {

@@ -3,7 +3,7 @@
 // the closed-form cdf against quadrature, and reciprocity.
 #include "slab_fixture.h"
 
-#include "plugins/basic/chi2.h"
+#include <patina/testing/chi2.h>
 
 #include <patina/volume/schlick_phase.h>
 

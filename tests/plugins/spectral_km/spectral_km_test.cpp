@@ -2,7 +2,7 @@
 // reciprocity, sampling against pdf (chi-square) and refused inputs.
 #include "plugins/spectral_km/spectral_km_fixture.h"
 
-#include "plugins/basic/chi2.h"
+#include <patina/testing/chi2.h>
 #include "texgen/fade/fading_simulation.h"
 
 #include <gtest/gtest.h>

@@ -12,6 +12,10 @@
 //
 // A sample in a cell whose expected count is 0 fails at once (beyond 1e-5·N, to forgive
 // rounding at cell borders), and so does a non-finite or non-unit direction.
+//
+// Installed with the plugin headers (include/patina/testing/): every BSDF and phase function
+// of Patina's plugins is tested with it, and an out-of-tree plugin's should be too. Header-
+// only, standard C++ and <patina/shading/vec.h>; no test framework needed.
 #pragma once
 
 #include <patina/shading/vec.h>
