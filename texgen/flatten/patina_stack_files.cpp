@@ -104,6 +104,11 @@ PatinaStackFiles read_patina_stack(const fs::path& stack)
                 fail(manifest, fmt::format("[[patina.layers]] entry {} needs material and map",
                                            i + 1));
             StackLayerFiles files{*material, *map, {}, "thickness"};
+            // One rule with plugins/layered: a layer that names no channel reads its map's
+            // first channel, the first of the map's `channels` ("thickness" when the map
+            // lists none).
+            if (const auto first = root["maps"][*map]["channels"][0].value<std::string>())
+                files.channel = *first;
             // A layer reading a channel of a multi-channel map: by name, or by index into the
             // map's `channels` (as plugins/layered reads it).
             if (const toml::node* c = layer->get("channel")) {

@@ -16,7 +16,7 @@ struct StackLayerFiles {
     std::string material;
     std::string map;
     std::vector<std::filesystem::path> files;
-    std::string channel = "thickness";
+    std::string channel = "thickness";  ///< the layer's `channel`, else the map's first
 };
 
 struct PatinaStackFiles {

@@ -12,6 +12,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <iterator>
 #include <limits>
 
 namespace patina::texgen {
@@ -206,6 +207,30 @@ TEST_F(FlattenStack, RerunWithFewerLayersDropsStaleMaps)
     const toml::table m = toml::parse_file((out / "stack.toml").string());
     EXPECT_FALSE(m["maps"]["interface02_cuprite_specular"]);
     EXPECT_TRUE(m["maps"]["interface01_tarnish_specular"]);
+}
+
+TEST_F(FlattenStack, ALayerWithoutAChannelReadsItsMapsFirstChannel)
+{
+    // The rule layered_km follows (channel index 0): a map whose first channel is not
+    // called "thickness" still gives the layer its thickness.
+    write_stack({{"cuprite urban 2", ramp(3.0f)}});
+    std::string toml;
+    {
+        std::ifstream in(dir_ / "stack" / "stack.toml");
+        toml.assign(std::istreambuf_iterator<char>(in), {});
+    }
+    const std::vector<float> depth = ramp(3.0f);
+    write_image_atomic(dir_ / "stack" / "layer01.exr", depth.data(), kSize, kSize, 1, {"depth"},
+                       OIIO::TypeDesc::FLOAT);
+    const std::string from = "[maps.layer01]\nfile = 'layer01.exr'\nchannels = ['thickness']";
+    const size_t at = toml.find(from);
+    ASSERT_NE(at, std::string::npos);
+    toml.replace(at, from.size(), "[maps.layer01]\nfile = 'layer01.exr'\nchannels = ['depth']");
+    std::ofstream(dir_ / "stack" / "stack.toml") << toml;
+    const PatinaStackFiles stack = read_patina_stack(dir_ / "stack");
+    ASSERT_EQ(stack.layers.size(), 1u);
+    EXPECT_EQ(stack.layers[0].channel, "depth");
+    EXPECT_NO_THROW(flatten());
 }
 
 TEST_F(FlattenStack, MissingStack)
