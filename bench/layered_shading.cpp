@@ -228,7 +228,7 @@ int main(int argc, char** argv)
         constexpr int kReferenceSamples = 2000;
         for (int i = 0; i < kReferenceSamples; ++i) {
             const Input& x = inputs[i & 4095];
-            float f[PATINA_MAX_WAVELENGTHS];
+            float f[PATINA_MAX_WAVELENGTHS] = {};
             patina::layered::eval(reference, &x.ctx, x.wo, x.wi, &wl, f);
             g_sink = g_sink + f[0];
         }

@@ -1,5 +1,6 @@
 #include "stack_file.h"
 
+#include "formats/stack_format.h"
 #include "formats/toml_location.h"
 
 #include <toml++/toml.h>
@@ -123,6 +124,7 @@ StackFile read_stack_file(const fs::path& path)
     StackFile stack;
     stack.path = path;
     const toml::table root = formats::parse_toml_file(path);
+    formats::check_stack_format(path, root);
     const toml::table* patina = root["patina"].as_table();
     if (!patina)
         throw std::runtime_error(path.string() +

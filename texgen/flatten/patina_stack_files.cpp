@@ -82,6 +82,7 @@ PatinaStackFiles read_patina_stack(const fs::path& stack)
     } catch (const toml::parse_error& e) {
         fail(manifest, fmt::format("line {}: {}", e.source().begin.line, e.description()));
     }
+    formats::check_stack_format(manifest, root);
     const toml::table* patina = root["patina"].as_table();
     if (!patina)
         fail(manifest, "no [patina] table: not a stack written by `patina-texgen patina`");

@@ -18,6 +18,8 @@
 //   samples = 64
 #pragma once
 
+#include "formats/stack_format.h"
+
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -25,7 +27,7 @@
 namespace patina::texgen {
 
 /// Version of the stack.toml layout; a manifest of a newer version is not rewritten.
-inline constexpr int kStackFormatVersion = 1;
+using formats::kStackFormatVersion;
 
 /// `<out_dir>/stack.toml`.
 std::filesystem::path manifest_path(const std::filesystem::path& out_dir);

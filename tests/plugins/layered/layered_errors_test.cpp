@@ -59,6 +59,20 @@ TEST(LayeredErrors, TomlSyntaxErrorNamesTheLine)
     EXPECT_NE(l.errors().find("stack.toml:"), std::string::npos) << l.errors();
 }
 
+TEST(LayeredErrors, NewerStackFormatIsRefused)
+{
+    // A manifest of a layout this build does not know is refused before anything is read,
+    // naming the file, the line and both versions.
+    const fs::path p = good_stack("err_format");
+    const std::string text = read(p);
+    std::ofstream(p) << "[stack]\nformat = 2\n\n" << text;
+    const Layered l(p);
+    EXPECT_FALSE(l);
+    EXPECT_NE(l.errors().find("stack.toml:2:"), std::string::npos) << l.errors();
+    EXPECT_NE(l.errors().find("stack format 2 is newer than the 1"), std::string::npos)
+        << l.errors();
+}
+
 TEST(LayeredErrors, StackWithoutMaterialsSection)
 {
     const fs::path p = good_stack("err_old");

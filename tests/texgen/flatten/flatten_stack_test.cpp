@@ -233,6 +233,23 @@ TEST_F(FlattenStack, ALayerWithoutAChannelReadsItsMapsFirstChannel)
     EXPECT_NO_THROW(flatten());
 }
 
+TEST_F(FlattenStack, NewerStackFormatIsRefused)
+{
+    write_stack({{"cuprite urban 2", ramp(3.0f)}});
+    std::string toml;
+    {
+        std::ifstream in(dir_ / "stack" / "stack.toml");
+        toml.assign(std::istreambuf_iterator<char>(in), {});
+    }
+    const std::string from = "[stack]\nformat = 1";
+    ASSERT_EQ(toml.rfind(from, 0), 0u);
+    toml.replace(0, from.size(), "[stack]\nformat = 7");
+    std::ofstream(dir_ / "stack" / "stack.toml") << toml;
+    const std::string message = patina::test::message_of([&] { read_patina_stack(dir_ / "stack"); });
+    EXPECT_NE(message.find("stack.toml:2:"), std::string::npos) << message;
+    EXPECT_NE(message.find("stack format 7 is newer"), std::string::npos) << message;
+}
+
 TEST_F(FlattenStack, MissingStack)
 {
     const std::string m =
