@@ -1,10 +1,8 @@
-// Reading a fade stack in create: fade.toml (toml++, header-only), the table through
+// Reading a fade stack in create: fade.toml (the file-format library), the table through
 // host->read_image and the dose map through host->open_texture.
 #include "fade_table.h"
 
-#include "formats/toml_location.h"
-
-#include <toml++/toml.h>
+#include "formats/fade_stack.h"
 
 #include <algorithm>
 #include <cmath>
@@ -12,77 +10,23 @@
 
 namespace patina::spectral_km {
 
-namespace {
-
-    namespace fs = std::filesystem;
-
-    // The table's channels as fade.toml must list them (OpenEXR keeps channels sorted by name,
-    // which is the order read_image returns them in).
-    constexpr const char* kChannels[4] = {"R_bottom", "R_top", "R_total", "T"};
-
-    std::string read_numbers(const toml::table& root, const char* section, const char* key,
-                             const std::string& where, std::vector<float>* out)
-    {
-        const toml::array* array = root[section][key].as_array();
-        if (!array)
-            return where + ": [" + section + "] " + key + " is missing or not an array";
-        out->clear();
-        for (const toml::node& n : *array) {
-            const std::optional<double> v = n.value<double>();
-            if (!v || !std::isfinite(*v))
-                return where + ": [" + section + "] " + key + " holds a non-number";
-            out->push_back(static_cast<float>(*v));
-        }
-        return {};
-    }
-
-    std::string resolve(const toml::table& root, const char* section, const fs::path& dir,
-                        const std::string& where, std::string* out)
-    {
-        const std::optional<std::string> file = root[section]["file"].value<std::string>();
-        if (!file || file->empty())
-            return where + ": [" + section + "] file is missing";
-        const fs::path p(*file);
-        *out = (p.is_absolute() ? p : dir / p).lexically_normal().string();
-        return {};
-    }
-
-}  // namespace
+namespace fs = std::filesystem;
 
 std::string FadeTable::load(const PatinaHost* host, const char* path)
 {
     if (!PATINA_HOST_HAS_READ_IMAGE(host) || !host->read_image || !host->open_texture)
         return "the host does not offer read_image/open_texture (ABI 1.1 services)";
     const std::string where(path ? path : "");
-    toml::table root;
+    // The description, checked by the one reader of fade.toml (formats/fade_stack.h)
+    formats::FadeDescription description;
     try {
-        root = toml::parse_file(where);
-    } catch (const toml::parse_error& e) {
-        return formats::toml_where(where, e.source().begin) + ": " + std::string(e.description());
+        description = formats::read_fade_description(where);
+    } catch (const std::exception& e) {
+        return e.what();
     }
-    const std::optional<int64_t> format = root["fade"]["format"].value<int64_t>();
-    if (!format || *format != 1)
-        return where + ": [fade] format must be 1";
     const fs::path dir = fs::path(where).parent_path();
-
-    // Wavelengths (columns), doses (rows) and the channel order
-    if (std::string e = read_numbers(root, "table", "wavelength_nm", where, &lambda_nm_);
-        !e.empty())
-        return e;
-    std::vector<float> doses;
-    if (std::string e = read_numbers(root, "table", "dose", where, &doses); !e.empty())
-        return e;
-    if (lambda_nm_.empty() || doses.empty())
-        return where + ": [table] needs at least one wavelength and one dose";
-    for (size_t i = 1; i < lambda_nm_.size(); ++i)
-        if (!(lambda_nm_[i] > lambda_nm_[i - 1]))
-            return where + ": [table] wavelength_nm must increase";
-    const toml::array* channels = root["table"]["channels"].as_array();
-    if (!channels || channels->size() != 4)
-        return where + ": [table] channels must list R_bottom, R_top, R_total, T";
-    for (size_t c = 0; c < 4; ++c)
-        if ((*channels)[c].value<std::string>().value_or("") != kChannels[c])
-            return where + ": [table] channels must be R_bottom, R_top, R_total, T in that order";
+    lambda_nm_.assign(description.wavelength_nm.begin(), description.wavelength_nm.end());
+    const std::vector<double>& doses = description.doses;
     rows_ = static_cast<int>(doses.size());
     columns_ = static_cast<int>(lambda_nm_.size());
 
@@ -94,18 +38,11 @@ std::string FadeTable::load(const PatinaHost* host, const char* path)
     lambda0_ = lambda_nm_.front();
     inv_step_ = uniform_ ? 1.0f / step : 0.0f;
 
-    if (std::string e = read_numbers(root, "substrate", "reflectance", where, &substrate_);
-        !e.empty())
-        return e;
-    if (static_cast<int>(substrate_.size()) != columns_)
-        return where + ": [substrate] reflectance needs one value per wavelength";
+    substrate_.assign(description.substrate.begin(), description.substrate.end());
 
-    // The table: rows x columns x 4 raw floats
-    std::string table_path, dose_path;
-    if (std::string e = resolve(root, "table", dir, where, &table_path); !e.empty())
-        return e;
-    if (std::string e = resolve(root, "dose_map", dir, where, &dose_path); !e.empty())
-        return e;
+    // The table: rows x columns x 4 raw floats, channels in formats::kFadeTableChannels order
+    const std::string table_path = description.table_path(dir).string();
+    const std::string dose_path = description.dose_map_path(dir).string();
     int dims[3] = {0, 0, 0};
     if (!host->read_image(host, table_path.c_str(), 0, dims, nullptr, 0))
         return "cannot read the fade table '" + table_path + "'";
@@ -132,10 +69,6 @@ std::string FadeTable::load(const PatinaHost* host, const char* path)
                    ", column " + std::to_string(i % columns_) +
                    " is not a passive layer (R, T >= 0, R + T <= 1)";
     }
-    for (float rho : substrate_)
-        if (!(rho >= 0.0f && rho <= 1.0f))
-            return where + ": [substrate] reflectance must lie in [0, 1]";
-
     dose_map_ = host->open_texture(host, dose_path.c_str(), "raw");
     if (!dose_map_)
         return "cannot open the dose map '" + dose_path + "'";

@@ -2,16 +2,9 @@
 // the layer's two-flux reflectances and transmittance over (dose row, wavelength), the
 // substrate under it, and the dose map that says which row a surface point is at.
 //
-// A fade stack is a folder written by `patina-texgen fade` (texgen/fade/fade_stack.h has the
-// full format):
-//
-//   fade.toml        [table] file, channels, wavelength_nm (one per column), dose (one per
-//                    row); [substrate] reflectance (one per column); [dose_map] file
-//   fade_table.exr   rows = dose samples, columns = wavelengths; channels R_bottom, R_top,
-//                    R_total, T (the layer alone: reflectance from above and below,
-//                    transmittance; and the layer over its substrate)
-//   dose.exr         tiled, mip-mapped, raw: channel 0 `coordinate` = fractional row of the
-//                    table, channel 1 `dose` in J/m^2
+// A fade stack is a folder written by `patina-texgen fade`: fade.toml, the table
+// (fade_table.exr: rows = doses, columns = wavelengths) and the dose map (dose.exr: the
+// fractional table row and the dose per texel). Its format is formats/fade_stack.h.
 //
 // Everything is read in create (host->read_image, host->open_texture); lookups are
 // allocation-free.

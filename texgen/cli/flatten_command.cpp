@@ -44,7 +44,7 @@ void run_flatten(const FlattenCommandOptions& o)
         library.load(f, colors);
 
     const PatinaStackFiles stack = read_patina_stack(o.stack);
-    const std::vector<const PatinaMaterial*> materials = resolve_stack_materials(stack, library);
+    const std::vector<const PatinaMaterial*> materials = resolve_stack_materials(stack, library, colors);
     const FlattenedStack flat = flatten_stack(stack, materials, o.flatten);
     const auto written = write_flattened(o.out_dir, flat, stack, o.flatten, colors);
     if (!o.quiet) {

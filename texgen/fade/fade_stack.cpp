@@ -2,16 +2,14 @@
 #include "texgen/fade/fade_stack.h"
 
 #include "texgen/stack/map_output.h"
-#include "formats/toml_location.h"
+#include "formats/fade_stack.h"
 
 #include "core/image_io.h"
 
 #include <fmt/format.h>
-#include <toml++/toml.h>
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 #include <stdexcept>
 
 #ifndef PATINA_VERSION_STRING
@@ -24,43 +22,10 @@ namespace fs = std::filesystem;
 
 namespace {
 
-    const std::vector<std::string> kTableChannels = {"R_bottom", "R_top", "R_total", "T"};
-    // The coverage channel last, as in every texel map (stack/map_output.h).
-    const std::vector<std::string> kDoseChannels = {"coordinate", "dose", kCoverageChannel};
-
-    toml::array numbers(const std::vector<double>& values)
-    {
-        toml::array a;
-        for (double v : values)
-            a.push_back(v);
-        return a;
-    }
-
-    toml::array strings(const std::vector<std::string>& values)
-    {
-        toml::array a;
-        for (const std::string& v : values)
-            a.push_back(v);
-        return a;
-    }
-
-    std::vector<double> read_numbers(const toml::table& root, const char* section,
-                                     const char* key, const fs::path& file)
-    {
-        const toml::array* a = root[section][key].as_array();
-        if (!a)
-            throw std::runtime_error(fmt::format("{}: [{}] {} is missing or not an array",
-                                                 file.string(), section, key));
-        std::vector<double> out;
-        for (const toml::node& n : *a) {
-            const std::optional<double> v = n.value<double>();
-            if (!v)
-                throw std::runtime_error(fmt::format("{}: [{}] {} holds a non-number",
-                                                     file.string(), section, key));
-            out.push_back(*v);
-        }
-        return out;
-    }
+    const std::vector<std::string> kTableChannels(formats::kFadeTableChannels.begin(),
+                                                  formats::kFadeTableChannels.end());
+    const std::vector<std::string> kDoseChannels(formats::kDoseMapChannels.begin(),
+                                                 formats::kDoseMapChannels.end());
 
 }  // namespace
 
@@ -152,67 +117,52 @@ void write_fade_stack(const fs::path& dir, const DoseTable& table, const FadeSta
 
     // fade.toml, last: a stack is complete when its description exists
     const DoseTableOptions& o = table.options();
-    toml::table fade{{"format", 1},
-                     {"generator", std::string("patina-texgen ") + PATINA_VERSION_STRING},
-                     {"material", info.material},
-                     {"material_file", info.material_file.string()},
-                     {"illuminant", info.illuminant},
-                     {"illuminant_band_nm", numbers({info.band_min_nm, info.band_max_nm})},
-                     {"dose_units", "J/m^2"},
-                     {"sublayers", o.sublayers},
-                     {"both_sides", o.both_sides}};
-    toml::table table_section{
-        {"file", kFadeTableFile},
-        {"channels", strings(kTableChannels)},
-        {"rule", "H_k = H_0 (exp(k du) - 1), du = ln(1 + H_max / H_0) / (entries - 1); linear "
-                 "in u = ln(1 + H / H_0) between rows"},
-        {"entries", o.entries},
-        {"knee_dose", o.knee_dose_j_m2},
-        {"max_dose", o.max_dose_j_m2},
-        {"substeps", o.substeps},
-        {"max_interpolation_error", info.max_interpolation_error},
-        {"wavelength_nm", numbers(table.grid().nm)},
-        {"dose", numbers(table.doses())}};
-    toml::table substrate_section{{"reflectance", numbers(info.substrate)}};
-    toml::table dose_map{{"file", kDoseMapFile},
-                         {"channels", strings(kDoseChannels)},
-                         {"coverage", kCoverageChannel},
-                         {"resolution", numbers({double(info.width), double(info.height)})},
-                         {"min_dose", info.min_dose},
-                         {"mean_dose", info.mean_dose},
-                         {"max_dose", info.max_dose}};
-    toml::array exposure_files;
+    formats::FadeDescription d;
+    d.generator = std::string("patina-texgen ") + PATINA_VERSION_STRING;
+    d.material = info.material;
+    d.material_file = info.material_file.string();
+    d.illuminant = info.illuminant;
+    d.band_min_nm = info.band_min_nm;
+    d.band_max_nm = info.band_max_nm;
+    d.sublayers = o.sublayers;
+    d.both_sides = o.both_sides;
+    d.entries = o.entries;
+    d.knee_dose = o.knee_dose_j_m2;
+    d.max_dose = o.max_dose_j_m2;
+    d.substeps = o.substeps;
+    d.max_interpolation_error = info.max_interpolation_error;
+    d.wavelength_nm = table.grid().nm;
+    d.doses = table.doses();
+    d.substrate = info.substrate;
+    d.width = info.width;
+    d.height = info.height;
+    d.min_dose = info.min_dose;
+    d.mean_dose = info.mean_dose;
+    d.max_dose_in_map = info.max_dose;
     for (const fs::path& f : info.exposure.files)
-        exposure_files.push_back(f.string());
-    toml::table exposure{{"files", exposure_files},
-                         {"channel", info.exposure.channel},
-                         {"units", info.exposure.units},
-                         {"scale", info.exposure.scale},
-                         {"duration_s", info.exposure.duration_s},
-                         {"period_s", info.exposure.period_s}};
-    toml::table root{{"fade", fade},
-                     {"table", table_section},
-                     {"substrate", substrate_section},
-                     {"dose_map", dose_map},
-                     {"exposure", exposure}};
-    std::ostringstream text;
-    text << "# A fade stack (patina-texgen fade): see texgen/fade/fade_stack.h\n" << root << "\n";
-    write_file_atomic(dir / kFadeToml, {text.str()}, "fade stack description");
+        d.exposure.files.push_back(f.string());
+    d.exposure.channel = info.exposure.channel;
+    d.exposure.units = info.exposure.units;
+    d.exposure.scale = info.exposure.scale;
+    d.exposure.duration_s = info.exposure.duration_s;
+    d.exposure.period_s = info.exposure.period_s;
+    write_file_atomic(dir / kFadeToml, {formats::fade_description_text(d)},
+                      "fade stack description");
 }
 
 FadeStack read_fade_stack(const fs::path& dir)
 {
     const fs::path file = dir / kFadeToml;
-    const toml::table root = formats::parse_toml_file(file);
+    const formats::FadeDescription d = formats::read_fade_description(file);
     FadeStack s;
-    s.wavelength_nm = read_numbers(root, "table", "wavelength_nm", file);
-    s.doses = read_numbers(root, "table", "dose", file);
-    s.substrate = read_numbers(root, "substrate", "reflectance", file);
-    s.material = root["fade"]["material"].value_or(std::string());
-    s.illuminant = root["fade"]["illuminant"].value_or(std::string());
-    s.max_interpolation_error = root["table"]["max_interpolation_error"].value_or(0.0);
-    s.dose_map = dir / root["dose_map"]["file"].value_or(std::string(kDoseMapFile));
-    const fs::path table_file = dir / root["table"]["file"].value_or(std::string(kFadeTableFile));
+    s.wavelength_nm = d.wavelength_nm;
+    s.doses = d.doses;
+    s.substrate = d.substrate;
+    s.material = d.material;
+    s.illuminant = d.illuminant;
+    s.max_interpolation_error = d.max_interpolation_error;
+    s.dose_map = d.dose_map_path(dir);
+    const fs::path table_file = d.table_path(dir);
     const ImageData image = read_image(table_file);
     if (image.width != static_cast<int>(s.wavelength_nm.size()) ||
         image.height != static_cast<int>(s.doses.size()))

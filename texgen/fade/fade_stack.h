@@ -1,39 +1,10 @@
 // The fade stack: what `patina-texgen fade` writes and the spectral_km shader reads.
 //
-// A fade stack is a folder with three files:
-//
-//   fade.toml       what the stack holds and how it was made (below)
-//   fade_table.exr  the material's state over dose under one illuminant (DoseTable): a
-//                   scanline float EXR, one row per dose sample (row 0 = unexposed), one
-//                   column per wavelength; channels (sorted, as OpenEXR stores them)
-//                   R_bottom  reflectance of the pigment layer alone, lit from below
-//                   R_top     reflectance of the pigment layer alone, lit from above
-//                   R_total   reflectance of the layer over its substrate,
-//                             R_top + T² ρ* / (1 − R_bottom ρ*)
-//                   T         diffuse transmittance of the layer
-//   dose.exr        tiled, mip-mapped float EXR (raw data), the exposure map's texels:
-//                   channel 0 `coordinate` = the fractional row of fade_table.exr at the
-//                   texel's dose, channel 1 `dose` = the dose in J/m²
-//
-// fade.toml:
-//
-//   [fade]       format = 1, generator, material, material_file, illuminant,
-//                illuminant_band_nm = [min, max] (the band a dose counts), dose_units,
-//                sublayers, both_sides
-//   [table]      file, channels, rule (text), entries, knee_dose, max_dose, substeps,
-//                max_interpolation_error (max |ΔR_total| at interval midpoints against a
-//                table twice as fine), wavelength_nm = [...] (columns), dose = [...] (rows)
-//   [substrate]  reflectance = [...] (ρ*, one per column)
-//   [dose_map]   file, channels, resolution, min_dose, mean_dose, max_dose
-//   [exposure]   files, channel, units, scale, duration_s, period_s: how doses were made,
-//                dose = scale × value × (duration / period) for a J/m² map, or
-//                scale × value × duration for a W/m² map, summed over the files (occluders
-//                moved between exposures); no files: a uniform dose (--dose)
-//
-// The table coordinate of a dose H follows DoseTable's rule: u = ln(1 + H / H_0) / du, so
-// linear interpolation between rows in the coordinate is DoseTable's own interpolation.
+// The files and the description's keys are formats/fade_stack.h (docs/file-formats.md
+// "Fade stack"); this writes them from a DoseTable and reads them back for plots and tests.
 #pragma once
 
+#include "formats/fade_stack.h"
 #include "texgen/fade/dose_table.h"
 
 #include <algorithm>
@@ -44,9 +15,9 @@
 
 namespace patina::texgen::fade {
 
-inline constexpr const char* kFadeToml = "fade.toml";
-inline constexpr const char* kFadeTableFile = "fade_table.exr";
-inline constexpr const char* kDoseMapFile = "dose.exr";
+inline constexpr const char* kFadeToml = formats::kFadeDescription;
+using formats::kDoseMapFile;
+using formats::kFadeTableFile;
 
 /// How the doses of a stack were made from its exposure maps (their doses add up; none: a
 /// uniform dose).

@@ -1,5 +1,7 @@
 #include "texgen/flatten/flatten_stack.h"
 
+#include "texgen/patina/stack_materials.h"
+
 #include "core/image_io.h"
 #include "texgen/flatten/flat_texel.h"
 #include "texgen/flatten/normal_map.h"
@@ -79,7 +81,8 @@ std::string flatten_colorspace(const std::string& option)
 }
 
 std::vector<const PatinaMaterial*> resolve_stack_materials(const PatinaStackFiles& stack,
-                                                           const MaterialLibrary& library)
+                                                           const MaterialLibrary& library,
+                                                           const ColorManager& colors)
 {
     std::vector<const PatinaMaterial*> out;
     auto find = [&](const std::string& name, const std::string& what) {
@@ -94,6 +97,19 @@ std::vector<const PatinaMaterial*> resolve_stack_materials(const PatinaStackFile
                 "pass the library the stack was made with: --materials FILE",
                 stack.manifest.string(), what, name, files.empty() ? "no files" : files));
         }
+        const auto recorded = stack.materials.find(name);
+        if (recorded == stack.materials.end())
+            throw std::runtime_error(fmt::format("patina stack '{}': {} material '{}' has no "
+                                                 "optics in [patina.materials]",
+                                                 stack.manifest.string(), what, name));
+        if (const std::string d =
+                formats::optics_difference(recorded->second, stack_optics(*m, colors));
+            !d.empty())
+            throw std::runtime_error(fmt::format(
+                "patina stack '{}': {} material '{}' differs from the library's ({}: {} in the "
+                "stack against the library's); pass the library the stack was made with: "
+                "--materials FILE",
+                stack.manifest.string(), what, name, m->file.string(), d));
         return m;
     };
     out.push_back(find(stack.base, "base"));

@@ -43,11 +43,15 @@ struct FlattenedStack {
 /// The OCIO colour space of a --color-space value; throws std::runtime_error for others.
 std::string flatten_colorspace(const std::string& option);
 
-/// The materials of `stack`: its base and each layer's, from `library`. Throws
-/// std::runtime_error naming the stack.toml, the layer and the libraries for an unknown
-/// name, and for a base that is not a metal or a layer material.
+/// The materials of `stack`: its base and each layer's, from `library`, which must describe
+/// them as the stack does (the optics of its [patina.materials], resolved through `colors`
+/// as the patina writer resolved them), so that flatten and layered_km see one material.
+/// Throws std::runtime_error naming the stack.toml, the layer and the libraries for an
+/// unknown name, and the first value that differs for a material the library describes
+/// otherwise.
 std::vector<const PatinaMaterial*> resolve_stack_materials(const PatinaStackFiles& stack,
-                                                           const MaterialLibrary& library);
+                                                           const MaterialLibrary& library,
+                                                           const ColorManager& colors);
 
 /// Read the thickness maps of `stack` and flatten every texel. `materials` is
 /// resolve_stack_materials' answer (base first). Throws std::runtime_error naming the file

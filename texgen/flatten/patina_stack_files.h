@@ -3,7 +3,10 @@
 // files of those maps, per UDIM tile, as `[maps.<name>]` lists them.
 #pragma once
 
+#include "formats/texture_stack.h"
+
 #include <filesystem>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -16,7 +19,7 @@ struct StackLayerFiles {
     std::string material;
     std::string map;
     std::vector<std::filesystem::path> files;
-    std::string channel = "thickness";  ///< the layer's `channel`, else the map's first
+    std::string channel = "thickness";  ///< the layer's `channel` by name (the map's first by default)
 };
 
 struct PatinaStackFiles {
@@ -28,15 +31,13 @@ struct PatinaStackFiles {
     int width = 0, height = 0;            ///< texels per tile (the maps' `resolution`)
     /// Side of a flat strip in metres (the maps' parameter strip_size_m); 0 for a mesh.
     double strip_size_m = 0.0;
+    /// The optics the stack records for its base and layers ([patina.materials]).
+    std::map<std::string, formats::MaterialOptics> materials;
 };
 
-/// Read the stack at `stack` (a folder holding stack.toml, or the stack.toml itself).
-/// Throws std::runtime_error naming the file for: no such file or folder, a TOML syntax
-/// error (with its line), no `[patina]` table (not a patina stack), a layer without
-/// material or map, a `channel` that is neither a name nor an index into its map's
-/// `channels`, a map missing from `[maps]` (the layer's `map` or its `layer_map`), layers on
-/// different tiles, and a map file that does not exist. A folder holding series.toml but no
-/// stack.toml is a time series: the message names its step folders.
+/// Read the stack at `stack` (a folder holding stack.toml, or the stack.toml itself) with
+/// the one stack reader, formats::read_texture_stack (its errors name file, line and key),
+/// and check the total thickness map too: listed, its files there, on the layers' tiles.
 PatinaStackFiles read_patina_stack(const std::filesystem::path& stack);
 
 }  // namespace patina::texgen

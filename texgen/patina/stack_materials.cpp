@@ -27,14 +27,6 @@ namespace {
         return *entry;
     }
 
-    toml::array array_of(const std::vector<float>& v)
-    {
-        toml::array a;
-        for (float x : v)
-            a.push_back(static_cast<double>(x));
-        return a;
-    }
-
     /// n and k of a metal from its normal-incidence colour r, with the edge tint g = r:
     /// Gulbrandsen 2014, "Artist Friendly Metallic Fresnel", JCGT 3(4), Eqs. 3-4 (inverse).
     void metal_index(float r, float* n, float* k)
@@ -116,23 +108,24 @@ SpectralOptics resolve_spectral(const PatinaMaterial& m, const ColorManager& col
     return o;
 }
 
-toml::table material_table(const PatinaMaterial& m, const ColorManager& colors)
+formats::MaterialOptics stack_optics(const PatinaMaterial& m, const ColorManager& colors)
 {
     const SpectralOptics o = resolve_spectral(m, colors);
-    toml::table t;
-    if (!m.description.empty())
-        t.insert_or_assign("description", m.description);
-    t.insert_or_assign("metal", m.is_metal);
-    t.insert_or_assign("roughness", static_cast<double>(m.roughness));
-    t.insert_or_assign("wavelengths_nm", array_of(o.lambda_nm));
+    auto doubles = [](const std::vector<float>& v) { return std::vector<double>(v.begin(), v.end()); };
+    formats::MaterialOptics t;
+    t.name = m.name;
+    t.description = m.description;
+    t.metal = m.is_metal;
+    t.roughness = static_cast<double>(m.roughness);
+    t.lambda_nm = doubles(o.lambda_nm);
     if (m.is_metal) {
-        t.insert_or_assign("n", array_of(o.n));
-        t.insert_or_assign("k", array_of(o.k));
+        t.n = doubles(o.n);
+        t.k = doubles(o.k);
     } else {
-        t.insert_or_assign("absorption_per_um", array_of(o.absorption));
-        t.insert_or_assign("scattering_per_um", array_of(o.scattering));
+        t.absorption_per_um = doubles(o.absorption);
+        t.scattering_per_um = doubles(o.scattering);
     }
-    t.insert_or_assign("specular", array_of(o.specular));
+    t.specular = doubles(o.specular);
     return t;
 }
 

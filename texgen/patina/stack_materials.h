@@ -10,9 +10,8 @@
 #pragma once
 
 #include "core/color_management.h"
+#include "formats/texture_stack.h"
 #include "texgen/patina/material_library.h"
-
-#include <toml++/toml.h>
 
 #include <vector>
 
@@ -33,8 +32,8 @@ std::vector<float> uplift_reflectance(const Imath::V3f& lin_rec709, const ColorM
 /// RGB description as the library does it.
 SpectralOptics resolve_spectral(const PatinaMaterial& m, const ColorManager& colors);
 
-/// The [patina.materials."<name>"] table of a material: wavelengths_nm, absorption_per_um,
-/// scattering_per_um, specular, roughness, and metal = true with n, k for a metal.
-toml::table material_table(const PatinaMaterial& m, const ColorManager& colors);
+/// The optics a stack.toml records for a material ([patina.materials."<name>"],
+/// formats/texture_stack.h): its spectral optics on the grid, roughness and description.
+formats::MaterialOptics stack_optics(const PatinaMaterial& m, const ColorManager& colors);
 
 }  // namespace patina::texgen

@@ -72,42 +72,37 @@ namespace {
     {
         const fs::path path = manifest_path(out_dir);
         toml::table root = toml::parse_file(output_to_read(path).string());  // as just recorded
-        toml::table patina;
-        patina.insert_or_assign("script", options.script);
-        patina.insert_or_assign("time_years", step.time_years);
-        patina.insert_or_assign("base", step.base->name);
-        patina.insert_or_assign("thickness_units", "um");
-        patina.insert_or_assign("total_thickness", "total_thickness");
+        formats::PatinaTable patina;
+        patina.script = options.script;
+        patina.time_years = step.time_years;
+        patina.base = step.base->name;
         if (options.preview)
-            patina.insert_or_assign("preview", "preview.png");
-        toml::array layers;
+            patina.preview = "preview.png";
         for (size_t l = 0; l < step.layers.size(); ++l) {
             const ResultLayer& layer = step.layers[l];
             const LayerStats s = stats_of(layer.thickness_um, domain.area_weight);
-            toml::table entry;
-            entry.insert_or_assign("material", layer.material->name);
-            entry.insert_or_assign("map", kThicknessMap);
-            entry.insert_or_assign("channel", channels[l]);
-            entry.insert_or_assign("layer_map", layer_maps[l]);
-            entry.insert_or_assign("made_by", layer.made_by);
-            entry.insert_or_assign("mean_um", s.mean);
-            entry.insert_or_assign("max_um", s.max);
-            entry.insert_or_assign("coverage", s.coverage);
-            layers.push_back(std::move(entry));
+            formats::PatinaLayer entry;
+            entry.material = layer.material->name;
+            entry.map = kThicknessMap;
+            entry.channel = channels[l];
+            entry.channel_index = static_cast<int>(l);
+            entry.layer_map = layer_maps[l];
+            entry.made_by = layer.made_by;
+            entry.mean_um = s.mean;
+            entry.max_um = s.max;
+            entry.coverage = s.coverage;
+            patina.layers.push_back(std::move(entry));
         }
-        patina.insert_or_assign("layers", std::move(layers));
         // The optics of every material the stack uses, per wavelength, so that a renderer
         // needs nothing but this file (plugins/layered reads it).
-        toml::table materials;
         auto add_material = [&](const PatinaMaterial& m) {
-            if (!materials.contains(m.name))
-                materials.insert_or_assign(m.name, material_table(m, colors));
+            if (!patina.materials.count(m.name))
+                patina.materials.emplace(m.name, stack_optics(m, colors));
         };
         add_material(*step.base);
         for (const ResultLayer& layer : step.layers)
             add_material(*layer.material);
-        patina.insert_or_assign("materials", std::move(materials));
-        root.insert_or_assign("patina", std::move(patina));
+        root.insert_or_assign("patina", formats::to_toml(patina));
         std::ostringstream text;
         text << "# Written by patina-texgen. [patina] lists the layers bottom to top (the base,\n"
                 "# infinitely thick, first); thicknesses are in micrometres.\n"

@@ -2,6 +2,7 @@
 
 #include "core/output_transaction.h"
 #include "texgen/stack/map_output.h"
+#include "formats/texture_stack.h"
 #include "formats/toml_location.h"
 
 #include "core/cancel.h"
@@ -134,15 +135,16 @@ void record_in_manifest(const fs::path& out_dir, const MapDescription& map,
         throw std::runtime_error(
             fmt::format("manifest '{}': map '{}' has no files", path.string(), map.name));
 
-    toml::table entry;
+    formats::StackMap entry;
+    entry.name = map.name;
     if (tiles.empty()) {
         // The per-vertex mode: one PLY, no texels.
         if (files.size() != 1)
             throw std::runtime_error(
                 fmt::format("manifest '{}': per-vertex map '{}' must be one file, not {}",
                             path.string(), map.name, files.size()));
-        entry.insert_or_assign("file", relative_to(files[0], out_dir).generic_string());
-        entry.insert_or_assign("domain", "vertex");
+        entry.file = relative_to(files[0], out_dir).generic_string();
+        entry.domain = "vertex";
     } else {
         if (files.size() != tiles.size())
             throw std::runtime_error(
@@ -150,11 +152,10 @@ void record_in_manifest(const fs::path& out_dir, const MapDescription& map,
                             map.name, files.size(), tiles.size()));
         const bool lone = tiles.size() == 1 && tiles[0].udim == 1001;
         if (lone) {
-            entry.insert_or_assign("file", relative_to(files[0], out_dir).generic_string());
+            entry.file = relative_to(files[0], out_dir).generic_string();
         } else {
             // The pattern must describe every file, or a renderer would look for other names.
             const fs::path folder = relative_to(files[0], out_dir).parent_path();
-            toml::array udims;
             for (size_t i = 0; i < tiles.size(); ++i) {
                 const fs::path expected = folder / map_file_name(map.name, tiles[i].udim, false);
                 if (relative_to(files[i], out_dir) != expected)
@@ -162,27 +163,22 @@ void record_in_manifest(const fs::path& out_dir, const MapDescription& map,
                         "manifest '{}': file '{}' of map '{}' should be '{}' for tile {}",
                         path.string(), files[i].string(), map.name, expected.generic_string(),
                         tiles[i].udim));
-                udims.push_back(static_cast<int64_t>(tiles[i].udim));
+                entry.tiles.push_back(tiles[i].udim);
             }
-            entry.insert_or_assign("pattern",
-                                   (folder / map_file_pattern(map.name)).generic_string());
-            entry.insert_or_assign("tiles", std::move(udims));
+            entry.pattern = (folder / map_file_pattern(map.name)).generic_string();
         }
-        entry.insert_or_assign("domain", "texel");
+        entry.domain = "texel";
     }
-    toml::array channels;
-    for (const std::string& c : map.channels)
-        channels.push_back(c);
+    entry.channels = map.channels;
     if (!tiles.empty()) {
         // Texel maps carry the coverage channel after their own (write_texel_map).
-        channels.push_back(kCoverageChannel);
-        entry.insert_or_assign("coverage", kCoverageChannel);
+        entry.channels.push_back(kCoverageChannel);
+        entry.coverage = kCoverageChannel;
     }
-    entry.insert_or_assign("channels", std::move(channels));
-    entry.insert_or_assign("units", map.units);
-    entry.insert_or_assign("colorspace", "raw");
-    entry.insert_or_assign("baker", map.baker);
-    entry.insert_or_assign("description", map.description);
+    entry.units = map.units;
+    entry.colorspace = "raw";
+    entry.baker = map.baker;
+    entry.description = map.description;
     if (!tiles.empty()) {
         for (const TexelGrid& t : tiles)
             if (t.width != tiles[0].width || t.height != tiles[0].height)
@@ -190,10 +186,10 @@ void record_in_manifest(const fs::path& out_dir, const MapDescription& map,
                     "manifest '{}': tiles of map '{}' differ in size ({}: {}x{}, {}: {}x{})",
                     path.string(), map.name, tiles[0].udim, tiles[0].width, tiles[0].height, t.udim,
                     t.width, t.height));
-        entry.insert_or_assign("resolution", toml::array{static_cast<int64_t>(tiles[0].width),
-                                                         static_cast<int64_t>(tiles[0].height)});
+        entry.width = tiles[0].width;
+        entry.height = tiles[0].height;
     }
-    entry.insert_or_assign("parameters", parameters_table(map));
+    entry.parameters = parameters_table(map);
 
     // Read (and check) the manifest before anything is written, then replace this map only.
     toml::table root = read_manifest(path);
@@ -204,7 +200,7 @@ void record_in_manifest(const fs::path& out_dir, const MapDescription& map,
     stack.insert_or_assign("generator", std::string("patina-texgen ") + PATINA_VERSION_STRING);
     if (!root.contains("maps"))
         root.insert_or_assign("maps", toml::table{});
-    root["maps"].as_table()->insert_or_assign(map.name, std::move(entry));
+    root["maps"].as_table()->insert_or_assign(map.name, formats::to_toml(entry));
 
     std::ostringstream text;
     text << "# Texture stack written by patina-texgen: every map of this folder, its channels,\n"

@@ -2,6 +2,8 @@
 // padding, the per-vertex PLY, and the stack.toml manifest of an output folder.
 #pragma once
 
+#include "formats/texture_stack.h"
+
 #include "core/image_io.h"
 #include "core/mesh.h"
 #include "texgen/texels/texel_grid.h"
@@ -14,13 +16,8 @@
 
 namespace patina::texgen {
 
-/// The channel every texel map carries after its own: the texel's covered fraction, 1 where
-/// baked, the covered part of the texel at an island's border, 0 where nothing was baked
-/// (there the other channels hold padding or 0). It is the alpha (`A`) of an OpenEXR layer
-/// of its own, `coverage`: readers list a file's channels layer by layer, the unnamed layer
-/// first, so it comes after a map's own channels and never shifts their indices (a bare
-/// `A` would be listed before them, after R, G, B only).
-inline constexpr const char* kCoverageChannel = "coverage.A";
+/// The coverage channel every texel map carries (formats/texture_stack.h).
+using formats::kCoverageChannel;
 
 /// What a map is, for its file header and the manifest.
 struct MapDescription {

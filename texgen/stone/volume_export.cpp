@@ -1,5 +1,7 @@
 #include "texgen/stone/volume_export.h"
 
+#include "formats/stone_volume.h"
+
 #include "core/embree_scene.h"
 #include "core/image_io.h"
 #include "core/limits.h"
@@ -77,6 +79,12 @@ namespace {
 void check_world_volume_memory(const TriangleMesh& mesh, int resolution, const char* option)
 {
     const WorldGrid g = world_grid(mesh, resolution);
+    // What the volume's readers load (formats/stone_volume.h): refused before the run.
+    if (static_cast<double>(g.nx) * g.ny * g.nz > formats::kMaxVolumeVoxels)
+        throw std::runtime_error(fmt::format(
+            "{} {}: a {}x{}x{} world volume is more than the 512^3 voxels a stone volume may "
+            "hold; lower {}",
+            option, resolution, g.nx, g.ny, g.nz, option));
     // Four float channels, twice: the volume and the file's interleaved pixels.
     check_memory(option, 2.0 * 4.0 * sizeof(float) * g.nx * g.ny * g.nz,
                  fmt::format("a {}x{}x{} world volume", g.nx, g.ny, g.nz));
@@ -199,26 +207,28 @@ namespace {
 
 void write_world_volume(const fs::path& path, const WorldVolume& v, const Metadata& metadata)
 {
+    // The layout is formats/stone_volume.h: channels in their stored order.
     OIIO::ImageSpec voxels(v.nx, v.ny * v.nz, 4, OIIO::TypeDesc::FLOAT);
-    voxels.channelnames = {"density", "crust", "iron", "salt"};
+    voxels.channelnames.assign(formats::kVolumeChannels.begin(), formats::kVolumeChannels.end());
     voxels.attribute("name", "voxels");
     voxels.attribute("compression", "zip");
     add_metadata(voxels, metadata);
+    formats::VolumeGrid grid;
+    grid.min = {v.bounds.min.x, v.bounds.min.y, v.bounds.min.z};
+    grid.max = {v.bounds.max.x, v.bounds.max.y, v.bounds.max.z};
+    grid.n = {v.nx, v.ny, v.nz};
     std::vector<float> pixels(size_t(v.nx) * v.ny * v.nz * 4);
     for (size_t i = 0; i < v.density.size(); ++i) {
         // Row k * ny + j, column i: exactly the index i + nx (j + ny k).
-        pixels[4 * i + 0] = v.density[i];
-        pixels[4 * i + 1] = v.crust[i];
-        pixels[4 * i + 2] = v.iron[i];
-        pixels[4 * i + 3] = v.salt[i];
+        pixels[4 * i + formats::kDensityChannel] = v.density[i];
+        pixels[4 * i + formats::kCrustChannel] = v.crust[i];
+        pixels[4 * i + formats::kIronChannel] = v.iron[i];
+        pixels[4 * i + formats::kSaltChannel] = v.salt[i];
     }
-    OIIO::ImageSpec bounds(3, 3, 1, OIIO::TypeDesc::FLOAT);
+    const std::vector<float> b = formats::volume_bounds_pixels(grid);
+    OIIO::ImageSpec bounds(3, static_cast<int>(b.size() / 3), 1, OIIO::TypeDesc::FLOAT);
     bounds.channelnames = {"value"};
     bounds.attribute("name", "bounds");
-    const std::vector<float> b = {
-        float(v.bounds.min.x), float(v.bounds.min.y), float(v.bounds.min.z),
-        float(v.bounds.max.x), float(v.bounds.max.y), float(v.bounds.max.z),
-        float(v.nx),           float(v.ny),           float(v.nz)};
     write_two_parts(path, voxels, pixels, bounds, b, "world volume");
 }
 
@@ -241,34 +251,36 @@ WorldVolume read_world_volume(const fs::path& path)
     if (voxels_part < 0 || bounds_part < 0)
         throw fail("needs the parts 'voxels' and 'bounds'");
     in->seek_subimage(bounds_part, 0);
-    if (in->spec().width != 3 || in->spec().height != 3 || in->spec().nchannels != 1)
-        throw fail("part 'bounds' must be 3 x 3 with one channel");
-    std::vector<float> b(9);
-    if (!in->read_image(bounds_part, 0, 0, 1, OIIO::TypeDesc::FLOAT, b.data()))
-        throw fail(in->geterror());
+    const OIIO::ImageSpec bspec = in->spec();
+    std::vector<float> b(size_t(bspec.width) * bspec.height * bspec.nchannels);
+    if (b.size() > 64 || !in->read_image(bounds_part, 0, 0, bspec.nchannels,
+                                         OIIO::TypeDesc::FLOAT, b.data()))
+        throw fail(b.size() > 64 ? "part 'bounds' is too large" : in->geterror());
+    const formats::VolumeGrid grid = formats::read_volume_bounds(
+        path.string(), bspec.width, bspec.height, bspec.nchannels, b.data());
     WorldVolume v;
-    v.bounds = Imath::Box3d(V3d(b[0], b[1], b[2]), V3d(b[3], b[4], b[5]));
-    v.nx = int(b[6]);
-    v.ny = int(b[7]);
-    v.nz = int(b[8]);
+    v.bounds = Imath::Box3d(V3d(grid.min[0], grid.min[1], grid.min[2]),
+                            V3d(grid.max[0], grid.max[1], grid.max[2]));
+    v.nx = grid.n[0];
+    v.ny = grid.n[1];
+    v.nz = grid.n[2];
     in->seek_subimage(voxels_part, 0);
     const OIIO::ImageSpec spec = in->spec();
-    if (spec.width != v.nx || spec.height != v.ny * v.nz || v.nx < 1 || v.ny < 1 || v.nz < 1)
-        throw fail(fmt::format("part 'voxels' is {} x {}, bounds say {} x {} x {}", spec.width,
-                               spec.height, v.nx, v.ny, v.nz));
+    formats::check_voxel_part(path.string(), grid, spec.width, spec.height, spec.nchannels);
+    for (size_t c = 0; c < formats::kVolumeChannels.size(); ++c)
+        if (spec.channelnames[c] != formats::kVolumeChannels[c])
+            throw fail(fmt::format("part 'voxels' has channel '{}' where '{}' belongs",
+                                   spec.channelnames[c], formats::kVolumeChannels[c]));
     std::vector<float> px(size_t(spec.width) * spec.height * spec.nchannels);
     if (!in->read_image(voxels_part, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, px.data()))
         throw fail(in->geterror());
-    const size_t n = size_t(v.nx) * v.ny * v.nz;
-    std::vector<float>* fields[4] = {&v.density, &v.crust, &v.iron, &v.salt};
-    const char* names[4] = {"density", "crust", "iron", "salt"};
+    formats::check_voxel_values(path.string(), grid, px.data());
+    const size_t n = grid.voxels();
+    std::vector<float>* fields[4] = {&v.crust, &v.density, &v.iron, &v.salt};
     for (int f = 0; f < 4; ++f) {
-        const int ch = spec.channelindex(names[f]);
-        if (ch < 0)
-            throw fail(fmt::format("part 'voxels' has no channel '{}'", names[f]));
         fields[f]->resize(n);
         for (size_t i = 0; i < n; ++i)
-            (*fields[f])[i] = px[i * spec.nchannels + ch];
+            (*fields[f])[i] = px[i * 4 + f];
     }
     return v;
 }

@@ -257,6 +257,9 @@ TEST(FadeStack, WritesAndReadsBack)
 
     // A bad stack description is reported with its file
     write_file_atomic(out / kFadeToml, {"[fade]\nformat = 1\n"}, "test");
+    EXPECT_NE(message_of([&] { read_fade_stack(out); }).find("fade.toml:1:1: no [table] table"),
+              std::string::npos);
+    write_file_atomic(out / kFadeToml, {"[fade]\nformat = 1\n[table]\nfile = 'x.exr'\n"}, "test");
     EXPECT_NE(message_of([&] { read_fade_stack(out); }).find("wavelength_nm"), std::string::npos);
 }
 

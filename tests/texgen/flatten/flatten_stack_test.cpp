@@ -2,6 +2,7 @@
 // manifest, and the bad inputs (missing stack, missing map, unknown material, NaN texel).
 #include "texgen/flatten/flat_texel.h"
 #include "texgen/flatten/flatten_stack.h"
+#include "texgen/patina/stack_materials.h"
 
 #include "core/image_io.h"
 #include "test_util.h"
@@ -14,6 +15,7 @@
 #include <fstream>
 #include <iterator>
 #include <limits>
+#include <sstream>
 
 namespace patina::texgen {
 namespace {
@@ -56,20 +58,32 @@ protected:
                                   layers[l].first, name);
         }
         map_entry("total_thickness", total);
-        std::ofstream(dir_ / "stack" / "stack.toml") << toml << patina;
+        // The optics of the base and every layer, as the patina writer records them.
+        std::vector<std::string> names = {"copper"};
+        for (const auto& layer : layers)
+            names.push_back(layer.first);
+        std::ostringstream materials;
+        for (const std::string& name : names) {
+            // A name the library lacks (the UnknownMaterial case) gets tarnish's optics.
+            const PatinaMaterial* m = library_.find(name);
+            materials << "\n[patina.materials.\"" << name << "\"]\n"
+                      << formats::to_toml(stack_optics(m ? *m : *library_.find("tarnish"), colors_))
+                      << "\n";
+        }
+        std::ofstream(dir_ / "stack" / "stack.toml") << toml << patina << materials.str();
     }
 
     FlattenedStack flatten(FlattenOptions options = {})
     {
         const PatinaStackFiles stack = read_patina_stack(dir_ / "stack");
-        return flatten_stack(stack, resolve_stack_materials(stack, library_), options);
+        return flatten_stack(stack, resolve_stack_materials(stack, library_, colors_), options);
     }
 
     std::vector<fs::path> flatten_to(const fs::path& out, FlattenOptions options = {})
     {
         const PatinaStackFiles stack = read_patina_stack(dir_ / "stack");
         const FlattenedStack flat =
-            flatten_stack(stack, resolve_stack_materials(stack, library_), options);
+            flatten_stack(stack, resolve_stack_materials(stack, library_, colors_), options);
         return write_flattened(out, flat, stack, options, colors_);
     }
 
@@ -274,10 +288,34 @@ TEST_F(FlattenStack, UnknownMaterial)
 {
     write_stack({{"tarnish", ramp(0.5f)}, {"marine patina 9", ramp(1.0f)}});
     const PatinaStackFiles stack = read_patina_stack(dir_ / "stack");
-    const std::string m = test::message_of([&] { resolve_stack_materials(stack, library_); });
+    const std::string m = test::message_of([&] { resolve_stack_materials(stack, library_, colors_); });
     EXPECT_NE(m.find("layer 2 material 'marine patina 9' is not in the material library"),
               std::string::npos) << m;
     EXPECT_NE(m.find("stack.toml"), std::string::npos) << m;
+}
+
+TEST_F(FlattenStack, MaterialThatDiffersFromTheLibraryIsRefused)
+{
+    // flatten and layered_km must see one material: a stack whose recorded optics differ
+    // from the library's (another library, an edited stack) is refused, naming the value.
+    write_stack({{"tarnish", ramp(0.5f)}});
+    std::string toml;
+    {
+        std::ifstream in(dir_ / "stack" / "stack.toml");
+        toml.assign(std::istreambuf_iterator<char>(in), {});
+    }
+    const size_t table = toml.find("[patina.materials.\"tarnish\"]");
+    ASSERT_NE(table, std::string::npos);
+    const size_t at = toml.find("roughness = ", table);
+    ASSERT_NE(at, std::string::npos);
+    toml.replace(at, toml.find('\n', at) - at, "roughness = 0.987");
+    std::ofstream(dir_ / "stack" / "stack.toml") << toml;
+    const PatinaStackFiles stack = read_patina_stack(dir_ / "stack");
+    const std::string m =
+        test::message_of([&] { resolve_stack_materials(stack, library_, colors_); });
+    EXPECT_NE(m.find("layer 1 material 'tarnish' differs from the library's"), std::string::npos)
+        << m;
+    EXPECT_NE(m.find("roughness 0.987 against"), std::string::npos) << m;
 }
 
 TEST_F(FlattenStack, NanTexelWritesNothing)
@@ -296,7 +334,7 @@ TEST_F(FlattenStack, MeshStackNeedsATexelSize)
     write_stack({{"tarnish", ramp(0.5f)}});
     PatinaStackFiles stack = read_patina_stack(dir_ / "stack");
     stack.strip_size_m = 0.0;  // as a mesh stack has none
-    const auto materials = resolve_stack_materials(stack, library_);
+    const auto materials = resolve_stack_materials(stack, library_, colors_);
     const std::string m = test::message_of([&] { flatten_stack(stack, materials, {}); });
     EXPECT_NE(m.find("pass --texel-size"), std::string::npos) << m;
     FlattenOptions o;

@@ -155,7 +155,7 @@ TEST(StackThickness, FlattenReaderTakesAChannelIndex)
         read_patina_stack(dir);
         ADD_FAILURE() << "an index past the map's channels was accepted";
     } catch (const std::runtime_error& e) {
-        EXPECT_NE(std::string(e.what()).find("entry 2: 'channel'"), std::string::npos)
+        EXPECT_NE(std::string(e.what()).find("layer 2: 'channel' 7 is not an index"), std::string::npos)
             << e.what();
     }
 }

@@ -1,0 +1,67 @@
+// The stone volume (docs/file-formats.md "Stone volume"): the world-grid voxels
+// `patina-texgen stone` writes (texgen/stone/volume_export.cpp) and the slab_volume medium
+// reads (plugins/slab_volume). A two-part OpenEXR:
+//
+//   part 0 "voxels"  width nx, height ny·nz (z slice k in rows k·ny .. k·ny + ny − 1, row j
+//                    the y index j, from the min corner), float channels kVolumeChannels in
+//                    OpenEXR's sorted order (the order every reader gets them in): the black
+//                    crust fraction, the stone volume fraction after erosion (density), the
+//                    iron oxide and the salt fractions, all in [0, 1]
+//   part 1 "bounds"  width 3, height 4, one channel "value": row 0 the min corner xyz (m),
+//                    row 1 the max corner, row 2 (nx, ny, nz), row 3 (format, 0, 0). A file
+//                    of 3 rows is format 1 (written before the row existed).
+//
+// Voxel (i, j, k) has its centre at min + (i + 1/2, j + 1/2, k + 1/2) (max − min) / n. The
+// parts are read as raw floats (an OIIO reader in texgen, the host's read_image in the
+// plugin), so this holds the layout and its checks, not the file access.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace patina::formats {
+
+/// The layout this build writes and reads; a newer file is refused.
+inline constexpr int kVolumeFormatVersion = 1;
+inline constexpr int kVoxelPart = 0, kBoundsPart = 1;
+inline constexpr std::array<const char*, 4> kVolumeChannels = {"crust", "density", "iron",
+                                                               "salt"};
+inline constexpr int kCrustChannel = 0, kDensityChannel = 1, kIronChannel = 2, kSaltChannel = 3;
+/// The most voxels a volume may hold (nx·ny·nz): what a renderer loads, 2.5 GiB of floats.
+inline constexpr double kMaxVolumeVoxels = 512.0 * 512.0 * 512.0;
+
+/// Where the voxels sit: the part "bounds".
+struct VolumeGrid {
+    std::array<double, 3> min{}, max{};
+    std::array<int, 3> n{};
+    int format = kVolumeFormatVersion;
+
+    size_t voxels() const { return size_t(n[0]) * size_t(n[1]) * size_t(n[2]); }
+    /// The first of voxel (i, j, k)'s channels in part 0's interleaved pixels.
+    size_t offset(int i, int j, int k) const
+    {
+        return ((size_t(k) * size_t(n[1]) + size_t(j)) * size_t(n[0]) + size_t(i)) *
+               kVolumeChannels.size();
+    }
+};
+
+/// Part 1's pixels (3 wide, 4 high, one channel) for `grid`.
+std::vector<float> volume_bounds_pixels(const VolumeGrid& grid);
+
+/// The grid that part 1 (`width` x `height` pixels of `channels`, `pixels`) describes.
+/// Throws std::runtime_error naming `file` for another size, a newer format, bounds whose
+/// min is not below max, voxel counts that are not positive integers, or more than
+/// kMaxVolumeVoxels voxels.
+VolumeGrid read_volume_bounds(const std::string& file, int width, int height, int channels,
+                              const float* pixels);
+
+/// Throws naming `file` when part 0's size is not the one `grid` implies.
+void check_voxel_part(const std::string& file, const VolumeGrid& grid, int width, int height,
+                      int channels);
+
+/// Throws naming `file`, the voxel and the channel for a value outside [0, 1] (or NaN).
+void check_voxel_values(const std::string& file, const VolumeGrid& grid, const float* pixels);
+
+}  // namespace patina::formats
