@@ -1,6 +1,7 @@
 #include "layered_model.h"
 
-#include "lanes.h"
+#include <patina/shading/kubelka_munk.h>
+#include <patina/shading/lanes.h>
 
 #include <patina/shading/fresnel.h>
 #include <patina/shading/frame.h>
@@ -13,6 +14,7 @@
 namespace patina::layered {
 
 using namespace patina::shading;
+using namespace patina::shading::simd;
 
 namespace {
 
@@ -168,46 +170,18 @@ namespace {
         return a + t * (b - a);
     }
 
-    /// km_layer for four lanes (the same operations per lane; see km_layer).
-    void km_layer4(V4 K, V4 S, float d, V4* R, V4* T)
-    {
-        const V4 zero = splat(0.0f);
-        K = K > zero ? K : zero;
-        S = S > zero ? S : zero;
-        if (!(d > 0.0f)) {
-            *R = zero;
-            *T = splat(1.0f);
-            return;
-        }
-        const V4 beta = sqrt4(K * (K + 2.0f * S));
-        const V4 x = beta * d;
-        // The one transcendental per lane: e^-x above x = 0.25, expm1(-x) above 1e-4.
-        V4 t = zero;
-        for (int l = 0; l < kLanes; ++l)
-            t[l] = x[l] > 0.25f ? std::exp(-x[l]) : (x[l] > 1e-4f ? std::expm1(-x[l]) : 0.0f);
-        const I4 big = x > splat(0.25f), mid = x > splat(1e-4f);
-        const V4 e = big ? t : (mid ? 1.0f + t : 1.0f - x);
-        const V4 g = big ? (1.0f - e * e) / beta
-                         : (mid ? -t * (1.0f + e) / beta : 2.0f * d * (1.0f - x));
-        const V4 denom = (S + K) * g + 1.0f + e * e;
-        *R = S * g / denom;
-        *T = 2.0f * e / denom;
-    }
-
     /// Adds a layer of `m`, thickness d, under the composite of the layers above it (its
     /// reflectance from above and below and its transmittance), four lanes from `gp`: KM R,
-    /// T (§4.1) and R = R1 + T1² R2 / (1 - R1 R2), T = T1 T2 / (1 - R1 R2) (§4.2).
+    /// T (§4.1) and the composite (§4.2), both patina/shading/kubelka_munk.h.
     void km_composite_below(const CompiledMaterial& m, float d, const GridPos* gp, V4* r_top,
                             V4* r_bottom, V4* t_above)
     {
-        V4 R, T;
-        km_layer4(grid_eval4(m.absorption, gp), grid_eval4(m.scattering, gp), d, &R, &T);
-        const V4 rb = *r_bottom, t = *t_above;
-        const V4 denom = 1.0f - rb * R;
-        const I4 ok = denom > splat(0.0f);
-        *r_top = ok ? *r_top + t * t * R / denom : splat(1.0f);
-        *r_bottom = ok ? R + T * T * rb / denom : splat(1.0f);
-        *t_above = ok ? t * T / denom : splat(0.0f);
+        const KmLayers<V4> layer =
+            km_layer4(grid_eval4(m.absorption, gp), grid_eval4(m.scattering, gp), d);
+        const KmLayers<V4> stack = km_composite<V4>({*r_top, *r_bottom, *t_above}, layer);
+        *r_top = stack.r_top;
+        *r_bottom = stack.r_bottom;
+        *t_above = stack.t;
     }
 
     /// eta_of_f0 for four lanes.
@@ -248,42 +222,6 @@ float albedo_table(const std::array<float, kAlbedoNodes>& table, float mu)
     const int i = std::min(static_cast<int>(x), kAlbedoNodes - 2);
     const float t = x - static_cast<float>(i);
     return table[i] + t * (table[i + 1] - table[i]);
-}
-
-void km_layer(float K, float S, float d, float* R, float* T)
-{
-    K = K > 0.0f ? K : 0.0f;
-    S = S > 0.0f ? S : 0.0f;
-    if (!(d > 0.0f)) {
-        *R = 0.0f;
-        *T = 1.0f;
-        return;
-    }
-    // D&H 1996 §4.1: R = sinh(bSd) / (a sinh(bSd) + b cosh(bSd)), T = b / (...), with
-    // a = (S + K)/S, b = sqrt(a² - 1). Multiplied through by S and by 2 e^-x / β
-    // (β = Sb = sqrt(K (K + 2S)), x = βd): R = S g / ((S + K) g + 1 + e^-2x),
-    // T = 2 e^-x / (...), g = (1 - e^-2x) / β → 2d as β → 0: finite at K = 0, S = 0 and
-    // for any thickness (the same form as src/core/kubelka_munk.cpp).
-    // One transcendental: below x = 0.25, e^-x = 1 + expm1(-x) and 1 - e^-2x =
-    // -expm1(-x) (1 + e^-x) keep their relative accuracy; above, 1 - e^-2x >= 0.39 has none
-    // to lose.
-    const float beta = std::sqrt(K * (K + 2.0f * S));
-    const float x = beta * d;
-    float e, g;
-    if (x > 0.25f) {
-        e = std::exp(-x);
-        g = (1.0f - e * e) / beta;
-    } else if (x > 1e-4f) {
-        const float em = std::expm1(-x);
-        e = 1.0f + em;
-        g = -em * (1.0f + e) / beta;
-    } else {
-        e = 1.0f - x;
-        g = 2.0f * d * (1.0f - x);
-    }
-    const float denom = (S + K) * g + 1.0f + e * e;
-    *R = S * g / denom;
-    *T = 2.0f * e / denom;
 }
 
 LayeredModel::LayeredModel(const StackFile& stack, const std::vector<ThicknessSource>& sources,

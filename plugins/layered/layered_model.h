@@ -216,8 +216,4 @@ float eta_of_f0(float f0);
 /// Dielectric Fresnel reflectance for the index of eta_of_f0 (exactly 0 when F0 = 0).
 float dielectric_fresnel(float cos_theta, float f0, float eta);
 
-/// KM reflectance and transmittance of a layer (§4.1), exact and finite at K = 0, S = 0,
-/// d = 0 and for any thickness.
-void km_layer(float K, float S, float d, float* R, float* T);
-
 }  // namespace patina::layered

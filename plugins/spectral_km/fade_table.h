@@ -11,6 +11,7 @@
 #pragma once
 
 #include <patina/abi.h>
+#include <patina/shading/kubelka_munk.h>
 
 #include <string>
 #include <vector>
@@ -26,13 +27,10 @@ struct LayerState {
 
 /// Reflectance of a layer over a substrate of reflectance rho: the sum of the light paths
 /// bouncing between the two (Kubelka 1948; Kimmel et al. 2013 Eq. 11 with Eqs. 25-27 for
-/// one layer): R = R_top + T² ρ / (1 − R_bottom ρ).
+/// one layer): R = R_top + T² ρ / (1 − R_bottom ρ) (patina/shading/kubelka_munk.h).
 inline float composite(const LayerState& layer, float rho)
 {
-    const float denom = 1.0f - layer.r_bottom * rho;
-    if (!(denom > 0.0f))
-        return layer.r_top;
-    return layer.r_top + layer.t * layer.t * rho / denom;
+    return shading::km_reflectance_over<float>({layer.r_top, layer.r_bottom, layer.t}, rho);
 }
 
 class FadeTable {

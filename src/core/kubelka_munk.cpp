@@ -1,67 +1,42 @@
 // Kubelka-Munk layers and subsurface compositing (Dorsey & Hanrahan 1996 §4.1-4.2).
 #include "core/kubelka_munk.h"
 
-#include <algorithm>
+#include <patina/shading/kubelka_munk.h>
+
 #include <cmath>
-#include <limits>
 
 namespace patina {
-namespace {
 
-    double non_negative(float v)
-    {
-        return v > 0.0f ? static_cast<double>(v) : 0.0;
-    }
+// The formulas are include/patina/shading/kubelka_munk.h (D&H 1996 §4.1-4.2), evaluated in
+// double; these wrappers take and give the core's floats.
 
-} // namespace
-
-KmLayer km_layer(float K_in, float S_in, float d_in)
+KmLayer km_layer(float K, float S, float d)
 {
-    const double K = non_negative(K_in), S = non_negative(S_in), d = non_negative(d_in);
-    if (std::isinf(d))
-        return {S > 0.0 ? km_r_infinity(static_cast<float>(K / S)) : 0.0f, 0.0f};
-    // D&H 1996 §4.1: R = sinh(bSd) / (a sinh(bSd) + b cosh(bSd)),
-    //                T = b / (a sinh(bSd) + b cosh(bSd)),  a = (S + K) / S, b = sqrt(a^2 - 1).
-    // Multiplying through by S (Sa = S + K, Sb = beta = sqrt(K (K + 2S))) and by 2 e^-x / beta
-    // with x = beta d gives a form without overflow or 0/0 that holds at S = 0 and K = 0:
-    //   R = S g / ((S + K) g + 1 + e^-2x),  T = 2 e^-x / ((S + K) g + 1 + e^-2x),
-    //   g = (1 - e^-2x) / beta  (-> 2d as beta -> 0).
-    const double beta = std::sqrt(K * (K + 2.0 * S));
-    const double x = beta * d;
-    const double g = beta > 0.0 ? -std::expm1(-2.0 * x) / beta : 2.0 * d;
-    const double denom = (S + K) * g + 1.0 + std::exp(-2.0 * x);
-    return {static_cast<float>(S * g / denom), static_cast<float>(2.0 * std::exp(-x) / denom)};
+    if (std::isinf(d) && d > 0.0f) {
+        // R∞ of K/S (in double, rounded to float).
+        const double k = K > 0.0f ? K : 0.0f;
+        return {S > 0.0f ? km_r_infinity(static_cast<float>(k / S)) : 0.0f, 0.0f};
+    }
+    const shading::KmLayers<double> l = shading::km_layer(K, S, d);
+    return {static_cast<float>(l.r_top), static_cast<float>(l.t)};
 }
 
 float km_r_infinity(float k_over_s)
 {
-    const double q = non_negative(k_over_s);
-    if (std::isinf(q))
-        return 0.0f;
-    // D&H 1996 §4.1: R_inf = 1 + K/S - sqrt((K/S)^2 + 2 K/S) (the minus sign was lost in the
-    // text copy; DESIGN.md), evaluated as the equal 1 / (1 + K/S + sqrt(...)) to avoid
-    // cancellation for large K/S.
-    return static_cast<float>(1.0 / (1.0 + q + std::sqrt(q * q + 2.0 * q)));
+    return static_cast<float>(shading::km_r_infinity(k_over_s));
 }
 
 float km_k_over_s(float r_infinity)
 {
-    if (!(r_infinity > 0.0f))
-        return std::numeric_limits<float>::infinity();
-    // D&H 1996 §4.1, R_inf inverted: K/S = (1 - R_inf)^2 / (2 R_inf).
-    const double r = std::min(static_cast<double>(r_infinity), 1.0);
-    return static_cast<float>((1.0 - r) * (1.0 - r) / (2.0 * r));
+    return static_cast<float>(shading::km_k_over_s(r_infinity));
 }
 
 KmLayer km_composite(const KmLayer& top, const KmLayer& bottom)
 {
-    const double r1 = top.R, t1 = top.T, r2 = bottom.R, t2 = bottom.T;
-    // 1 - R1 R2 is 0 only for two perfect non-absorbing infinite layers: then R = 1, T = 0.
-    const double m = 1.0 - r1 * r2;
-    if (m <= 0.0)
-        return {1.0f, 0.0f};
-    // D&H 1996 §4.2: R = R1 + T1^2 R2 / (1 - R1 R2), T = T1 T2 / (1 - R1 R2).
-    return {static_cast<float>(r1 + t1 * t1 * r2 / m), static_cast<float>(t1 * t2 / m)};
+    // `top` is homogeneous: it reflects R from either side.
+    const shading::KmLayers<double> l = shading::km_composite<double>(
+        {top.R, top.R, top.T}, {bottom.R, bottom.R, bottom.T});
+    return {static_cast<float>(l.r_top), static_cast<float>(l.t)};
 }
 
 KmLayer km_composite_stack(std::span<const KmLayer> top_to_bottom)

@@ -61,21 +61,6 @@ KmCoefficients invert_black_white(double rho_0, double rho_b, double rho_1, doub
     return {(a - 1.0) * mu_s, mu_s};
 }
 
-double km_r_infinity(double k_over_s)
-{
-    const double q = k_over_s > 0.0 ? k_over_s : 0.0;
-    // R_inf = 1 + q - sqrt(q^2 + 2q), written without cancellation for large q.
-    return 1.0 / (1.0 + q + std::sqrt(q * q + 2.0 * q));
-}
-
-double km_k_over_s(double r_infinity)
-{
-    if (!(r_infinity > 0.0))
-        return INFINITY;
-    const double m = 1.0 - r_infinity;
-    return m * m / (2.0 * r_infinity);
-}
-
 KmCoefficients from_r_infinity(double r_infinity, double assumed_scattering_per_m)
 {
     if (!(r_infinity > 0.0 && r_infinity <= 1.0) || !(assumed_scattering_per_m >= 0.0))

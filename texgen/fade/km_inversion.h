@@ -4,6 +4,8 @@
 // layer R_inf, with an assumed S.
 #pragma once
 
+#include <patina/shading/kubelka_munk.h>
+
 namespace patina::texgen::fade {
 
 struct KmCoefficients {
@@ -23,9 +25,10 @@ double km_layer_reflectance(double mu_a, double mu_s, double thickness_m, double
 KmCoefficients invert_black_white(double rho_0, double rho_b, double rho_1, double thickness_m,
                                   double rho_w = 1.0);
 
-/// R_inf = 1 + K/S - sqrt((K/S)^2 + 2 K/S) and its inverse K/S = (1 - R_inf)^2 / (2 R_inf).
-double km_r_infinity(double k_over_s);
-double km_k_over_s(double r_infinity);
+/// R_inf = 1 + K/S - sqrt((K/S)^2 + 2 K/S) and its inverse K/S = (1 - R_inf)^2 / (2 R_inf)
+/// (patina/shading/kubelka_munk.h).
+using shading::km_k_over_s;
+using shading::km_r_infinity;
 
 /// K from R_inf with an assumed S (the patina paper's route; §5.3's route for cork, whose
 /// thick sample gives only K/S). Throws for R_inf outside (0, 1] or S < 0.

@@ -6,6 +6,8 @@
 // the top reflectance E^u_0 / E_0 of the two-flux system of §4.1.
 #pragma once
 
+#include <patina/shading/kubelka_munk.h>
+
 #include <span>
 
 namespace patina::texgen::fade {
@@ -45,8 +47,8 @@ template <class T>
 /// The layer over an opaque substrate of reflectance `substrate`.
 inline double reflectance_over(const LayerOpticsValue& layer, double substrate)
 {
-    const double denom = 1.0 - layer.r_bottom * substrate;
-    return layer.r_top + (denom > 0.0 ? layer.t * layer.t * substrate / denom : 0.0);
+    return shading::km_reflectance_over<double>({layer.r_top, layer.r_bottom, layer.t},
+                                                substrate);
 }
 
 }  // namespace patina::texgen::fade

@@ -208,7 +208,7 @@ TEST(LayeredKm, OneMultiChannelMapEqualsOneMapPerLayer)
 
 TEST(LayeredKm, EachWavelengthIsIndependentOfTheOthers)
 {
-    // The model runs four wavelengths per register (plugins/layered/lanes.h): f and the
+    // The model runs four wavelengths per register (patina/shading/lanes.h): f and the
     // albedo at a wavelength must be exactly what the shader gives for that wavelength alone,
     // for a metal and a dielectric base and for 8, 5 and 3 wavelengths (a partial register).
     const TestStack metal{"copper",

@@ -1,5 +1,6 @@
-// Four wavelengths of a path in one register: the layered model runs its per-wavelength
-// loops four lanes at a time (GCC/Clang vector extension: SSE2 on any x86-64, no -m flags).
+// Four wavelengths of a path in one register: a shader may run its per-wavelength loops four
+// lanes at a time (GCC/Clang vector extension: SSE2 on any x86-64, no -m flags), as the
+// layered model and kubelka_munk.h's km_layer4 do.
 // Every lane does the very float operations the scalar code did, in the same order (IEEE
 // add, multiply, divide and square root are exact per lane; exp and expm1 stay libm calls
 // per lane), so the results are the same bits as a loop over wavelengths.
@@ -17,7 +18,7 @@
 #include <xmmintrin.h>
 #endif
 
-namespace patina::layered {
+namespace patina::shading::simd {
 
 using V4 = float __attribute__((vector_size(16)));
 using I4 = int __attribute__((vector_size(16)));  ///< also what a V4 comparison gives
@@ -103,4 +104,4 @@ inline bool all_equal(V4 a, V4 b)
     return eq[0] & eq[1] & eq[2] & eq[3];
 }
 
-}  // namespace patina::layered
+}  // namespace patina::shading::simd
