@@ -36,21 +36,11 @@ namespace {
 
     toml::table read_or_new_manifest(const fs::path& path)
     {
-        const fs::path file = output_to_read(path);  // this run's own version, if any
-        std::error_code ec;
-        if (!fs::exists(file, ec)) {
-            toml::table root;
+        toml::table root = read_manifest_for_update(path);  // checked as every writer does
+        if (root.empty())
             root.insert_or_assign("stack", toml::table{{"format", kStackFormatVersion},
                                                        {"generator", "patina-texgen flatten"}});
-            return root;
-        }
-        try {
-            return toml::parse_file(file.string());
-        } catch (const toml::parse_error& e) {
-            throw std::runtime_error(fmt::format("cannot update manifest {}: {}",
-                                                 formats::toml_where(path, e.source().begin),
-                                                 e.description()));
-        }
+        return root;
     }
 
 }  // namespace

@@ -81,49 +81,42 @@ namespace {
         return params;
     }
 
-    /// The existing manifest, or an empty table when there is none. A manifest that does
-    /// not parse is an error: rewriting it would lose the entries of other maps.
-    toml::table read_manifest(const fs::path& path)
-    {
-        // This run's own version when it wrote one already (two maps recorded in one run).
-        const fs::path file = output_to_read(path);
-        std::error_code ec;
-        if (!fs::exists(file, ec))
-            return {};
-        if (!fs::is_regular_file(file, ec))
-            throw std::runtime_error(fmt::format("manifest '{}' is not a file", path.string()));
-        toml::table root;
-        try {
-            root = toml::parse_file(file.string());
-        } catch (const toml::parse_error& e) {
-            throw std::runtime_error(fmt::format("cannot update manifest {}: {} (fix or "
-                                                 "remove the file; it was left unchanged)",
-                                                 formats::toml_where(path, e.source().begin),
-                                                 e.description()));
-        }
-        auto fail = [&](const toml::node* node, const std::string& what) {
-            throw std::runtime_error(fmt::format("cannot update manifest {}: {} (fix or "
-                                                 "remove the file; it was left unchanged)",
-                                                 formats::toml_where(path, node), what));
-        };
-        if (const toml::node* stack = root.get("stack")) {
-            if (!stack->is_table())
-                fail(stack, "'stack' must be a table");
-            if (const toml::node* format = stack->as_table()->get("format")) {
-                if (!format->is_integer())
-                    fail(format, "[stack] format must be an integer");
-                if (**format->as_integer() > kStackFormatVersion)
-                    fail(format,
-                         fmt::format("stack format {} is newer than this patina-texgen's {}",
-                                     **format->as_integer(), kStackFormatVersion));
-            }
-        }
-        if (const toml::node* maps = root.get("maps"); maps && !maps->is_table())
-            fail(maps, "'maps' must be a table of maps");
-        return root;
-    }
-
 }  // namespace
+
+toml::table read_manifest_for_update(const fs::path& path)
+{
+    // This run's own version when it wrote one already (two maps recorded in one run).
+    const fs::path file = output_to_read(path);
+    std::error_code ec;
+    if (!fs::exists(file, ec))
+        return {};
+    if (!fs::is_regular_file(file, ec))
+        throw std::runtime_error(fmt::format("manifest '{}' is not a file", path.string()));
+    toml::table root;
+    try {
+        root = toml::parse_file(file.string());
+    } catch (const toml::parse_error& e) {
+        throw std::runtime_error(fmt::format("cannot update manifest {}: {} (fix or "
+                                             "remove the file; it was left unchanged)",
+                                             formats::toml_where(path, e.source().begin),
+                                             e.description()));
+    }
+    auto fail = [&](const toml::node* node, const std::string& what) {
+        throw std::runtime_error(fmt::format("cannot update manifest {}: {} (fix or "
+                                             "remove the file; it was left unchanged)",
+                                             formats::toml_where(path, node), what));
+    };
+    try {
+        formats::check_stack_format(path, root);
+    } catch (const std::runtime_error& e) {
+        throw std::runtime_error(fmt::format("cannot update manifest {} (fix or remove the "
+                                             "file; it was left unchanged)",
+                                             e.what()));
+    }
+    if (const toml::node* maps = root.get("maps"); maps && !maps->is_table())
+        fail(maps, "'maps' must be a table of maps");
+    return root;
+}
 
 void record_in_manifest(const fs::path& out_dir, const MapDescription& map,
                         const std::vector<fs::path>& files, const std::vector<TexelGrid>& tiles)
@@ -192,7 +185,7 @@ void record_in_manifest(const fs::path& out_dir, const MapDescription& map,
     entry.parameters = parameters_table(map);
 
     // Read (and check) the manifest before anything is written, then replace this map only.
-    toml::table root = read_manifest(path);
+    toml::table root = read_manifest_for_update(path);
     if (!root.contains("stack"))
         root.insert_or_assign("stack", toml::table{});
     toml::table& stack = *root["stack"].as_table();
@@ -224,14 +217,14 @@ void check_manifest_can_be_updated(const fs::path& out_dir)
 {
     const fs::path path = manifest_path(out_dir);
     reserve_output(path);
-    read_manifest(path);
+    read_manifest_for_update(path);
 }
 
 std::vector<std::string> forget_maps_of(const fs::path& out_dir, const std::string& baker,
                                         const std::string& table)
 {
     const fs::path path = manifest_path(out_dir);
-    toml::table root = read_manifest(path);
+    toml::table root = read_manifest_for_update(path);
     if (root.empty())
         return {};
     bool changed = !table.empty() && root.erase(table) > 0;

@@ -20,6 +20,8 @@
 
 #include "formats/stack_format.h"
 
+#include <toml++/toml.h>
+
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -38,6 +40,12 @@ std::string map_file_name(const std::string& name, int udim, bool lone_1001_tile
 
 /// The UDIM file pattern of a map, as renderers spell it: "<name>.<UDIM>.exr".
 std::string map_file_pattern(const std::string& name);
+
+/// The manifest at `path` (this run's own version when it wrote one already), or an empty
+/// table when there is none, for a writer to update. Throws, naming file and line, for one
+/// that does not parse, declares a newer `[stack] format` or whose `maps` is not a table:
+/// rewriting it would lose or misread other entries.
+toml::table read_manifest_for_update(const std::filesystem::path& path);
 
 /// Read and check `<out_dir>/stack.toml` as record_in_manifest would, and reserve it in the
 /// current output transaction: a manifest that cannot be updated fails before the bake.

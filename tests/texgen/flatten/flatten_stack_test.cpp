@@ -264,6 +264,24 @@ TEST_F(FlattenStack, NewerStackFormatIsRefused)
     EXPECT_NE(message.find("stack format 7 is newer"), std::string::npos) << message;
 }
 
+TEST_F(FlattenStack, OutputManifestOfANewerFormatIsLeftAlone)
+{
+    // flatten updates the output folder's stack.toml like every writer: a newer layout is
+    // refused before anything is written, and the file stays as it was.
+    write_stack({{"tarnish", ramp(0.5f)}});
+    const fs::path out = dir_ / "out";
+    fs::create_directories(out);
+    const std::string newer = "[stack]\nformat = 9\n";
+    std::ofstream(out / "stack.toml") << newer;
+    const std::string m = test::message_of([&] { flatten_to(out); });
+    EXPECT_NE(m.find("cannot update manifest"), std::string::npos) << m;
+    EXPECT_NE(m.find("stack.toml:2:"), std::string::npos) << m;
+    EXPECT_NE(m.find("stack format 9 is newer"), std::string::npos) << m;
+    std::ifstream in(out / "stack.toml");
+    EXPECT_EQ(std::string(std::istreambuf_iterator<char>(in), {}), newer);
+    EXPECT_FALSE(fs::exists(out / "diffuse_albedo.exr"));
+}
+
 TEST_F(FlattenStack, MissingStack)
 {
     const std::string m =
