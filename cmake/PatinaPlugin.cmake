@@ -25,6 +25,15 @@ function(patina_add_plugin name)
   elseif(PATINA_BUILD_PLUGIN_DIR)
     set_target_properties(${name} PROPERTIES LIBRARY_OUTPUT_DIRECTORY "${PATINA_BUILD_PLUGIN_DIR}")
   endif()
+  # Only the two ABI symbols leave the plugin: hidden visibility does not cover the unique
+  # objects of inline C++ library code (std::to_string's digit table), a version script does.
+  if(CMAKE_SYSTEM_NAME STREQUAL "Linux")
+    set(_script "${CMAKE_CURRENT_BINARY_DIR}/${name}_exports.map")
+    file(WRITE "${_script}"
+         "{ global: patina_plugin_abi_version; patina_plugin_entry; local: *; };\n")
+    target_link_options(${name} PRIVATE "LINKER:--version-script=${_script}")
+    set_property(TARGET ${name} APPEND PROPERTY LINK_DEPENDS "${_script}")
+  endif()
   set_property(GLOBAL APPEND PROPERTY PATINA_PLUGINS ${name})
   if(PROJECT_NAME STREQUAL "Patina" AND NOT ARG_NO_INSTALL)
     install(TARGETS ${name} LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}/patina/plugins)

@@ -160,10 +160,13 @@ namespace {
 
     void* create(const PatinaHost* host, const PatinaParamValue* values)
     {
-        const PatinaParamValue& eta = values[0];
-        const PatinaParamValue& k = values[1];
-        const PatinaParamValue& roughness = values[2];
-        const PatinaParamValue& anisotropy = values[3];
+        const plugin::Parameters p(host, kName, kParams, values);
+        const PatinaParamValue& eta = p.value("eta", PATINA_PARAM_SPECTRUM);
+        const PatinaParamValue& k = p.value("k", PATINA_PARAM_SPECTRUM);
+        const PatinaParamValue& roughness = p.value("roughness", PATINA_PARAM_FLOAT);
+        const PatinaParamValue& anisotropy = p.value("anisotropy", PATINA_PARAM_FLOAT);
+        if (!p.ok())
+            return nullptr;
         if (const char* why = check_spectrum(eta)) {
             report_error(host, kName, "eta: %s", why);
             return nullptr;
@@ -296,13 +299,10 @@ namespace {
 
 PatinaShaderDesc conductor_shader()
 {
-    PatinaShaderDesc d =
-        describe(kName, PATINA_SHADER_BSDF,
+    return describe(kName,
                  "Rough or smooth metal: GGX microfacets with the exact Fresnel reflectance of a "
                  "spectral complex index of refraction n + ik.",
-                 kParams, create, destroy);
-    d.bsdf = &kFuncs;
-    return d;
+                 kParams, create, destroy, kFuncs);
 }
 
 } // namespace patina::basic

@@ -121,8 +121,11 @@ namespace {
 
     void* create(const PatinaHost* host, const PatinaParamValue* values)
     {
-        const PatinaParamValue& eta = values[0];
-        const PatinaParamValue& roughness = values[1];
+        const plugin::Parameters p(host, kName, kParams, values);
+        const PatinaParamValue& eta = p.value("eta", PATINA_PARAM_FLOAT);
+        const PatinaParamValue& roughness = p.value("roughness", PATINA_PARAM_FLOAT);
+        if (!p.ok())
+            return nullptr;
         if (eta.type != PATINA_PARAM_FLOAT || !(eta.f >= 1.0f && eta.f <= 4.0f)) {
             report_error(host, kName,
                          "eta %g must lie in [1, 4] (interior index over exterior; "
@@ -259,13 +262,10 @@ namespace {
 
 PatinaShaderDesc dielectric_shader()
 {
-    PatinaShaderDesc d =
-        describe(kName, PATINA_SHADER_BSDF,
+    return describe(kName,
                  "Rough or smooth boundary between two dielectrics (glass, water, varnish): "
                  "Fresnel-weighted reflection and refraction, from either side.",
-                 kParams, create, destroy);
-    d.bsdf = &kFuncs;
-    return d;
+                 kParams, create, destroy, kFuncs);
 }
 
 } // namespace patina::basic

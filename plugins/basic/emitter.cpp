@@ -55,9 +55,12 @@ namespace {
 
     void* create(const PatinaHost* host, const PatinaParamValue* values)
     {
-        const PatinaParamValue& color = values[0];
-        const PatinaParamValue& intensity = values[1];
-        const PatinaParamValue& two_sided = values[2];
+        const plugin::Parameters p(host, kName, kParams, values);
+        const PatinaParamValue& color = p.value("color", PATINA_PARAM_COLOR);
+        const PatinaParamValue& intensity = p.value("intensity", PATINA_PARAM_FLOAT);
+        const PatinaParamValue& two_sided = p.value("two_sided", PATINA_PARAM_BOOL);
+        if (!p.ok())
+            return nullptr;
         if (!host || !host->eval_rgb_spectrum) {
             report_error(host, kName,
                          "the host offers no eval_rgb_spectrum service, which the "
@@ -122,13 +125,10 @@ namespace {
 
 PatinaShaderDesc emitter_shader()
 {
-    PatinaShaderDesc d =
-        describe(kName, PATINA_SHADER_EMITTER,
+    return describe(kName,
                  "Diffuse area light: uniform radiance intensity x colour (an illuminant "
                  "spectrum), from the front side or both sides.",
-                 kParams, create, destroy);
-    d.emitter = &kFuncs;
-    return d;
+                 kParams, create, destroy, kFuncs);
 }
 
 } // namespace patina::basic

@@ -45,6 +45,8 @@
  */
 #include "basic.h"
 
+#include <patina/volume/medium_phase.h>
+
 #include <patina/shading/phase.h>
 #include <patina/shading/spectral.h>
 
@@ -78,7 +80,7 @@ namespace {
     struct Homogeneous {
         TabulatedSpectrum sigma_a;
         TabulatedSpectrum sigma_s;
-        float g = 0.0f;
+        volume::HenyeyGreenstein phase;
         float density = 1.0f;
     };
 
@@ -121,10 +123,13 @@ namespace {
 
     void* create(const PatinaHost* host, const PatinaParamValue* values)
     {
-        const PatinaParamValue& sigma_a = values[0];
-        const PatinaParamValue& sigma_s = values[1];
-        const PatinaParamValue& g = values[2];
-        const PatinaParamValue& density = values[3];
+        const plugin::Parameters p(host, kName, kParams, values);
+        const PatinaParamValue& sigma_a = p.value("sigma_a", PATINA_PARAM_SPECTRUM);
+        const PatinaParamValue& sigma_s = p.value("sigma_s", PATINA_PARAM_SPECTRUM);
+        const PatinaParamValue& g = p.value("g", PATINA_PARAM_FLOAT);
+        const PatinaParamValue& density = p.value("density", PATINA_PARAM_FLOAT);
+        if (!p.ok())
+            return nullptr;
         if (const char* why = check_coefficient(sigma_a)) {
             report_error(host, kName, "sigma_a: %s", why);
             return nullptr;
@@ -155,7 +160,7 @@ namespace {
             delete m;
             return nullptr;
         }
-        m->g = g.f;
+        m->phase.g = g.f;
         m->density = density.f;
         return m;
     }
@@ -235,65 +240,18 @@ namespace {
             *wl, [&](int i, float) { tr[i] = static_cast<float>(beer_lambert(c.sigma_t[i], td)); });
     }
 
-    /// w as a unit vector, or false when it has no direction. Directions that are unit
-    /// already (as abi.h requires) pass unchanged, so that phase_eval at a sampled wi sees
-    /// the very numbers phase_sample used.
-    bool unit_direction(PatinaVec3 w, Vec3* out)
-    {
-        const Vec3 v(w);
-        const float len2 = length_squared(v);
-        if (!is_finite(v) || !is_finite(len2) || len2 == 0.0f)
-            return false;
-        *out = std::abs(len2 - 1.0f) > 1e-5f ? v / std::sqrt(len2) : v;
-        return true;
-    }
-
-    float phase_eval(const void* instance, const PatinaShadingContext*, PatinaVec3 wo,
-                     PatinaVec3 wi, const PatinaWavelengths* wl, float* p)
-    {
-        const auto& m = *static_cast<const Homogeneous*>(instance);
-        Vec3 o, i;
-        if (!unit_direction(wo, &o) || !unit_direction(wi, &i)) {
-            fill(0.0f, *wl, p);
-            return 0.0f;
-        }
-        // HG with cos θ = dot(wo, wi), both away from the point: pbrt-v4 §11.3.1
-        const float value = henyey_greenstein(dot(o, i), m.g);
-        fill(value, *wl, p);
-        return value;
-    }
-
-    float phase_sample(const void* instance, const PatinaShadingContext*, PatinaVec3 wo,
-                       PatinaVec2 u, const PatinaWavelengths* wl, PatinaVec3* wi, float* p)
-    {
-        const auto& m = *static_cast<const Homogeneous*>(instance);
-        Vec3 o;
-        if (!unit_direction(wo, &o)) {
-            fill(0.0f, *wl, p);
-            *wi = Vec3();
-            return 0.0f;
-        }
-        // Exact inversion of the HG cdf about wo: pbrt-v4 §11.3.1 (SampleHenyeyGreenstein)
-        float pdf = 0.0f;
-        const Vec3 w = sample_henyey_greenstein(o, m.g, Vec2(u), &pdf);
-        *wi = w;
-        fill(pdf, *wl, p);
-        return pdf;
-    }
-
-    const PatinaMediumFuncs kFuncs = {sample_distance, transmittance, phase_eval, phase_sample};
+    const PatinaMediumFuncs kFuncs = {sample_distance, transmittance,
+                                      volume::phase_eval<Homogeneous, &Homogeneous::phase>,
+                                      volume::phase_sample<Homogeneous, &Homogeneous::phase>};
 
 } // namespace
 
 PatinaShaderDesc homogeneous_shader()
 {
-    PatinaShaderDesc d =
-        describe(kName, PATINA_SHADER_MEDIUM,
+    return describe(kName,
                  "Homogeneous participating medium: constant absorption and "
                  "scattering coefficients with a Henyey-Greenstein phase function.",
-                 kParams, create, destroy);
-    d.medium = &kFuncs;
-    return d;
+                 kParams, create, destroy, kFuncs);
 }
 
 } // namespace patina::basic

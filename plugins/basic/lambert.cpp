@@ -64,7 +64,12 @@ namespace {
 
     void* create(const PatinaHost* host, const PatinaParamValue* values)
     {
-        const PatinaParamValue& r = values[0];
+        const plugin::Parameters p(host, kName, kParams, values);
+        const PatinaParamValue& r = p.value("reflectance", PATINA_PARAM_COLOR);
+        const PatinaTexture* scale_map = p.texture("reflectance_scale_map");
+        const float map_gain = p.number("map_gain");
+        if (!p.ok())
+            return nullptr;
         if (r.type != PATINA_PARAM_COLOR) {
             report_error(host, kName, "reflectance: expected a colour value");
             return nullptr;
@@ -98,7 +103,7 @@ namespace {
             return nullptr;
         }
         Lambert* lambert =
-            make_instance<Lambert>(host, kName, s, host, values[1].texture, values[2].f);
+            make_instance<Lambert>(host, kName, s, host, scale_map, map_gain);
         if (lambert && !lambert->scale_map && s.c0 == 0.0f && s.c1 == 0.0f) {
             lambert->constant = true;
             // eval's value for a grey: eval_rgb (the constant c2 path) times (1 * 1/π).
@@ -187,12 +192,9 @@ namespace {
 
 PatinaShaderDesc lambert_shader()
 {
-    PatinaShaderDesc d =
-        describe(kName, PATINA_SHADER_BSDF,
+    return describe(kName,
                  "Ideal diffuse (Lambertian) reflection, f = R / pi, on both sides of the surface.",
-                 kParams, create, destroy);
-    d.bsdf = &kFuncs;
-    return d;
+                 kParams, create, destroy, kFuncs);
 }
 
 } // namespace patina::basic

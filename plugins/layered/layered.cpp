@@ -157,14 +157,18 @@ namespace {
 
     void* create(const PatinaHost* host, const PatinaParamValue* values)
     {
-        const char* path = values[0].s;
-        if (!path || !*path) {
+        const plugin::Parameters p(host, kName, kParams, values);
+        const char* path = p.text("stack");
+        ModelOptions options;
+        options.thickness_scale = p.number("thickness_scale");
+        const std::string model = p.text("model");
+        options.walk_samples = p.integer("walk_samples");
+        if (!p.ok())
+            return nullptr;
+        if (!*path) {
             report(host, "stack: no stack.toml given");
             return nullptr;
         }
-        ModelOptions options;
-        options.thickness_scale = values[1].f;
-        const std::string model = values[2].s ? values[2].s : "km";
         if (model == "km" || model.empty())
             options.model = Model::kubelka_munk;
         else if (model == "random_walk")
@@ -173,7 +177,6 @@ namespace {
             report(host, "model: '" + model + "' is not \"km\" or \"random_walk\"");
             return nullptr;
         }
-        options.walk_samples = values[3].i;
         if (!(options.thickness_scale >= 0.0f) || options.walk_samples < 1) {
             report(host, "thickness_scale must be >= 0 and walk_samples >= 1");
             return nullptr;
@@ -254,27 +257,11 @@ namespace {
 }  // namespace
 }  // namespace patina::layered
 
-extern "C" {
-
-PATINA_PLUGIN_DEFINE_VERSION;
-
-PATINA_PLUGIN_EXPORT const PatinaPluginInfo* patina_plugin_entry(const PatinaHost* host);
-
-}  // extern "C"
-
-const PatinaPluginInfo* patina_plugin_entry(const PatinaHost* /*host*/)
-{
-    using namespace patina::layered;
-    static const PatinaShaderDesc shaders[] = {[] {
-        PatinaShaderDesc d = patina::plugin::describe(
-            kName, PATINA_SHADER_BSDF,
-            "A patina stack (stack.toml): Kubelka-Munk layers composited over a metal or "
-            "dielectric base, one GGX lobe per interface attenuated by the layers above "
-            "(Dorsey & Hanrahan 1996, section 4).",
-            kParams, create, destroy);
-        d.bsdf = &kFuncs;
-        return d;
-    }()};
-    static const PatinaPluginInfo info = {"layered", "0.1.0", 1, shaders};
-    return &info;
-}
+PATINA_PLUGIN("layered", "0.1.0",
+              patina::plugin::describe(
+                  patina::layered::kName,
+                  "A patina stack (stack.toml): Kubelka-Munk layers composited over a metal or "
+                  "dielectric base, one GGX lobe per interface attenuated by the layers above "
+                  "(Dorsey & Hanrahan 1996, section 4).",
+                  patina::layered::kParams, patina::layered::create, patina::layered::destroy,
+                  patina::layered::kFuncs))

@@ -58,6 +58,7 @@
 
 #include <patina/shading/spectral.h>
 #include <patina/volume/majorant_grid.h>
+#include <patina/volume/medium_phase.h>
 #include <patina/volume/schlick_phase.h>
 #include <patina/volume/tracking.h>
 
@@ -67,6 +68,7 @@ namespace patina::slab_volume {
 namespace {
 
     using namespace patina::shading;
+    using volume::unit_direction;
     using volume::VoxelGrid;
 
     constexpr const char* kName = "slab_volume";
@@ -105,6 +107,12 @@ namespace {
     };
     // clang-format on
 
+    /// The albedo of stone, crust, iron and salt, and the gains of the last three.
+    constexpr const char* kAlbedoNames[4] = {"stone_albedo", "crust_albedo", "iron_albedo",
+                                             "salt_albedo"};
+    constexpr const char* kGainNames[volume::kCompositionCount] = {"crust_gain", "iron_gain",
+                                                                   "salt_gain"};
+
     struct SlabVolume {
         VoxelGrid grid;
         volume::MajorantGrid majorants;
@@ -121,25 +129,26 @@ namespace {
 
     void* create(const PatinaHost* host, const PatinaParamValue* values)
     {
-        const PatinaParamValue& file = values[0];
-        const PatinaParamValue& sigma_t = values[1];
+        const plugin::Parameters p(host, kName, kParams, values);
+        const PatinaParamValue& file = p.value("file", PATINA_PARAM_FILE);
+        const PatinaParamValue& sigma_t = p.value("sigma_t", PATINA_PARAM_FLOAT);
         if (!in_range(sigma_t, 0.0f, 1e6f)) {
             report_error(host, kName, "sigma_t %g must lie in [0, 1e6] 1/m", sigma_t.f);
             return nullptr;
         }
         for (int c = 0; c < 4; ++c) {
-            const PatinaParamValue& a = values[2 + c];
+            const PatinaParamValue& a = p.value(kAlbedoNames[c], PATINA_PARAM_COLOR);
             float lo = 0.0f, hi = 0.0f;
             rgb_spectrum_range(a.color, &lo, &hi);
             if (a.type != PATINA_PARAM_COLOR || !(lo >= 0.0f && hi <= 1.0f + 1e-5f)) {
                 report_error(host, kName, "%s must be a reflectance colour in [0, 1]",
-                             kParams[2 + c].name);
+                             kAlbedoNames[c]);
                 return nullptr;
             }
         }
-        const PatinaParamValue& forward_k = values[6];
-        const PatinaParamValue& backward_k = values[7];
-        const PatinaParamValue& forward_weight = values[8];
+        const PatinaParamValue& forward_k = p.value("forward_k", PATINA_PARAM_FLOAT);
+        const PatinaParamValue& backward_k = p.value("backward_k", PATINA_PARAM_FLOAT);
+        const PatinaParamValue& forward_weight = p.value("forward_weight", PATINA_PARAM_FLOAT);
         if (!in_range(forward_k, 0.0f, 0.99f) || !in_range(backward_k, -0.99f, 0.0f) ||
             !in_range(forward_weight, 0.0f, 1.0f)) {
             report_error(host, kName,
@@ -150,12 +159,14 @@ namespace {
         }
 
         for (int c = 0; c < volume::kCompositionCount; ++c)
-            if (!in_range(values[9 + c], 0.0f, 1e4f)) {
-                report_error(host, kName, "%s %g must lie in [0, 1e4]", kParams[9 + c].name,
-                             values[9 + c].f);
+            if (!in_range(p.value(kGainNames[c], PATINA_PARAM_FLOAT), 0.0f, 1e4f)) {
+                report_error(host, kName, "%s %g must lie in [0, 1e4]", kGainNames[c],
+                             p.number(kGainNames[c]));
                 return nullptr;
             }
 
+        if (!p.ok())
+            return nullptr;
         auto* m = make_instance<SlabVolume>(host, kName);
         if (!m)
             return nullptr;
@@ -173,12 +184,12 @@ namespace {
         }
         m->sigma_t = sigma_t.f;
         for (int c = 0; c < 4; ++c)
-            m->albedo[c] = values[2 + c].color;
+            m->albedo[c] = p.value(kAlbedoNames[c], PATINA_PARAM_COLOR).color;
         m->phase.k_forward = forward_k.f;
         m->phase.k_backward = backward_k.f;
         m->phase.w_forward = forward_weight.f;
         for (int c = 0; c < volume::kCompositionCount; ++c)
-            m->gain[c] = values[9 + c].f;
+            m->gain[c] = p.number(kGainNames[c]);
         return m;
     }
 
@@ -207,17 +218,6 @@ namespace {
         a += eval_rgb(m.albedo[2], wl) * q[volume::kIron];
         a += eval_rgb(m.albedo[3], wl) * q[volume::kSalt];
         return a;
-    }
-
-    /// A usable ray direction (unit, finite) or false.
-    bool unit_direction(PatinaVec3 w, Vec3* out)
-    {
-        const Vec3 v(w);
-        const float len2 = length_squared(v);
-        if (!is_finite(v) || !is_finite(len2) || len2 == 0.0f)
-            return false;
-        *out = std::abs(len2 - 1.0f) > 1e-5f ? v / std::sqrt(len2) : v;
-        return true;
     }
 
     int sample_distance(const void* instance, const PatinaShadingContext*, PatinaVec3 origin,
@@ -273,50 +273,19 @@ namespace {
         fill(static_cast<float>(value), *wl, tr);
     }
 
-    float phase_eval(const void* instance, const PatinaShadingContext*, PatinaVec3 wo,
-                     PatinaVec3 wi, const PatinaWavelengths* wl, float* p)
-    {
-        const auto& m = *static_cast<const SlabVolume*>(instance);
-        Vec3 o, i;
-        if (!unit_direction(wo, &o) || !unit_direction(wi, &i)) {
-            fill(0.0f, *wl, p);
-            return 0.0f;
-        }
-        // Two-lobe Schlick at cos θ = dot(wo, wi): §5.1
-        const float value = static_cast<float>(m.phase.eval(dot(o, i)));
-        fill(value, *wl, p);
-        return value;
-    }
-
-    float phase_sample(const void* instance, const PatinaShadingContext*, PatinaVec3 wo,
-                       PatinaVec2 u, const PatinaWavelengths* wl, PatinaVec3* wi, float* p)
-    {
-        const auto& m = *static_cast<const SlabVolume*>(instance);
-        Vec3 o;
-        if (!unit_direction(wo, &o)) {
-            fill(0.0f, *wl, p);
-            *wi = Vec3();
-            return 0.0f;
-        }
-        float pdf = 0.0f;
-        *wi = m.phase.sample(o, Vec2(u), &pdf);
-        fill(pdf, *wl, p);
-        return pdf;
-    }
-
-    const PatinaMediumFuncs kFuncs = {sample_distance, transmittance, phase_eval, phase_sample};
+    const PatinaMediumFuncs kFuncs = {sample_distance, transmittance,
+                                      volume::phase_eval<SlabVolume, &SlabVolume::phase>,
+                                      volume::phase_sample<SlabVolume, &SlabVolume::phase>};
 
 } // namespace
 
 PatinaShaderDesc slab_volume_shader()
 {
-    PatinaShaderDesc d = describe(
-        kName, PATINA_SHADER_MEDIUM,
+    return describe(
+        kName,
         "Weathered stone (Dorsey et al. 1999 Sec. 5): extinction and albedo from the voxels of a "
         "stone simulation, two-lobe Schlick phase function, delta and ratio tracking.",
-        kParams, create, destroy);
-    d.medium = &kFuncs;
-    return d;
+        kParams, create, destroy, kFuncs);
 }
 
 } // namespace patina::slab_volume

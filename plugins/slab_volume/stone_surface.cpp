@@ -106,8 +106,11 @@ namespace {
 
     void* create(const PatinaHost* host, const PatinaParamValue* values)
     {
-        const PatinaParamValue& eta = values[0];
-        const PatinaParamValue& k = values[1];
+        const plugin::Parameters p(host, kName, kParams, values);
+        const PatinaParamValue& eta = p.value("eta", PATINA_PARAM_FLOAT);
+        const PatinaParamValue& k = p.value("roughness_exponent", PATINA_PARAM_FLOAT);
+        if (!p.ok())
+            return nullptr;
         if (eta.type != PATINA_PARAM_FLOAT || !(eta.f >= 1.0f && eta.f <= 4.0f)) {
             report_error(host, kName,
                          "eta %g must lie in [1, 4] (stone index over the outside's)", eta.f);
@@ -117,7 +120,7 @@ namespace {
             report_error(host, kName, "roughness_exponent %g must lie in [1, 64]", k.f);
             return nullptr;
         }
-        const PatinaParamValue& transmission = values[2];
+        const PatinaParamValue& transmission = p.value("transmission", PATINA_PARAM_STRING);
         const std::string_view mode = transmission.s ? transmission.s : "";
         if (transmission.type != PATINA_PARAM_STRING || (mode != "refract" && mode != "diffuse")) {
             report_error(host, kName, "transmission '%s' must be \"refract\" or \"diffuse\"",
@@ -228,13 +231,11 @@ namespace {
 
 PatinaShaderDesc stone_surface_shader()
 {
-    PatinaShaderDesc d = describe(
-        kName, PATINA_SHADER_BSDF,
+    return describe(
+        kName,
         "Boundary of a stone medium (Dorsey et al. 1999 Sec. 5.1): reflects F_r^k of the light, "
         "F_r the Fresnel reflectance and k a roughness exponent, and refracts the rest.",
-        kParams, create, destroy);
-    d.bsdf = &kFuncs;
-    return d;
+        kParams, create, destroy, kFuncs);
 }
 
 } // namespace patina::slab_volume

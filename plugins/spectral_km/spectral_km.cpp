@@ -89,11 +89,17 @@ namespace {
 
     void* create(const PatinaHost* host, const PatinaParamValue* values)
     {
+        const plugin::Parameters p(host, kName, kParams, values);
+        const char* path = p.text("fade");
+        const PatinaTabulatedSpectrum& s = p.value("substrate", PATINA_PARAM_SPECTRUM).spectrum;
+        const float coat = p.number("coat"), coat_roughness = p.number("coat_roughness"),
+                    coat_ior = p.number("coat_ior");
+        if (!p.ok())
+            return nullptr;
         try {
             auto* instance = new SpectralKm{};
             instance->host = host;
-            const char* path = values[0].s;
-            if (!path || !*path) {
+            if (!*path) {
                 delete instance;
                 report(host, "fade: no fade.toml given (a fade stack from patina-texgen fade)");
                 return nullptr;
@@ -104,7 +110,6 @@ namespace {
                 return nullptr;
             }
             // Substrate override: the spectrum at the table's wavelengths
-            const PatinaTabulatedSpectrum& s = values[4].spectrum;
             const bool keep = s.count == 1 && s.value[0] < 0.0f;
             if (!keep) {
                 std::vector<float> rho;
@@ -120,7 +125,7 @@ namespace {
                 }
                 instance->table.set_substrate(std::move(rho));
             }
-            instance->coat = Coat(values[1].f, values[2].f, values[3].f);
+            instance->coat = Coat(coat, coat_roughness, coat_ior);
             return instance;
         } catch (const std::exception& e) {
             report(host, std::string("create failed: ") + e.what());
@@ -258,27 +263,11 @@ namespace {
 }  // namespace
 }  // namespace patina::spectral_km
 
-extern "C" {
-
-PATINA_PLUGIN_DEFINE_VERSION;
-
-PATINA_PLUGIN_EXPORT const PatinaPluginInfo* patina_plugin_entry(const PatinaHost* host);
-
-}  // extern "C"
-
-const PatinaPluginInfo* patina_plugin_entry(const PatinaHost* /*host*/)
-{
-    using namespace patina::spectral_km;
-    static const PatinaShaderDesc shaders[] = {[] {
-        PatinaShaderDesc d = patina::plugin::describe(
-            kName, PATINA_SHADER_BSDF,
-            "A pigment layer faded by light (Kimmel et al. 2013) over its substrate: "
-            "Kubelka-Munk reflectance per wavelength from a fade stack, with an optional "
-            "clear glossy coat.",
-            kParams, create, destroy);
-        d.bsdf = &kFuncs;
-        return d;
-    }()};
-    static const PatinaPluginInfo info = {"spectral_km", "0.1.0", 1, shaders};
-    return &info;
-}
+PATINA_PLUGIN("spectral_km", "0.1.0",
+              patina::plugin::describe(
+                  patina::spectral_km::kName,
+                  "A pigment layer faded by light (Kimmel et al. 2013) over its substrate: "
+                  "Kubelka-Munk reflectance per wavelength from a fade stack, with an optional "
+                  "clear glossy coat.",
+                  patina::spectral_km::kParams, patina::spectral_km::create,
+                  patina::spectral_km::destroy, patina::spectral_km::kFuncs))

@@ -1,20 +1,22 @@
 /*
  * checker_lambert — a diffuse BSDF whose reflectance alternates between two colours in a
  * checkerboard over the surface's uv coordinates. A template for out-of-tree plugins: it
- * needs nothing but <patina/abi.h> (and the header-only helpers beside it).
+ * needs nothing but <patina/abi.h> and the header-only helpers beside it
+ * (patina/plugin_support.h: parameters read by name, descriptors, the entry point).
+ * checker_test.cpp tests it as every BSDF of Patina is tested (patina/testing/).
  *
  * Parameters:
  *   color_a  color [0,1]  reflectance of the even squares (default 0.8 grey)
  *   color_b  color [0,1]  reflectance of the odd squares (default 0.2 grey)
  *   scale    float >0     squares per unit of uv (default 8)
  */
-#include <patina/abi.h>
+#include <patina/plugin_support.h>
 
 #include <cmath>
-#include <new>
 
 namespace {
 
+constexpr const char* kName = "checker_lambert";
 constexpr float kInvPi = 0.318309886f;
 
 struct Checker {
@@ -31,9 +33,16 @@ const PatinaParamDecl kParams[] = {
      "squares per unit of uv"},
 };
 
-void* create(const PatinaHost*, const PatinaParamValue* v)
+void* create(const PatinaHost* host, const PatinaParamValue* values)
 {
-    return new (std::nothrow) Checker{v[0].color, v[1].color, v[2].f};
+    // By name: a renamed or reordered table cannot silently rebind a value.
+    const patina::plugin::Parameters p(host, kName, kParams, values);
+    const PatinaRgbSpectrum& a = p.value("color_a", PATINA_PARAM_COLOR).color;
+    const PatinaRgbSpectrum& b = p.value("color_b", PATINA_PARAM_COLOR).color;
+    const float scale = p.number("scale");
+    if (!p.ok())
+        return nullptr;
+    return patina::plugin::make_instance<Checker>(host, kName, a, b, scale);
 }
 
 void destroy(void* p) { delete static_cast<Checker*>(p); }
@@ -82,20 +91,8 @@ int sample(const void* inst, const PatinaShadingContext* ctx, PatinaVec3 wo, flo
 
 const PatinaBsdfFuncs kBsdf = {eval, pdf, sample, nullptr};
 
-const PatinaShaderDesc kShaders[] = {
-    {"checker_lambert", PATINA_SHADER_BSDF, "diffuse checkerboard over uv", 3, kParams, create,
-     destroy, &kBsdf, nullptr, nullptr, nullptr},
-};
-
-const PatinaPluginInfo kInfo = {"checker", "1.0", 1, kShaders};
-
 }  // namespace
 
-extern "C" {
-PATINA_PLUGIN_DEFINE_VERSION;
-
-PATINA_PLUGIN_EXPORT const PatinaPluginInfo* patina_plugin_entry(const PatinaHost*)
-{
-    return &kInfo;
-}
-}
+PATINA_PLUGIN("checker", "1.0",
+              patina::plugin::describe(kName, "diffuse checkerboard over uv", kParams, create,
+                                       destroy, kBsdf))

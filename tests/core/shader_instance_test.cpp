@@ -200,3 +200,43 @@ TEST_F(ShaderInstanceTest, DataFileIsResolvedAgainstTheSceneAndMustExist)
     EXPECT_NE(msg.find("no such file"), std::string::npos) << msg;
     EXPECT_NE(msg.find("no_such_stack.toml"), std::string::npos) << msg;
 }
+
+// A plugin reading its values by name (patina/plugin_support.h Parameters) is refused at
+// create when it reads a name its table does not declare, or a declared one as another
+// type: the host's error names the shader and the parameter, instead of a silently rebound
+// value.
+TEST(ParametersByName, MisnamedOrMistypedReadIsCaughtAtCreate)
+{
+    patina::PluginRegistry registry{patina::default_host().c_host()};
+    registry.load_file(fs::path(PATINA_FIXTURE_PLUGIN_DIR) / "by_name" /
+                       "patina_fixture_by_name.so");
+    auto create = [&](const char* type) {
+        const toml::table params{{"type", type}, {"albedo", 0.25}};
+        return patina::create_shader_instance(registry, type, params, "probe",
+                                              {"scene.toml", PATINA_TEST_BUILD_DIR, {"type"}});
+    };
+    auto error_of = [&](const char* type) -> std::string {
+        try {
+            create(type);
+        } catch (const std::exception& e) {
+            return e.what();
+        }
+        ADD_FAILURE() << type << " was created";
+        return {};
+    };
+    // Read right: the value arrives by name.
+    const auto good = create("fixture_by_name");
+    std::array<float, PATINA_MAX_WAVELENGTHS> f{};
+    PatinaWavelengths wl{1, {550}};
+    PatinaShadingContext ctx{};
+    good->bsdf()->eval(good->get(), &ctx, {0, 0, 1}, {0, 0, 1}, &wl, f.data());
+    EXPECT_FLOAT_EQ(f[0], 0.25f * 0.318309886f);
+
+    const std::string misnamed = error_of("fixture_misnamed");
+    EXPECT_NE(misnamed.find("fixture_misnamed"), std::string::npos) << misnamed;
+    EXPECT_NE(misnamed.find("reads parameter 'albedoo', which it does not declare"),
+              std::string::npos) << misnamed;
+    const std::string mistyped = error_of("fixture_mistyped");
+    EXPECT_NE(mistyped.find("parameter 'albedo' is declared float but read as int"),
+              std::string::npos) << mistyped;
+}

@@ -6,6 +6,7 @@
 #include "test_host.h"
 
 #include <patina/shading/frame.h>
+#include <patina/testing/bsdf_checks.h>
 #include <patina/shading/vec.h>
 
 #include <gtest/gtest.h>
@@ -238,6 +239,13 @@ public:
     }
 
     explicit operator bool() const { return static_cast<bool>(instance_); }
+    /// The instance as patina/testing/bsdf_checks.h calls it.
+    BsdfCalls calls() const
+    {
+        BsdfCalls c(funcs_, instance_.get(), wl_);
+        c.ctx = ctx_;
+        return c;
+    }
     void set_mode(PatinaTransportMode mode) { ctx_.mode = mode; }
     void set_wavelengths(const PatinaWavelengths& wl) { wl_ = wl; }
     const PatinaWavelengths& wl() const { return wl_; }
@@ -374,46 +382,20 @@ private:
     uint64_t inc_ = 0;
 };
 
-/// Directional albedo ∫ f(wo, wi) |cos θi| dωi at the first wavelength, by the midpoint
-/// rule on an (θ, φ) grid over the whole sphere (independent of the BSDF's sampling). The
-/// grid's pole lies along `pole` (default +y, away from lobes of wo in the x-z plane), since
-/// the midpoint rule resolves a narrow lobe poorly at a pole, where cells degenerate.
+/// Directional albedo ∫ f(wo, wi) |cos θi| dωi at the first wavelength by quadrature over
+/// the sphere (patina/testing/bsdf_checks.h; the grid's pole along `pole`).
 inline double albedo_by_quadrature(const Bsdf& bsdf, Vec3 wo, int theta_res = 512,
                                    Vec3 pole = Vec3(0.0f, 1.0f, 0.0f))
 {
-    const shading::Frame frame = shading::Frame::from_z(pole);
-    const int phi_res = 2 * theta_res;
-    const double dtheta = M_PI / theta_res, dphi = 2.0 * M_PI / phi_res;
-    double sum = 0.0;
-    for (int i = 0; i < theta_res; ++i) {
-        const double theta = (i + 0.5) * dtheta;
-        const double st = std::sin(theta), ct = std::cos(theta);
-        for (int j = 0; j < phi_res; ++j) {
-            const double phi = (j + 0.5) * dphi;
-            const Vec3 wi = shading::normalize(frame.from_local(
-                Vec3(static_cast<float>(st * std::cos(phi)), static_cast<float>(st * std::sin(phi)),
-                     static_cast<float>(ct))));
-            sum += static_cast<double>(bsdf.f0(wo, wi)) * std::abs(wi.z) * st;
-        }
-    }
-    return sum * dtheta * dphi;
+    return albedo_by_quadrature(bsdf.calls(), wo, theta_res, pole)[0];
 }
 
-/// Directional albedo by importance sampling: the mean of f |cos θi| / pdf over `count`
-/// samples (delta lobes included, failed samples count as 0), at the first wavelength.
-inline double albedo_by_sampling(const Bsdf& bsdf, Vec3 wo, int count, uint64_t seed = 7)
+/// Directional albedo at the first wavelength by the BSDF's own importance sampling, over
+/// about `count` stratified samples (patina/testing/bsdf_checks.h).
+inline double albedo_by_sampling(const Bsdf& bsdf, Vec3 wo, int count)
 {
-    Pcg32 rng(seed);
-    double sum = 0.0;
-    for (int i = 0; i < count; ++i) {
-        PatinaBsdfSample s;
-        const float u_lobe = rng.next_float();
-        const Vec2 u = rng.next_vec2();
-        if (!bsdf.sample(wo, u_lobe, u, &s) || s.pdf <= 0.0f)
-            continue;
-        sum += static_cast<double>(s.f[0]) * std::abs(s.wi.z) / s.pdf;
-    }
-    return sum / count;
+    const int n = std::max(1, static_cast<int>(std::lround(std::sqrt(count))));
+    return albedo_by_sampling(bsdf.calls(), wo, n)[0];
 }
 
 } // namespace patina::test

@@ -10,6 +10,7 @@
 
 #include <patina/abi.h>
 #include <patina/shading/frame.h>
+#include <patina/testing/bsdf_checks.h>
 #include <patina/shading/vec.h>
 
 #include <gtest/gtest.h>
@@ -243,54 +244,39 @@ public:
         return out;
     }
 
-    /// Directional albedo ∫ f(wo, wi) cos θi dωi per wavelength by the midpoint rule over
-    /// the upper hemisphere (independent of the shader's sampling).
+    /// The instance as patina/testing/bsdf_checks.h calls it.
+    test::BsdfCalls calls() const
+    {
+        test::BsdfCalls c(layered_shader().bsdf, instance_, wl_);
+        c.ctx = ctx_;
+        return c;
+    }
+
+    /// Directional albedo ∫ f(wo, wi) cos θi dωi per wavelength by the midpoint rule
+    /// (patina/testing/bsdf_checks.h), theta_res cells over the upper hemisphere, pole +z
+    /// (independent of the shader's sampling).
     Spectrum albedo_by_quadrature(Vec3 wo, int theta_res = 128) const
     {
-        const int phi_res = 4 * theta_res;
-        const double dtheta = 0.5 * M_PI / theta_res, dphi = 2.0 * M_PI / phi_res;
-        std::array<double, PATINA_MAX_WAVELENGTHS> sum{};
-        for (int i = 0; i < theta_res; ++i) {
-            const double theta = (i + 0.5) * dtheta;
-            const double w = std::cos(theta) * std::sin(theta) * dtheta * dphi;
-            for (int j = 0; j < phi_res; ++j) {
-                const double phi = (j + 0.5) * dphi;
-                const Vec3 wi(static_cast<float>(std::sin(theta) * std::cos(phi)),
-                              static_cast<float>(std::sin(theta) * std::sin(phi)),
-                              static_cast<float>(std::cos(theta)));
-                const Spectrum v = f(wo, wi);
-                for (int c = 0; c < wl_.count; ++c)
-                    sum[c] += v[c] * w;
-            }
-        }
-        Spectrum out{};
-        for (int c = 0; c < wl_.count; ++c)
-            out[c] = static_cast<float>(sum[c]);
-        return out;
+        return to_floats(test::albedo_by_quadrature(calls(), wo, 2 * theta_res, {0.0f, 0.0f, 1.0f}));
     }
 
     /// Directional albedo per wavelength by importance sampling with the shader's own sampler
-    /// (checked by the chi-square test): the mean of f cos θi / pdf over n² stratified samples,
-    /// accurate for sharp lobes where the quadrature is not.
+    /// (checked by the chi-square test) over n² stratified samples
+    /// (patina/testing/bsdf_checks.h), accurate for sharp lobes where the quadrature is not.
     Spectrum albedo_by_sampling(Vec3 wo, int n = 64) const
     {
-        std::array<double, PATINA_MAX_WAVELENGTHS> sum{};
-        for (int i = 0; i < n; ++i)
-            for (int j = 0; j < n; ++j) {
-                PatinaBsdfSample s;
-                const float u_lobe = ((i * 7 + j * 13) % n + 0.5f) / n;
-                if (!sample(wo, u_lobe, Vec2((i + 0.5f) / n, (j + 0.5f) / n), &s))
-                    continue;
-                for (int c = 0; c < wl_.count; ++c)
-                    sum[c] += s.f[c] * std::abs(s.wi.z) / s.pdf;
-            }
-        Spectrum out{};
-        for (int c = 0; c < wl_.count; ++c)
-            out[c] = static_cast<float>(sum[c] / (n * n));
-        return out;
+        return to_floats(test::albedo_by_sampling(calls(), wo, n));
     }
 
 private:
+    static Spectrum to_floats(const test::SpectrumValues& v)
+    {
+        Spectrum out{};
+        for (size_t c = 0; c < out.size(); ++c)
+            out[c] = static_cast<float>(v[c]);
+        return out;
+    }
+
     void* instance_ = nullptr;
     std::string errors_;
     PatinaShadingContext ctx_{};

@@ -10,6 +10,7 @@
 #include "texgen/fade/fade_stack.h"
 
 #include <patina/abi.h>
+#include <patina/testing/bsdf_checks.h>
 #include <patina/shading/vec.h>
 
 #include <dlfcn.h>
@@ -124,6 +125,13 @@ public:
     KmBsdf& operator=(const KmBsdf&) = delete;
 
     explicit operator bool() const { return instance_ != nullptr; }
+    /// The instance as patina/testing/bsdf_checks.h calls it.
+    BsdfCalls calls() const
+    {
+        BsdfCalls c(desc_->bsdf, instance_, wl_);
+        c.ctx = ctx_;
+        return c;
+    }
     void set_wavelengths(const std::vector<float>& nm)
     {
         wl_.count = static_cast<int>(nm.size());

@@ -1,0 +1,31 @@
+# Every bundled plugin exports its two ABI symbols and nothing else (abi.h; the version
+# script of cmake/PatinaPlugin.cmake), although some link the file-format library and C++
+# library code: nothing of theirs may clash with the host's or another plugin's copy.
+find_program(NM nm)
+if(NOT NM)
+  message(FATAL_ERROR "nm not found: install binutils")
+endif()
+file(GLOB plugins "${PLUGIN_DIR}/*.so")
+list(LENGTH plugins count)
+if(count LESS 4)
+  message(FATAL_ERROR "expected the bundled plugins in ${PLUGIN_DIR}, found ${count}")
+endif()
+foreach(plugin IN LISTS plugins)
+  execute_process(COMMAND ${NM} -D --defined-only "${plugin}" OUTPUT_VARIABLE out
+                  RESULT_VARIABLE rc)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "nm failed on ${plugin}")
+  endif()
+  string(REPLACE "\n" ";" lines "${out}")
+  set(symbols)
+  foreach(line IN LISTS lines)
+    # "address type name"; absolute symbols (A) are the linker's version nodes
+    if(line MATCHES "^[0-9a-f]+ ([A-Za-z]) (.+)$" AND NOT CMAKE_MATCH_1 STREQUAL "A")
+      list(APPEND symbols "${CMAKE_MATCH_2}")
+    endif()
+  endforeach()
+  list(SORT symbols)
+  if(NOT symbols STREQUAL "patina_plugin_abi_version;patina_plugin_entry")
+    message(FATAL_ERROR "${plugin} exports more than its two ABI symbols: ${symbols}")
+  endif()
+endforeach()
