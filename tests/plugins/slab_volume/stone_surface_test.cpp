@@ -3,6 +3,7 @@
 #include "slab_fixture.h"
 
 #include <patina/shading/fresnel.h>
+#include <patina/testing/bsdf_checks.h>
 
 #include <gtest/gtest.h>
 
@@ -45,6 +46,13 @@ public:
                 ++reflected;
         }
         return static_cast<double>(reflected) / n;
+    }
+    /// The instance as patina/testing/bsdf_checks.h calls it.
+    patina::test::BsdfCalls calls() const
+    {
+        patina::test::BsdfCalls c(instance_->bsdf(), instance_->get(), wl_);
+        c.ctx = ctx_;
+        return c;
     }
     /// Path weight f |cos θi| / pdf of a sample.
     static float weight(const PatinaBsdfSample& s) { return s.f[0] * std::abs(s.wi.z) / s.pdf; }
@@ -173,6 +181,19 @@ TEST(StoneSurface, DiffuseTransmissionIsConsistentAndConservesEnergy)
             EXPECT_NEAR(t.pdf, s.pdf(wo, t.wi), 1e-6f * std::max(1.0f, t.pdf));
             EXPECT_NEAR(t.f[0], s.eval0(wo, t.wi), 1e-6f);
             EXPECT_NEAR(Surface::weight(t), 1.0f, 1e-4f);
+        }
+    }
+}
+
+TEST(StoneSurface, WhiteFurnace)
+{
+    // A lossless boundary: what is not reflected (F_r^k, §5.1) crosses, so the directional
+    // albedo by its own importance samples is 1 from either side, for both transmissions.
+    for (const char* transmission : {"refract", "diffuse"}) {
+        const Surface s(1.5f, 2.0f, transmission);
+        for (float c : {0.9f, 0.4f, -0.3f, -0.8f}) {
+            const auto albedo = patina::test::albedo_by_sampling(s.calls(), at_cos(c), 64);
+            EXPECT_NEAR(albedo[0], 1.0, 1e-4) << transmission << " cos " << c;
         }
     }
 }
