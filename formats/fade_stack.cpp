@@ -245,8 +245,8 @@ std::string fade_description_text(const FadeDescription& d)
                          {"mean_dose", d.mean_dose},
                          {"max_dose", d.max_dose_in_map}};
     toml::array files;
-    for (const std::string& f : d.exposure.files)
-        files.push_back(f);
+    for (const fs::path& f : d.exposure.files)
+        files.push_back(f.string());
     toml::table exposure{{"files", files},
                          {"channel", d.exposure.channel},
                          {"units", d.exposure.units},

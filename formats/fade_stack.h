@@ -38,7 +38,7 @@ inline constexpr std::array<const char*, 3> kDoseMapChannels = {"coordinate", "d
 
 /// How the doses were made from exposure maps (their doses add up; none: a uniform dose).
 struct FadeExposure {
-    std::vector<std::string> files;
+    std::vector<std::filesystem::path> files;
     std::string channel = "exposure";
     std::string units = "J/m^2";  ///< "J/m^2" or "W/m^2"
     double scale = 1.0;           ///< dose per unit of the map

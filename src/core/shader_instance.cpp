@@ -1,5 +1,7 @@
 #include "core/shader_instance.h"
 
+#include <patina/plugin_support.h>
+
 #include "formats/toml_location.h"
 
 #include "core/color_management.h"
@@ -23,20 +25,7 @@ ShaderInstance::~ShaderInstance()
 
 namespace {
 
-    const char* type_name(PatinaParamType t)
-    {
-        switch (t) {
-        case PATINA_PARAM_FLOAT: return "float";
-        case PATINA_PARAM_INT: return "int";
-        case PATINA_PARAM_BOOL: return "bool";
-        case PATINA_PARAM_COLOR: return "color";
-        case PATINA_PARAM_SPECTRUM: return "spectrum";
-        case PATINA_PARAM_STRING: return "string";
-        case PATINA_PARAM_TEXTURE: return "texture";
-        case PATINA_PARAM_FILE: return "file";
-        }
-        return "?";
-    }
+    using plugin::type_name;
 
     size_t edit_distance(std::string_view a, std::string_view b)
     {

@@ -139,13 +139,7 @@ void write_fade_stack(const fs::path& dir, const DoseTable& table, const FadeSta
     d.min_dose = info.min_dose;
     d.mean_dose = info.mean_dose;
     d.max_dose_in_map = info.max_dose;
-    for (const fs::path& f : info.exposure.files)
-        d.exposure.files.push_back(f.string());
-    d.exposure.channel = info.exposure.channel;
-    d.exposure.units = info.exposure.units;
-    d.exposure.scale = info.exposure.scale;
-    d.exposure.duration_s = info.exposure.duration_s;
-    d.exposure.period_s = info.exposure.period_s;
+    d.exposure = info.exposure;
     write_file_atomic(dir / kFadeToml, {formats::fade_description_text(d)},
                       "fade stack description");
 }

@@ -20,15 +20,8 @@ using formats::kDoseMapFile;
 using formats::kFadeTableFile;
 
 /// How the doses of a stack were made from its exposure maps (their doses add up; none: a
-/// uniform dose).
-struct ExposureSource {
-    std::vector<std::filesystem::path> files;
-    std::string channel = "exposure";
-    std::string units = "J/m^2";   ///< "J/m^2" or "W/m^2"
-    double scale = 1.0;            ///< dose per unit of the map
-    double duration_s = 0.0;       ///< 0: the map's own period
-    double period_s = 0.0;         ///< the period the map covers (0: unknown)
-};
+/// uniform dose): fade.toml's [exposure].
+using ExposureSource = formats::FadeExposure;
 
 /// Everything fade.toml holds besides the table's numbers.
 struct FadeStackInfo {
