@@ -371,6 +371,58 @@ TextureStack read_texture_stack(const fs::path& path)
     return stack;
 }
 
+StackSeries read_stack_series(const fs::path& path)
+{
+    std::error_code ec;
+    const fs::path manifest = fs::is_directory(path, ec) ? path / kSeriesManifest : path;
+    if (!fs::is_regular_file(manifest, ec))
+        throw std::runtime_error(manifest.string() + ": no such file (expected a time series "
+                                                     "folder written by patina-texgen patina "
+                                                     "--times, or its series.toml)");
+    const toml::table root = parse_toml_file(manifest);
+    const toml::table* series = root["series"].as_table();
+    if (!series)
+        toml_fail(manifest, &root, "no [series] table");
+    StackSeries out;
+    out.manifest = manifest;
+    out.script = optional_string(manifest, *series, "script", "[series]");
+    const toml::array* steps = (*series)["steps"].as_array();
+    if (!steps || steps->empty())
+        toml_fail(manifest, series->contains("steps") ? series->get("steps") : series,
+                  "[series] 'steps' must be a non-empty array of { time_years, folder }");
+    for (size_t i = 0; i < steps->size(); ++i) {
+        const std::string context = "step " + std::to_string(i + 1);
+        const toml::table* t = steps->get(i)->as_table();
+        if (!t)
+            toml_fail(manifest, steps->get(i), context + " must be a table");
+        SeriesStep step;
+        step.time_years = optional_number(manifest, *t, "time_years", context, -1.0);
+        step.folder = string_of(manifest, *t, "folder", context);
+        if (!(step.time_years >= 0.0))
+            toml_fail(manifest, t, context + " needs 'time_years' >= 0");
+        if (!out.steps.empty() && !(step.time_years > out.steps.back().time_years))
+            toml_fail(manifest, t->get("time_years"), context + ": times must ascend");
+        if (!fs::is_directory(manifest.parent_path() / step.folder, ec))
+            toml_fail(manifest, t->get("folder"),
+                      context + ": folder '" + step.folder + "' does not exist");
+        out.steps.push_back(std::move(step));
+    }
+    return out;
+}
+
+std::string stack_series_text(const StackSeries& series)
+{
+    toml::array steps;
+    for (const SeriesStep& s : series.steps)
+        steps.push_back(toml::table{{"time_years", s.time_years}, {"folder", s.folder}});
+    const toml::table root{
+        {"series", toml::table{{"script", series.script}, {"steps", std::move(steps)}}}};
+    std::ostringstream text;
+    text << "# The time series written by patina-texgen patina: one stack per step.\n"
+         << root << "\n";
+    return text.str();
+}
+
 const PatinaTable& patina_of(const TextureStack& stack)
 {
     if (!stack.patina)

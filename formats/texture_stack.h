@@ -98,6 +98,30 @@ struct TextureStack {
     const StackMap& map(const std::string& name) const;
 };
 
+/// A time series of stacks, series.toml beside their folders (written by
+/// `patina-texgen patina --times`): `[series] script`, `steps = [{time_years, folder}]`.
+inline constexpr const char* kSeriesManifest = "series.toml";
+
+struct SeriesStep {
+    double time_years = 0.0;
+    std::string folder;  ///< relative to the series' folder, e.g. "t30"
+};
+
+struct StackSeries {
+    std::filesystem::path manifest;  ///< the series.toml read
+    std::string script;
+    std::vector<SeriesStep> steps;   ///< in ascending time
+
+    std::filesystem::path folder() const { return manifest.parent_path(); }
+};
+
+/// Read `path` (a series folder or its series.toml). Throws "file:line:column: what" for a
+/// malformed file, no steps, times that do not ascend or a step folder that does not exist.
+StackSeries read_stack_series(const std::filesystem::path& path);
+
+/// series.toml's text for `series` (its `manifest` is not used).
+std::string stack_series_text(const StackSeries& series);
+
 /// Read a stack: `path` is its folder or its stack.toml. Checks the format version
 /// (check_stack_format), every map entry, and a `[patina]` table when there is one: its
 /// base and layers, a layer's map and channel (a name in the map's `channels`, or an index

@@ -11,13 +11,19 @@ packages=(
   libopenexr-dev libimath-dev
   libembree-dev libtbb-dev libassimp-dev
   libgtest-dev libgmock-dev libbenchmark-dev embree-tools
-  libcli11-dev libfmt-dev libspdlog-dev libtomlplusplus-dev
+  libcli11-dev libfmt-dev libspdlog-dev libtomlplusplus-dev nlohmann-json3-dev
   colord-data fonts-dejavu-core
 )
 # Tools of one script only (scripts/fuzz.sh: clang and libFuzzer), named by that script.
 if [ -n "${PATINA_BOOTSTRAP_EXTRA:-}" ]; then
   read -r -a extra <<<"$PATINA_BOOTSTRAP_EXTRA"
   packages+=("${extra[@]}")
+fi
+
+# Node.js and npm run the test clients (tests/clients: the Khronos glTF validator); Debian's
+# when the machine has none of its own.
+if ! command -v node >/dev/null 2>&1 || ! command -v npm >/dev/null 2>&1; then
+  packages+=(nodejs npm)
 fi
 
 missing=()
@@ -27,8 +33,20 @@ for p in "${packages[@]}"; do
   fi
 done
 
+# The npm packages of the test clients, as their committed lockfile pins them.
+install_clients() {
+  local clients
+  clients="$(cd "$(dirname "$0")/.." && pwd)/tests/clients"
+  if [ ! -f "$clients/node_modules/.package-lock.json" ] ||
+     [ "$clients/package-lock.json" -nt "$clients/node_modules/.package-lock.json" ]; then
+    echo "bootstrap: npm ci in tests/clients" >&2
+    npm ci --prefix "$clients" --no-audit --no-fund --loglevel=error >&2
+  fi
+}
+
 if [ ${#missing[@]} -eq 0 ]; then
   echo "bootstrap: all ${#packages[@]} packages already installed" >&2
+  install_clients
   exit 0
 fi
 
@@ -53,4 +71,5 @@ for p in "${missing[@]}"; do
   fi
 done
 $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >&2
+install_clients
 echo "bootstrap: done" >&2

@@ -245,6 +245,36 @@ TEST(TextureStackFormat, BadInputsNameFileLineAndKey)
     EXPECT_NE(m.find("a time series"), std::string::npos) << m;
 }
 
+TEST(TextureStackFormat, SeriesRoundTripAndRefusals)
+{
+    const fs::path dir = test_dir("series_round_trip");
+    StackSeries series;
+    series.script = "urban.patina";
+    series.steps = {{0.0, "t00"}, {6.5, "t06"}, {30.0, "t30"}};
+    for (const SeriesStep& s : series.steps)
+        fs::create_directories(dir / s.folder);
+    write_text(dir / kSeriesManifest, stack_series_text(series));
+    const StackSeries r = read_stack_series(dir);
+    EXPECT_EQ(r.manifest, dir / kSeriesManifest);
+    EXPECT_EQ(r.script, "urban.patina");
+    ASSERT_EQ(r.steps.size(), 3u);
+    EXPECT_EQ(r.steps[1].time_years, 6.5);
+    EXPECT_EQ(r.steps[2].folder, "t30");
+
+    fs::remove_all(dir / "t06");
+    std::string m = test::message_of([&] { read_stack_series(dir); });
+    EXPECT_NE(m.find("series.toml:"), std::string::npos) << m;
+    EXPECT_NE(m.find("step 2: folder 't06' does not exist"), std::string::npos) << m;
+    fs::create_directories(dir / "t06");
+    std::string text = read_text(dir / kSeriesManifest);
+    const size_t at = text.find("time_years = 6.5");
+    ASSERT_NE(at, std::string::npos);
+    text.replace(at, std::string("time_years = 6.5").size(), "time_years = 40.0");
+    write_text(dir / kSeriesManifest, text);
+    m = test::message_of([&] { read_stack_series(dir); });
+    EXPECT_NE(m.find("step 3: times must ascend"), std::string::npos) << m;
+}
+
 // The two consumers of one stack, written by `patina-texgen patina`: the layered_km
 // plugin's reader (plugins/layered/stack_file.cpp, compiled into this test) and flatten's
 // (texgen/flatten) see the same base, the same layers bottom to top, the same file and

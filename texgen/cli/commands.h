@@ -18,5 +18,6 @@ void register_patina_command(CLI::App& app);
 void register_stone_command(CLI::App& app);
 void register_flatten_command(CLI::App& app);
 void register_fade_command(CLI::App& app);
+void register_export_command(CLI::App& app);
 
 }  // namespace patina::texgen

@@ -34,14 +34,7 @@ void run_flatten(const FlattenCommandOptions& o)
     const auto start = std::chrono::steady_clock::now();
     flatten_colorspace(o.flatten.color_space);  // a bad option fails before any work
     ColorManager colors(ColorManager::default_config_path());
-    MaterialLibrary library;
-    std::vector<fs::path> files = MaterialLibrary::default_files();
-    files.insert(files.end(), o.materials.begin(), o.materials.end());
-    if (files.empty())
-        throw std::runtime_error("no material library: none found under $PATINA_SHADER_PATH or "
-                                 "<exe>/../share/patina/shaders/patina; pass --materials FILE");
-    for (const fs::path& f : files)
-        library.load(f, colors);
+    const MaterialLibrary library = MaterialLibrary::load_default(o.materials, colors);
 
     const PatinaStackFiles stack = read_patina_stack(o.stack);
     const std::vector<const PatinaMaterial*> materials = resolve_stack_materials(stack, library, colors);

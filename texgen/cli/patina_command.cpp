@@ -2,6 +2,8 @@
 // mesh's texels or on a flat strip and writes a thickness stack per time step.
 #include "texgen/cli/commands.h"
 
+#include "formats/texture_stack.h"
+
 #include "core/cli_errors.h"
 #include "core/cancel.h"
 #include "core/color_management.h"
@@ -66,16 +68,9 @@ void run_patina(const PatinaOptions& o)
         threads.emplace(tbb::global_control::max_allowed_parallelism, o.threads);
     const auto start = std::chrono::steady_clock::now();
 
-    reserve_output(o.out_dir / "series.toml");  // a bad output folder fails before the run
+    reserve_output(o.out_dir / formats::kSeriesManifest);  // a bad output folder fails before the run
     ColorManager colors(ColorManager::default_config_path());
-    MaterialLibrary library;
-    std::vector<fs::path> library_files = MaterialLibrary::default_files();
-    library_files.insert(library_files.end(), o.materials.begin(), o.materials.end());
-    if (library_files.empty())
-        throw std::runtime_error("no material library: none found under $PATINA_SHADER_PATH or "
-                                 "<exe>/../share/patina/shaders/patina; pass --materials FILE");
-    for (const fs::path& f : library_files)
-        library.load(f, colors);
+    const MaterialLibrary library = MaterialLibrary::load_default(o.materials, colors);
 
     const Script script = parse_script_file(o.script, library.names());
     // Every step's stack is kept until the series is written: at least one layer of floats
@@ -130,22 +125,19 @@ void run_patina(const PatinaOptions& o)
     }
 
     const bool series = steps.size() > 1;
-    std::ostringstream series_toml;
-    series_toml << "# The time series written by patina-texgen patina: one stack per step.\n"
-                << "[series]\nscript = \"" << out.script << "\"\nsteps = [";
+    formats::StackSeries series_toml;
+    series_toml.script = out.script;
     for (size_t k = 0; k < steps.size(); ++k) {
         throw_if_cancelled();
         const fs::path dir =
             series ? o.out_dir / step_folder(steps[k].time_years, steps.back().time_years)
                    : o.out_dir;
         write_patina_step(dir, steps[k], domain, out, colors);
-        if (series)
-            series_toml << (k ? ", " : "") << "{ time_years = " << steps[k].time_years
-                        << ", folder = \"" << dir.filename().string() << "\" }";
+        series_toml.steps.push_back({steps[k].time_years, dir.filename().string()});
     }
-    series_toml << "]\n";
     if (series)
-        write_file_atomic(o.out_dir / "series.toml", {series_toml.str()}, "series manifest");
+        write_file_atomic(o.out_dir / formats::kSeriesManifest,
+                          {formats::stack_series_text(series_toml)}, "series manifest");
 
     if (!o.quiet) {
         const double seconds =

@@ -5,6 +5,7 @@
 #include "core/cancel.h"
 #include "core/image_io.h"
 #include "texgen/stack/manifest.h"
+#include "formats/texture_stack.h"
 #include "formats/toml_location.h"
 
 #include <fmt/format.h>
@@ -101,31 +102,26 @@ std::vector<fs::path> write_flattened(const fs::path& out_dir, const FlattenedSt
             files.push_back(path);
             written.push_back(path);
         }
-        toml::table entry;
+        // The entry, as every writer of stack.toml makes it (formats/texture_stack.h).
+        formats::StackMap entry;
+        entry.name = map.name;
         if (lone) {
-            entry.insert_or_assign("file", files[0].filename().string());
+            entry.file = files[0].filename().string();
         } else {
-            entry.insert_or_assign("pattern", map_file_pattern(map.name));
-            toml::array tiles;
-            for (int udim : flat.udims)
-                tiles.push_back(udim);
-            entry.insert_or_assign("tiles", std::move(tiles));
+            entry.pattern = map_file_pattern(map.name);
+            entry.tiles = flat.udims;
         }
-        entry.insert_or_assign("domain", "texel");
-        toml::array channels;
-        for (const std::string& c : map.channels)
-            channels.push_back(c);
-        entry.insert_or_assign("channels", std::move(channels));
-        entry.insert_or_assign("units", map.units);
-        entry.insert_or_assign("colorspace", space);
-        entry.insert_or_assign("baker", kBaker);
-        entry.insert_or_assign("description", map.description);
-        entry.insert_or_assign("resolution", toml::array{flat.width, flat.height});
-        entry.insert_or_assign("parameters",
-                               toml::table{{"stack", source},
-                                           {"time_years", stack.time_years},
-                                           {"color_space", options.color_space}});
-        maps.insert_or_assign(map.name, std::move(entry));
+        entry.channels = map.channels;
+        entry.units = map.units;
+        entry.colorspace = space;
+        entry.baker = kBaker;
+        entry.description = map.description;
+        entry.width = flat.width;
+        entry.height = flat.height;
+        entry.parameters = toml::table{{"stack", source},
+                                       {"time_years", stack.time_years},
+                                       {"color_space", options.color_space}};
+        maps.insert_or_assign(map.name, formats::to_toml(entry));
     }
 
     // What the maps are, for a person or a pipeline reading the folder.

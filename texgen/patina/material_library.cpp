@@ -304,4 +304,18 @@ std::vector<fs::path> MaterialLibrary::default_files()
     return shader_library_files("patina");
 }
 
+MaterialLibrary MaterialLibrary::load_default(const std::vector<fs::path>& extra,
+                                              const ColorManager& colors)
+{
+    std::vector<fs::path> files = default_files();
+    files.insert(files.end(), extra.begin(), extra.end());
+    if (files.empty())
+        throw std::runtime_error("no material library: none found under $PATINA_SHADER_PATH or "
+                                 "<exe>/../share/patina/shaders/patina; pass --materials FILE");
+    MaterialLibrary library;
+    for (const fs::path& f : files)
+        library.load(f, colors);
+    return library;
+}
+
 }  // namespace patina::texgen

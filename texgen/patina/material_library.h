@@ -80,6 +80,11 @@ public:
     /// `<exe>/../share/patina/shaders/patina/`; sorted by name within a directory.
     static std::vector<std::filesystem::path> default_files();
 
+    /// The default files and then `extra` (the commands' --materials), loaded. Throws when
+    /// there is no file at all, naming where they were looked for and the option.
+    static MaterialLibrary load_default(const std::vector<std::filesystem::path>& extra,
+                                        const ColorManager& colors);
+
 private:
     std::vector<PatinaMaterial> materials_;
     std::map<std::string, size_t> by_name_;

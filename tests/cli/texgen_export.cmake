@@ -1,0 +1,50 @@
+# patina-texgen export: the §5.1 urban strip (Dorsey & Hanrahan 1996) over three steps as one
+# glTF 2.0 asset with a material variant per age, as .glb and as .gltf with its files; the
+# Khronos glTF validator finds no error and no warning in either; bad inputs fail with one
+# message and write nothing.
+include(${CMAKE_CURRENT_LIST_DIR}/lib/expect.cmake)
+include(${CMAKE_CURRENT_LIST_DIR}/lib/gltf_validator.cmake)
+file(REMOVE_RECURSE "${WORK_DIR}")
+file(MAKE_DIRECTORY "${WORK_DIR}")
+set(urban "${SOURCE_DIR}/samples/copper_strips/urban.patina")
+
+expect_success("${PATINA_TEXGEN}" patina "${urban}" -o "${WORK_DIR}/urban" --resolution 32
+  --times 0,6,30 --quiet --no-preview)
+expect_success("${PATINA_TEXGEN}" export "${WORK_DIR}/urban" -o "${WORK_DIR}/urban.glb")
+expect_in("${LAST_STDERR}" "3 step(s) of 32x32")
+expect_valid_gltf("${WORK_DIR}/urban.glb")
+expect_in("${LAST_VALIDATOR_REPORT}" "KHR_materials_variants")
+expect_in("${LAST_VALIDATOR_REPORT}" "KHR_materials_clearcoat")
+expect_in("${LAST_VALIDATOR_REPORT}" "materials: 3")
+# The variants are named by age (the JSON chunk starts after the 20 bytes of GLB header).
+file(READ "${WORK_DIR}/urban.glb" glb OFFSET 20 LIMIT 8192)
+expect_in("${glb}" "\"name\":\"0 y\"")
+expect_in("${glb}" "\"name\":\"30 y\"")
+
+# One step, as .gltf with its .bin and PNGs named by the template.
+expect_success("${PATINA_TEXGEN}" export "${WORK_DIR}/urban/t30" -o "${WORK_DIR}/sep/strip.gltf"
+  --separate --quiet)
+foreach(f strip.bin strip_t30_base_color.png strip_t30_metallic_roughness.png
+          strip_t30_normal.png strip_t30_clearcoat.png)
+  if(NOT EXISTS "${WORK_DIR}/sep/${f}")
+    message(FATAL_ERROR "export --separate wrote no ${f}")
+  endif()
+endforeach()
+expect_valid_gltf("${WORK_DIR}/sep/strip.gltf")
+
+# Bad inputs: one message, nothing written.
+expect_failure("--preset 'maya'" "${PATINA_TEXGEN}" export "${WORK_DIR}/urban"
+  -o "${WORK_DIR}/bad1.glb" --preset maya)
+expect_failure("a binary glTF file" "${PATINA_TEXGEN}" export "${WORK_DIR}/urban"
+  -o "${WORK_DIR}/bad2.gltf")
+expect_failure("no such file" "${PATINA_TEXGEN}" export "${WORK_DIR}/nowhere"
+  -o "${WORK_DIR}/bad3.glb")
+file(COPY "${WORK_DIR}/urban/" DESTINATION "${WORK_DIR}/broken")
+file(REMOVE "${WORK_DIR}/broken/t06/thickness.exr")
+expect_failure("does not exist" "${PATINA_TEXGEN}" export "${WORK_DIR}/broken"
+  -o "${WORK_DIR}/bad4.glb")
+foreach(f bad1.glb bad2.gltf bad3.glb bad4.glb)
+  if(EXISTS "${WORK_DIR}/${f}")
+    message(FATAL_ERROR "a failed export left ${WORK_DIR}/${f} behind")
+  endif()
+endforeach()

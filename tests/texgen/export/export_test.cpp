@@ -1,0 +1,187 @@
+// patina-texgen export, gltf preset: the .glb's layout (GLB header and chunks, §4.4 of the
+// glTF 2.0 specification), a material variant per step, and every map read back (OIIO)
+// against the flattened maps it was made from: bit depth, packing and colour encoding.
+#include "texgen/export/export_patina.h"
+
+#include "texgen/flatten/flatten_stack.h"
+#include "texgen/flatten/patina_stack_files.h"
+#include "test_util.h"
+
+#include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+
+namespace patina::texgen {
+namespace {
+
+namespace fs = std::filesystem;
+
+class Export : public ::testing::Test {
+protected:
+    static void SetUpTestSuite()
+    {
+        dir_ = fs::path(PATINA_TEST_BUILD_DIR) / "export_test";
+        fs::remove_all(dir_);
+        fs::create_directories(dir_);
+        const std::string command = std::string(PATINA_TEST_BIN_DIR) +
+                                    "/patina-texgen patina '" + PATINA_SOURCE_DIR +
+                                    "/samples/copper_strips/rural.patina' -o '" +
+                                    (dir_ / "rural").string() +
+                                    "' --resolution 24 --times 0,12,30 --quiet --no-preview";
+        ASSERT_EQ(std::system(command.c_str()), 0) << command;
+    }
+
+    Export()
+    {
+        library_.load(fs::path(PATINA_SOURCE_DIR) / "shaders/patina/copper.toml", colors_);
+    }
+
+    /// The flattened maps of one step, as export made them.
+    FlattenedStack flat(const std::string& step) const
+    {
+        const PatinaStackFiles stack = read_patina_stack(dir_ / "rural" / step);
+        return flatten_stack(stack, resolve_stack_materials(stack, library_, colors_), {});
+    }
+
+    static const FlatMap& map_of(const FlattenedStack& f, const std::string& name)
+    {
+        for (const FlatMap& m : f.maps)
+            if (m.name == name)
+                return m;
+        throw std::runtime_error("no map " + name);
+    }
+
+    /// A PNG's pixels in [0, 1], with its bits per channel.
+    static std::vector<float> read_png(const fs::path& file, int* bits, int* channels)
+    {
+        auto in = OIIO::ImageInput::open(file.string());
+        EXPECT_TRUE(in) << file;
+        if (!in)
+            return {};
+        const OIIO::ImageSpec& spec = in->spec();
+        *bits = static_cast<int>(spec.format.size()) * 8;
+        *channels = spec.nchannels;
+        std::vector<float> px(static_cast<size_t>(spec.width) * spec.height * spec.nchannels);
+        EXPECT_TRUE(in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, px.data()));
+        return px;
+    }
+
+    static inline fs::path dir_;
+    ColorManager colors_{fs::path(PATINA_SOURCE_DIR) / "ocio/config.ocio"};
+    MaterialLibrary library_;
+};
+
+TEST_F(Export, GlbHoldsOneVariantPerStepNamedByAge)
+{
+    const fs::path out = dir_ / "rural.glb";
+    const ExportResult r = export_patina(dir_ / "rural", out, {}, library_, colors_);
+    EXPECT_EQ(r.steps, 3u);
+    std::ifstream in(out, std::ios::binary);
+    const std::string bytes((std::istreambuf_iterator<char>(in)), {});
+    ASSERT_GE(bytes.size(), 28u);
+    auto u32 = [&](size_t at) {
+        uint32_t v;
+        std::memcpy(&v, bytes.data() + at, 4);
+        return v;
+    };
+    // §4.4.2: magic "glTF", version 2, the total length; §4.4.3: JSON chunk, then BIN.
+    EXPECT_EQ(u32(0), 0x46546C67u);
+    EXPECT_EQ(u32(4), 2u);
+    EXPECT_EQ(u32(8), bytes.size());
+    const uint32_t json_length = u32(12);
+    EXPECT_EQ(u32(16), 0x4E4F534Au);
+    EXPECT_EQ(json_length % 4, 0u);
+    const size_t bin_at = 20 + json_length;
+    EXPECT_EQ(u32(bin_at + 4), 0x004E4942u);
+    EXPECT_EQ(bin_at + 8 + u32(bin_at), bytes.size());
+
+    const nlohmann::json doc = nlohmann::json::parse(bytes.substr(20, json_length));
+    // The buffer is the BIN chunk without its padding to 4 bytes (§4.4.3.2).
+    const size_t buffer = doc["buffers"][0]["byteLength"].get<size_t>();
+    EXPECT_LE(buffer, u32(bin_at));
+    EXPECT_LT(u32(bin_at) - buffer, 4u);
+    const auto& variants = doc["extensions"]["KHR_materials_variants"]["variants"];
+    ASSERT_EQ(variants.size(), 3u);
+    EXPECT_EQ(variants[0]["name"], "0 y");
+    EXPECT_EQ(variants[1]["name"], "12 y");
+    EXPECT_EQ(variants[2]["name"], "30 y");
+    const auto& primitive = doc["meshes"][0]["primitives"][0];
+    const auto& mappings = primitive["extensions"]["KHR_materials_variants"]["mappings"];
+    ASSERT_EQ(mappings.size(), 3u);
+    for (size_t k = 0; k < 3; ++k) {
+        EXPECT_EQ(mappings[k]["variants"][0], k);
+        EXPECT_EQ(doc["materials"][mappings[k]["material"].get<int>()]["extras"]["patina"]
+                     ["time_years"],
+                  std::vector<double>({0.0, 12.0, 30.0})[k]);
+    }
+    EXPECT_EQ(primitive["material"], mappings[2]["material"]);  // the default: the last age
+    for (const auto& image : doc["images"]) {
+        EXPECT_EQ(image["mimeType"], "image/png");
+        EXPECT_TRUE(image.contains("bufferView"));
+    }
+    // The strip at its real size: strip_size_m wide (the patina default, 0.1 m).
+    const auto& position = doc["accessors"][primitive["attributes"]["POSITION"].get<int>()];
+    const double strip = read_patina_stack(dir_ / "rural" / "t30").strip_size_m;
+    EXPECT_NEAR(position["max"][0].get<double>() - position["min"][0].get<double>(), strip, 1e-6);
+}
+
+TEST_F(Export, MapsReadBackAsTheFlattenedMapsEncodedForGltf)
+{
+    ExportOptions o;
+    o.separate = true;
+    const fs::path out = dir_ / "sep" / "rural.gltf";
+    export_patina(dir_ / "rural" / "t30", out, o, library_, colors_);
+    const FlattenedStack f = flat("t30");
+    const size_t texels = static_cast<size_t>(f.width) * f.height;
+
+    // Base colour: 8-bit sRGB-encoded (OCIO lin_rec709 -> srgb_texture), as glTF requires.
+    int bits = 0, channels = 0;
+    std::vector<float> base = map_of(f, "gltf_base_color").tiles[0];
+    colors_.convert("lin_rec709", "srgb_texture", base.data(), texels);
+    const std::vector<float> png = read_png(out.parent_path() / "rural_t30_base_color.png", &bits,
+                                            &channels);
+    EXPECT_EQ(bits, 8);
+    ASSERT_EQ(channels, 3);
+    ASSERT_EQ(png.size(), base.size());
+    double worst = 0.0;
+    for (size_t i = 0; i < png.size(); ++i)
+        worst = std::max(worst, std::abs(double(png[i]) - std::clamp(double(base[i]), 0.0, 1.0)));
+    EXPECT_LE(worst, 0.5 / 255 + 1e-6);  // rounding to 8 bits, nothing else
+
+    // Data maps: linear, packed as flatten packs them (metallicRoughness: G roughness,
+    // B metallic; clearcoat: R factor, G roughness; normal: OpenGL +Y, n * 0.5 + 0.5).
+    for (const auto& [file, map] :
+         {std::pair{"rural_t30_metallic_roughness.png", "gltf_metallic_roughness"},
+          std::pair{"rural_t30_clearcoat.png", "gltf_clearcoat"},
+          std::pair{"rural_t30_normal.png", "normal"}}) {
+        const std::vector<float> data = read_png(out.parent_path() / file, &bits, &channels);
+        const std::vector<float>& expected = map_of(f, map).tiles[0];
+        EXPECT_EQ(bits, 8) << file;
+        ASSERT_EQ(data.size(), expected.size()) << file;
+        double e = 0.0;
+        for (size_t i = 0; i < data.size(); ++i)
+            e = std::max(e, std::abs(double(data[i]) - std::clamp(double(expected[i]), 0.0, 1.0)));
+        EXPECT_LE(e, 0.5 / 255 + 1e-6) << file;
+    }
+}
+
+TEST_F(Export, BadInputsNameTheOptionOrFile)
+{
+    ExportOptions o;
+    o.preset = "maya";
+    std::string m = test::message_of(
+        [&] { export_patina(dir_ / "rural", dir_ / "x.glb", o, library_, colors_); });
+    EXPECT_NE(m.find("--preset 'maya'"), std::string::npos) << m;
+    m = test::message_of(
+        [&] { export_patina(dir_ / "rural", dir_ / "x.gltf", {}, library_, colors_); });
+    EXPECT_NE(m.find("a binary glTF file"), std::string::npos) << m;
+    EXPECT_FALSE(fs::exists(dir_ / "x.glb"));
+    EXPECT_FALSE(fs::exists(dir_ / "x.gltf"));
+}
+
+}  // namespace
+}  // namespace patina::texgen

@@ -1,0 +1,77 @@
+// `patina-texgen export INPUT -o FILE`: a patina stack or time series as glTF 2.0 that other
+// programs open already wired (texgen/export/export_patina.h; docs/export.md).
+#include "texgen/cli/commands.h"
+
+#include "core/color_management.h"
+#include "texgen/export/export_patina.h"
+#include "texgen/patina/material_library.h"
+
+#include <chrono>
+#include <cstdio>
+#include <memory>
+
+namespace patina::texgen {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct ExportCommandOptions {
+    fs::path input;
+    fs::path output;
+    std::vector<fs::path> materials;
+    ExportOptions exporting;
+    bool quiet = false;
+};
+
+void run_export(const ExportCommandOptions& o)
+{
+    const auto start = std::chrono::steady_clock::now();
+    const ColorManager colors(ColorManager::default_config_path());
+    const MaterialLibrary library = MaterialLibrary::load_default(o.materials, colors);
+    const ExportResult r = export_patina(o.input, o.output, o.exporting, library, colors);
+    if (!o.quiet) {
+        const double seconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        std::fprintf(stderr, "export: %s, %zu step(s) of %dx%d, %zu texture(s) -> %s (%.2f s)\n",
+                     o.input.string().c_str(), r.steps, r.width, r.height, r.textures,
+                     o.output.string().c_str(), seconds);
+    }
+}
+
+}  // namespace
+
+void register_export_command(CLI::App& app)
+{
+    auto o = std::make_shared<ExportCommandOptions>();
+    CLI::App* cmd = app.add_subcommand(
+        "export", "export a patina stack or time series as glTF 2.0 (a .glb, or .gltf with "
+                  "--separate): the strip at its real size, metallic-roughness + clearcoat "
+                  "maps, one material variant per step named by age");
+    cmd->add_option("input", o->input, "a stack folder or its stack.toml, or a time-series "
+                                       "folder (series.toml) written by `patina-texgen patina`")
+        ->required();
+    cmd->add_option("-o,--out", o->output, "the .glb (or .gltf with --separate) to write")
+        ->required();
+    cmd->add_option("--preset", o->exporting.preset, "map packing and naming: gltf")
+        ->capture_default_str();
+    cmd->add_flag("--separate", o->exporting.separate,
+                  "write a .gltf with its .bin and PNG maps beside it instead of one .glb");
+    cmd->add_option("--name-template", o->exporting.name_template,
+                    "file names of the maps with --separate ($mesh, $material, $map, $udim)")
+        ->capture_default_str();
+    cmd->add_option("--resolution", o->exporting.resolution,
+                    "texels per side of the maps (default: the stack's)")
+        ->check(CLI::Range(8, 16384));
+    cmd->add_option("--normal-scale", o->exporting.normal_scale,
+                    "height exaggeration of the normal map")
+        ->check(CLI::Range(0.0, 1000.0))
+        ->capture_default_str();
+    cmd->add_option("--materials", o->materials,
+                    "extra material library files (the ones the stack was made with)")
+        ->check(CLI::ExistingFile);
+    cmd->add_flag("-q,--quiet", o->quiet, "no summary line");
+    cmd->callback([o] { run_export(*o); });
+}
+
+}  // namespace patina::texgen
