@@ -13,6 +13,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev embree-tools
   libcli11-dev libfmt-dev libspdlog-dev libtomlplusplus-dev nlohmann-json3-dev
   colord-data fonts-dejavu-core
+  blender python3-numpy
 )
 # Tools of one script only (scripts/fuzz.sh: clang and libFuzzer), named by that script.
 if [ -n "${PATINA_BOOTSTRAP_EXTRA:-}" ]; then
