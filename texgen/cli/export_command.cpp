@@ -47,14 +47,22 @@ void register_export_command(CLI::App& app)
     CLI::App* cmd = app.add_subcommand(
         "export", "export a patina stack or time series as glTF 2.0 (a .glb, or .gltf with "
                   "--separate): the strip at its real size, metallic-roughness + clearcoat "
-                  "maps, one material variant per step named by age");
+                  "maps, one material variant per step named by age; or as textures packed "
+                  "for Unreal, Unity HDRP or look files (--preset)");
     cmd->add_option("input", o->input, "a stack folder or its stack.toml, or a time-series "
                                        "folder (series.toml) written by `patina-texgen patina`")
         ->required();
-    cmd->add_option("-o,--out", o->output, "the .glb (or .gltf with --separate) to write")
+    cmd->add_option("-o,--out", o->output,
+                    "the .glb (or .gltf with --separate) to write; a folder for the texture "
+                    "presets")
         ->required();
-    cmd->add_option("--preset", o->exporting.preset, "map packing and naming: gltf")
+    cmd->add_option("--preset", o->exporting.preset,
+                    "map packing and naming: gltf (a glTF asset), unreal, unity-hdrp or exr (a "
+                    "folder of textures)")
         ->capture_default_str();
+    cmd->add_option("--bits", o->exporting.bits,
+                    "bits per channel of the texture presets: 8 or 16 (PNG), 32 (float EXR); "
+                    "exr: 16 (half) or 32 (default: 8, exr 32)");
     cmd->add_flag("--separate", o->exporting.separate,
                   "write a .gltf with its .bin and PNG maps beside it instead of one .glb");
     cmd->add_option("--name-template", o->exporting.name_template,

@@ -3,6 +3,8 @@
 #include "formats/texture_stack.h"
 #include "texgen/export/gltf_document.h"
 #include "texgen/export/png_encode.h"
+#include "texgen/export/presets.h"
+#include "core/image_io.h"
 #include "texgen/flatten/flatten_stack.h"
 #include "texgen/flatten/patina_stack_files.h"
 
@@ -32,14 +34,6 @@ namespace {
         PatinaStackFiles stack;
         FlattenedStack flat;
     };
-
-    const FlatMap& map_of(const FlattenedStack& flat, const std::string& name)
-    {
-        for (const FlatMap& m : flat.maps)
-            if (m.name == name)
-                return m;
-        throw std::logic_error("flatten made no map '" + name + "'");
-    }
 
     std::string expand(std::string pattern, const std::string& mesh, const std::string& material,
                        const std::string& map, int udim, bool tiled)
@@ -107,18 +101,81 @@ namespace {
                                 gltf::kUnsignedInt, 6, "SCALAR");
     }
 
-    /// The texels of one map and tile, NaN refused with the stack and texel named.
-    std::vector<float> checked(const FlatMap& map, size_t tile, const Step& step, int width)
+    /// Every texel of every flattened map finite, or an error naming the stack, the map and
+    /// the texel.
+    void check_finite(const Step& step)
     {
-        const std::vector<float>& v = map.tiles[tile];
-        for (size_t i = 0; i < v.size(); ++i)
-            if (!std::isfinite(v[i])) {
-                const size_t texel = i / map.channels.size();
-                throw std::runtime_error(fmt::format(
-                    "export of '{}': map '{}' texel ({}, {}) is not finite; nothing was written",
-                    step.stack.manifest.string(), map.name, texel % width, texel / width));
+        const FlattenedStack& flat = step.flat;
+        for (const FlatMap& map : flat.maps)
+            for (size_t tile = 0; tile < map.tiles.size(); ++tile)
+                for (size_t i = 0; i < map.tiles[tile].size(); ++i)
+                    if (!std::isfinite(map.tiles[tile][i])) {
+                        const size_t texel = i / map.channels.size();
+                        throw std::runtime_error(fmt::format(
+                            "export of '{}': map '{}' texel ({}, {}) of tile {} is not finite; "
+                            "nothing was written",
+                            step.stack.manifest.string(), map.name, texel % flat.width,
+                            texel / flat.width, flat.udims[tile]));
+                    }
+    }
+
+    /// The largest height of every step (µm): the range of the height maps.
+    double height_range_um(const std::vector<Step>& steps)
+    {
+        double top = 0.0;
+        for (const Step& step : steps)
+            for (const FlatMap& map : step.flat.maps)
+                if (map.name == "height")
+                    for (const std::vector<float>& tile : map.tiles)
+                        for (float h : tile)
+                            top = std::max(top, static_cast<double>(h));
+        return top;
+    }
+
+    /// The texture presets: every map of every step as a file of `dir`.
+    std::vector<fs::path> write_textures(const fs::path& dir, const std::vector<Step>& steps,
+                                         const ExportOptions& options, const ColorManager& colors)
+    {
+        const double range = height_range_um(steps);
+        std::vector<fs::path> written;
+        const std::string mesh = dir.filename().string();
+        for (const Step& step : steps) {
+            const FlattenedStack& flat = step.flat;
+            for (size_t tile = 0; tile < flat.udims.size(); ++tile) {
+                throw_if_cancelled();
+                for (const PresetMap& map :
+                     preset_maps(options.preset, flat, tile, range, colors)) {
+                    const bool exr = options.bits == 32 || options.preset == "exr";
+                    std::string name = expand(options.name_template, mesh, step.label, map.name,
+                                              flat.udims[tile], flat.udims.size() > 1);
+                    const int channels = static_cast<int>(map.channels.size());
+                    if (exr) {
+                        name.replace(name.size() - 4, 4, ".exr");
+                        const Metadata meta = {
+                            {"patina:map", map.name},
+                            {"patina:preset", options.preset},
+                            {"patina:time_years", static_cast<float>(step.time_years)},
+                            {"oiio:ColorSpace",
+                             std::string(map.name == "base_color" ? "lin_rec709" : "raw")}};
+                        write_image_atomic(dir / name, map.texels.data(), flat.width,
+                                           flat.height, channels, map.channels,
+                                           options.bits == 16 ? OIIO::TypeDesc::HALF
+                                                              : OIIO::TypeDesc::FLOAT,
+                                           meta);
+                    } else {
+                        const std::vector<unsigned char> png =
+                            encode_png(map.texels.data(), flat.width, flat.height, channels,
+                                       std::max(options.bits, map.min_bits));
+                        write_file_atomic(dir / name,
+                                          {std::string_view(reinterpret_cast<const char*>(png.data()),
+                                                            png.size())},
+                                          "texture");
+                    }
+                    written.push_back(dir / name);
+                }
             }
-        return v;
+        }
+        return written;
     }
 
 }  // namespace
@@ -136,16 +193,30 @@ std::string age_name(double years)
 }
 
 ExportResult export_patina(const fs::path& input, const fs::path& output,
-                           const ExportOptions& options, const MaterialLibrary& library,
+                           const ExportOptions& given, const MaterialLibrary& library,
                            const ColorManager& colors)
 {
-    if (options.preset != "gltf")
-        throw std::runtime_error(fmt::format("--preset '{}': expected gltf", options.preset));
+    ExportOptions options = given;
+    if (options.bits == 0)
+        options.bits = options.preset == "exr" ? 32 : 8;
+    check_preset(options.preset);
+    const bool textures = preset_writes_textures(options.preset);
+    if (textures ? !(options.bits == 8 || options.bits == 16 || options.bits == 32)
+                 : options.bits != 8)
+        throw std::runtime_error(fmt::format(
+            "--bits {}: the {} preset takes {}", options.bits, options.preset,
+            textures ? "8 or 16 (PNG) or 32 (float EXR)" : "8 (glTF's PNG maps)"));
+    if (options.preset == "exr" && options.bits == 8)
+        throw std::runtime_error("--bits 8: the exr preset writes 16 (half) or 32 (float) EXRs");
     const std::string extension = output.extension().string();
-    if (extension != (options.separate ? ".gltf" : ".glb"))
+    if (!textures && extension != (options.separate ? ".gltf" : ".glb"))
         throw std::runtime_error(fmt::format(
             "-o '{}': a {} file (the extension is {})", output.string(),
             options.separate ? "glTF (--separate)" : "binary glTF", options.separate ? ".gltf" : ".glb"));
+    if (textures && (extension == ".glb" || extension == ".gltf"))
+        throw std::runtime_error(fmt::format(
+            "-o '{}': the {} preset writes a folder of textures, not a glTF file",
+            output.string(), options.preset));
 
     // Every step read and flattened before anything is written.
     std::vector<Step> steps = read_steps(input);
@@ -160,6 +231,7 @@ ExportResult export_patina(const fs::path& input, const fs::path& output,
                 "the stack and wire its maps to the mesh)", step.stack.manifest.string()));
         step.flat = flatten_stack(step.stack, resolve_stack_materials(step.stack, library, colors),
                                   flatten);
+        check_finite(step);
         const Step& first = steps.front();
         if (step.flat.width != first.flat.width || step.flat.height != first.flat.height ||
             step.flat.udims != first.flat.udims || step.stack.strip_size_m != first.stack.strip_size_m)
@@ -181,6 +253,16 @@ ExportResult export_patina(const fs::path& input, const fs::path& output,
     if (udims.size() != 1)
         throw std::runtime_error(fmt::format("export of '{}': a strip has one tile, not {}",
                                              input.string(), udims.size()));
+
+    ExportResult result;
+    result.steps = steps.size();
+    result.width = width;
+    result.height = height;
+    if (textures) {
+        result.files = write_textures(output, steps, options, colors);
+        result.textures = result.files.size();
+        return result;
+    }
 
     gltf::Document doc;
     doc.use_extension("KHR_materials_clearcoat");
@@ -211,17 +293,14 @@ ExportResult export_patina(const fs::path& input, const fs::path& output,
     for (const Step& step : steps) {
         throw_if_cancelled();
         const FlattenedStack& flat = step.flat;
-        // Base colour: linear Rec.709 to sRGB-encoded, as glTF's baseColorTexture is.
-        std::vector<float> base = checked(map_of(flat, "gltf_base_color"), 0, step, width);
-        colors.convert("lin_rec709", "srgb_texture", base.data(), base.size() / 3);
-        const int base_tex = texture(step, "base_color", std::move(base), 3, 8);
-        const int mr_tex = texture(step, "metallic_roughness",
-                                   checked(map_of(flat, "gltf_metallic_roughness"), 0, step, width),
-                                   3, 8);
-        const int normal_tex =
-            texture(step, "normal", checked(map_of(flat, "normal"), 0, step, width), 3, 8);
-        const int coat_tex = texture(step, "clearcoat",
-                                     checked(map_of(flat, "gltf_clearcoat"), 0, step, width), 3, 8);
+        // The gltf preset: base colour sRGB-encoded, as glTF's baseColorTexture is; the
+        // data maps linear.
+        std::map<std::string, int> tex;
+        for (PresetMap& map : preset_maps("gltf", flat, 0, 0.0, colors))
+            tex[map.name] = texture(step, map.name, std::move(map.texels),
+                                    static_cast<int>(map.channels.size()), 8);
+        const int base_tex = tex.at("base_color"), mr_tex = tex.at("metallic_roughness"),
+                  normal_tex = tex.at("normal"), coat_tex = tex.at("clearcoat");
         json material = {
             {"name", fmt::format("{} {}", mesh_name, age_name(step.time_years))},
             {"pbrMetallicRoughness",
@@ -262,11 +341,7 @@ ExportResult export_patina(const fs::path& input, const fs::path& output,
     const int node = doc.add("nodes", {{"name", mesh_name}, {"mesh", mesh}});
     doc.add("scenes", {{"nodes", {node}}});
 
-    ExportResult result;
-    result.steps = steps.size();
     result.textures = texture_count;
-    result.width = width;
-    result.height = height;
     throw_if_cancelled();
     if (options.separate)
         result.files = doc.write_gltf(output);

@@ -16,6 +16,7 @@ namespace patina::texgen {
 
 struct ExportOptions {
     std::string preset = "gltf";  ///< the packing and naming of the maps (docs/export.md)
+    int bits = 0;  ///< texture presets: 8 or 16 (PNG), 32 (float EXR); 0: 8, the exr preset 32
     bool separate = false;        ///< .gltf with .bin and PNGs beside it, not one .glb
     int resolution = 0;           ///< texels per tile side; 0: the stack's
     double normal_scale = 1.0;    ///< height exaggeration of the normal map
@@ -32,7 +33,8 @@ struct ExportResult {
 };
 
 /// Exports the patina stack or series at `input` (a stack folder or its stack.toml, or a
-/// series folder holding series.toml) to `output` (.glb, or .gltf with `separate`).
+/// series folder holding series.toml) to `output`: a .glb (or .gltf with `separate`) for
+/// the gltf preset, a folder of textures for the others.
 /// Throws std::runtime_error naming the file or option for: an unknown preset, an output
 /// whose extension does not match, a stack made on a mesh (export takes strips), a series
 /// whose steps differ in resolution or tiles, a UDIM tile beyond 1099, a NaN texel; the

@@ -42,6 +42,9 @@ std::vector<unsigned char> encode_png(const float* pixels, int width, int height
     const OIIO::TypeDesc type = bits == 8 ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::UINT16;
     OIIO::ImageSpec spec(width, height, channels, type);
     spec.attribute("png:compressionLevel", 6);
+    // A fourth channel is data (a mask map's smoothness), not an alpha to premultiply by:
+    // the values are written as they are.
+    spec.attribute("oiio:UnassociatedAlpha", 1);
     out->set_ioproxy(&proxy);
     const void* data = bits == 8 ? static_cast<const void*>(narrow.data()) : wide.data();
     if (!out->open("memory.png", spec) || !out->write_image(type, data) || !out->close())

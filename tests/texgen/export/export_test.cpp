@@ -5,6 +5,7 @@
 
 #include "texgen/flatten/flatten_stack.h"
 #include "texgen/flatten/patina_stack_files.h"
+#include "core/image_io.h"
 #include "test_util.h"
 
 #include <OpenImageIO/imageio.h>
@@ -58,7 +59,10 @@ protected:
     /// A PNG's pixels in [0, 1], with its bits per channel.
     static std::vector<float> read_png(const fs::path& file, int* bits, int* channels)
     {
-        auto in = OIIO::ImageInput::open(file.string());
+        // The channels as stored: a fourth is data, not an alpha to premultiply by.
+        OIIO::ImageSpec config;
+        config.attribute("oiio:UnassociatedAlpha", 1);
+        auto in = OIIO::ImageInput::open(file.string(), &config);
         EXPECT_TRUE(in) << file;
         if (!in)
             return {};
@@ -169,13 +173,87 @@ TEST_F(Export, MapsReadBackAsTheFlattenedMapsEncodedForGltf)
     }
 }
 
+TEST_F(Export, PresetsPackTheFlattenedMapsAsDocumented)
+{
+    // Each engine preset read back (OIIO) against the maps flatten made, channel by channel:
+    // docs/export.md's tables.
+    const FlattenedStack f = flat("t30");
+    const size_t texels = static_cast<size_t>(f.width) * f.height;
+    const std::vector<float>& mr = map_of(f, "gltf_metallic_roughness").tiles[0];
+    const std::vector<float>& coat = map_of(f, "gltf_clearcoat").tiles[0];
+    const std::vector<float>& normal = map_of(f, "normal").tiles[0];
+    const std::vector<float>& height = map_of(f, "height").tiles[0];
+    const double q8 = 0.5 / 255 + 1e-6, q16 = 0.5 / 65535 + 1e-6;
+    auto expect_packed = [&](const fs::path& file, int want_bits, int want_channels,
+                             double tolerance, auto&& expected) {
+        int bits = 0, channels = 0;
+        const std::vector<float> px = read_png(file, &bits, &channels);
+        EXPECT_EQ(bits, want_bits) << file;
+        ASSERT_EQ(channels, want_channels) << file;
+        ASSERT_EQ(px.size(), texels * channels) << file;
+        double worst = 0.0;
+        for (size_t t = 0; t < texels; ++t)
+            for (int c = 0; c < channels; ++c)
+                worst = std::max(worst, std::abs(double(px[t * channels + c]) -
+                                                 std::clamp(double(expected(t, c)), 0.0, 1.0)));
+        EXPECT_LE(worst, tolerance) << file;
+    };
+
+    ExportOptions o;
+    o.preset = "unreal";
+    export_patina(dir_ / "rural" / "t30", dir_ / "unreal", o, library_, colors_);
+    // ORM: R occlusion, G roughness, B metallic; the normal DirectX (green down).
+    expect_packed(dir_ / "unreal" / "unreal_t30_OcclusionRoughnessMetallic.png", 8, 3, q8,
+                  [&](size_t t, int c) { return mr[t * 3 + c]; });
+    expect_packed(dir_ / "unreal" / "unreal_t30_Normal.png", 8, 3, q8, [&](size_t t, int c) {
+        return c == 1 ? 1.0f - normal[t * 3 + 1] : normal[t * 3 + c];
+    });
+    double top = 0.0;
+    for (float h : height)
+        top = std::max(top, double(h));
+    ASSERT_GT(top, 0.0);
+    expect_packed(dir_ / "unreal" / "unreal_t30_Height.png", 16, 1, q16,
+                  [&](size_t t, int) { return float(height[t] / top); });
+
+    o.preset = "unity-hdrp";
+    export_patina(dir_ / "rural" / "t30", dir_ / "unity", o, library_, colors_);
+    // Mask map: R metallic, G occlusion, B detail mask (1), A smoothness = 1 - roughness.
+    expect_packed(dir_ / "unity" / "unity_t30_MaskMap.png", 8, 4, q8, [&](size_t t, int c) {
+        return c == 0 ? mr[t * 3 + 2] : c == 1 ? mr[t * 3] : c == 2 ? 1.0f : 1.0f - mr[t * 3 + 1];
+    });
+    expect_packed(dir_ / "unity" / "unity_t30_CoatMask.png", 8, 1, q8,
+                  [&](size_t t, int) { return coat[t * 3]; });
+
+    o.preset = "exr";
+    export_patina(dir_ / "rural" / "t30", dir_ / "exr", o, library_, colors_);
+    // Linear float: the flattened values themselves; displacement in metres.
+    const ImageData base = read_image(dir_ / "exr" / "exr_t30_base_color.exr");
+    const std::vector<float>& flat_base = map_of(f, "gltf_base_color").tiles[0];
+    for (size_t t = 0; t < texels; t += 7)
+        EXPECT_EQ(base.at(int(t % f.width), int(t / f.width), base.channel("G")),
+                  flat_base[t * 3 + 1]);
+    const ImageData disp = read_image(dir_ / "exr" / "exr_t30_displacement.exr");
+    for (size_t t = 0; t < texels; t += 7)
+        EXPECT_FLOAT_EQ(disp.at(int(t % f.width), int(t / f.width), 0), height[t] * 1e-6f);
+}
+
 TEST_F(Export, BadInputsNameTheOptionOrFile)
 {
     ExportOptions o;
     o.preset = "maya";
     std::string m = test::message_of(
         [&] { export_patina(dir_ / "rural", dir_ / "x.glb", o, library_, colors_); });
-    EXPECT_NE(m.find("--preset 'maya'"), std::string::npos) << m;
+    EXPECT_NE(m.find("--preset 'maya': expected one of gltf, unreal, unity-hdrp, exr"),
+              std::string::npos) << m;
+    o.preset = "unreal";
+    o.bits = 12;
+    m = test::message_of(
+        [&] { export_patina(dir_ / "rural", dir_ / "x", o, library_, colors_); });
+    EXPECT_NE(m.find("--bits 12"), std::string::npos) << m;
+    o.bits = 8;
+    m = test::message_of(
+        [&] { export_patina(dir_ / "rural", dir_ / "x.glb", o, library_, colors_); });
+    EXPECT_NE(m.find("writes a folder of textures"), std::string::npos) << m;
     m = test::message_of(
         [&] { export_patina(dir_ / "rural", dir_ / "x.gltf", {}, library_, colors_); });
     EXPECT_NE(m.find("a binary glTF file"), std::string::npos) << m;
