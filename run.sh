@@ -15,7 +15,7 @@ echo "wrote out/basic.exr (scene-linear ACEScg, with albedo, normal and depth AO
 samples/bake/bake.sh "$build"
 echo "wrote out/bake/maps/ (texture stack + stack.toml) and out/bake.png (the maps on four statues)"
 samples/copper_strips/strips.sh "$build"
-echo "wrote out/copper_strips/ (patina stacks of the three §5.1 strips, 0-30 years) and out/copper_strips.png (rendered with layered_km, laid out as figure 8)"
+echo "wrote out/copper_strips/ (patina stacks of the three §5.1 strips, 0-30 years), out/copper_strips.png (rendered with layered_km, laid out as figure 8) and out/export/*_strip.glb (each series as glTF, a variant per age)"
 samples/fading/fading.sh "$build"
 echo "wrote out/fading/ (fade stacks, reflectance plots like figures 9-13) and out/fading/{newspaper,board,cmy}.png"
 SPP="${STONE_SPP:-32}" samples/stone/stone.sh "$build"

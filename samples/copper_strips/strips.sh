@@ -10,6 +10,7 @@
 #   out/copper_strips.png                         the contact sheet: rows marine, rural,
 #                                                 urban; columns 0, 6, ..., 30 years
 #   out/copper_strips_preview.png                 the same layout from the KM previews
+#   out/export/<marine|rural|urban>_strip.glb     each series as glTF 2.0, a variant per age
 # Environment: STRIPS_SIZE (pixels per cell, default 192), STRIPS_SPP (default 16).
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
@@ -33,6 +34,12 @@ for env in "${envs[@]}"; do
 done
 oiiotool "${previews[@]}" --mosaic:pad=8 6x3 -o "$root/out/copper_strips_preview.png"
 echo "copper_strips: stacks in $((SECONDS - start)) s" >&2
+
+# Each strip's series as one glTF asset, a material variant per age (docs/export.md).
+mkdir -p "$root/out/export"
+for env in "${envs[@]}"; do
+  "$texgen" export "$out/$env" -o "$root/out/export/${env}_strip.glb" --quiet
+done
 
 # 2. One scene per cell, rendered as frames 1-18 of one patina-render run.
 mkdir -p "$out/render"

@@ -12,6 +12,7 @@
 #include "core/output_transaction.h"
 
 #include <fmt/format.h>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
@@ -101,6 +102,19 @@ namespace {
                                 gltf::kUnsignedInt, 6, "SCALAR");
     }
 
+    /// The PNG files of `maps`, encoded in parallel (each at max(bits, its min_bits)).
+    std::vector<std::vector<unsigned char>> encode_all(const std::vector<PresetMap>& maps,
+                                                       int width, int height, int bits)
+    {
+        std::vector<std::vector<unsigned char>> pngs(maps.size());
+        tbb::parallel_for(size_t(0), maps.size(), [&](size_t i) {
+            pngs[i] = encode_png(maps[i].texels.data(), width, height,
+                                 static_cast<int>(maps[i].channels.size()),
+                                 std::max(bits, maps[i].min_bits));
+        });
+        return pngs;
+    }
+
     /// Every texel of every flattened map finite, or an error naming the stack, the map and
     /// the texel.
     void check_finite(const Step& step)
@@ -143,9 +157,14 @@ namespace {
             const FlattenedStack& flat = step.flat;
             for (size_t tile = 0; tile < flat.udims.size(); ++tile) {
                 throw_if_cancelled();
-                for (const PresetMap& map :
-                     preset_maps(options.preset, flat, tile, range, colors)) {
-                    const bool exr = options.bits == 32 || options.preset == "exr";
+                const std::vector<PresetMap> maps =
+                    preset_maps(options.preset, flat, tile, range, colors);
+                const bool exr = options.bits == 32 || options.preset == "exr";
+                const std::vector<std::vector<unsigned char>> pngs =
+                    exr ? std::vector<std::vector<unsigned char>>()
+                        : encode_all(maps, flat.width, flat.height, options.bits);
+                for (size_t m = 0; m < maps.size(); ++m) {
+                    const PresetMap& map = maps[m];
                     std::string name = expand(options.name_template, mesh, step.label, map.name,
                                               flat.udims[tile], flat.udims.size() > 1);
                     const int channels = static_cast<int>(map.channels.size());
@@ -163,12 +182,9 @@ namespace {
                                                               : OIIO::TypeDesc::FLOAT,
                                            meta);
                     } else {
-                        const std::vector<unsigned char> png =
-                            encode_png(map.texels.data(), flat.width, flat.height, channels,
-                                       std::max(options.bits, map.min_bits));
                         write_file_atomic(dir / name,
-                                          {std::string_view(reinterpret_cast<const char*>(png.data()),
-                                                            png.size())},
+                                          {std::string_view(reinterpret_cast<const char*>(pngs[m].data()),
+                                                            pngs[m].size())},
                                           "texture");
                     }
                     written.push_back(dir / name);
@@ -223,6 +239,8 @@ ExportResult export_patina(const fs::path& input, const fs::path& output,
     FlattenOptions flatten;
     flatten.resolution = options.resolution;
     flatten.normal_scale = options.normal_scale;
+    flatten.only = {"gltf_base_color", "gltf_metallic_roughness", "gltf_clearcoat", "normal",
+                    "height"};
     for (Step& step : steps) {
         throw_if_cancelled();
         if (!(step.stack.strip_size_m > 0.0))
@@ -272,9 +290,7 @@ ExportResult export_patina(const fs::path& input, const fs::path& output,
     // One texture per map and step, identical ones shared (a clearcoat of zeros).
     std::map<std::string, int> textures_by_bytes;  // the PNG's bytes -> its texture
     size_t texture_count = 0;
-    auto texture = [&](const Step& step, const std::string& map, std::vector<float> pixels,
-                       int channels, int bits) {
-        std::vector<unsigned char> png = encode_png(pixels.data(), width, height, channels, bits);
+    auto texture = [&](const Step& step, const std::string& map, std::vector<unsigned char> png) {
         std::string key(png.begin(), png.end());
         const auto found = textures_by_bytes.find(key);
         if (found != textures_by_bytes.end())
@@ -296,9 +312,10 @@ ExportResult export_patina(const fs::path& input, const fs::path& output,
         // The gltf preset: base colour sRGB-encoded, as glTF's baseColorTexture is; the
         // data maps linear.
         std::map<std::string, int> tex;
-        for (PresetMap& map : preset_maps("gltf", flat, 0, 0.0, colors))
-            tex[map.name] = texture(step, map.name, std::move(map.texels),
-                                    static_cast<int>(map.channels.size()), 8);
+        const std::vector<PresetMap> maps = preset_maps("gltf", flat, 0, 0.0, colors);
+        std::vector<std::vector<unsigned char>> pngs = encode_all(maps, width, height, 8);
+        for (size_t m = 0; m < maps.size(); ++m)
+            tex[maps[m].name] = texture(step, maps[m].name, std::move(pngs[m]));
         const int base_tex = tex.at("base_color"), mr_tex = tex.at("metallic_roughness"),
                   normal_tex = tex.at("normal"), coat_tex = tex.at("clearcoat");
         json material = {

@@ -41,7 +41,10 @@ std::vector<unsigned char> encode_png(const float* pixels, int width, int height
         throw std::runtime_error("cannot encode PNG: " + OIIO::geterror());
     const OIIO::TypeDesc type = bits == 8 ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::UINT16;
     OIIO::ImageSpec spec(width, height, channels, type);
-    spec.attribute("png:compressionLevel", 6);
+    // zlib level 3: on the urban series at 2048² (bench/export_vs_grow.sh) 7 % larger than
+    // level 6 (99.6 against 93.2 MB) and 20-35 % less export time; level 1 is larger still
+    // and no faster.
+    spec.attribute("png:compressionLevel", 3);
     // A fourth channel is data (a mask map's smoothness), not an alpha to premultiply by:
     // the values are written as they are.
     spec.attribute("oiio:UnassociatedAlpha", 1);

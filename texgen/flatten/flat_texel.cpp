@@ -1,6 +1,6 @@
 #include "texgen/flatten/flat_texel.h"
 
-#include "core/kubelka_munk.h"
+#include <patina/shading/kubelka_munk.h>
 
 #include <algorithm>
 #include <cmath>
@@ -19,36 +19,40 @@ FlatTexel flatten_texel(const PatinaMaterial& base, std::span<const PatinaMateri
     for (size_t i = 0; i < n; ++i)
         out.height_um += thickness_um[i];
 
-    // The layers top to bottom (the order km_composite_stack takes), per channel.
-    std::vector<KmLayer> top_to_bottom(n);
+    // Per channel, one pass from the top down (§4.2, patina/shading/kubelka_munk.h): the
+    // layers above each interface as one composite, its reflectance from both sides and its
+    // transmittance, so that interface k's attenuation and, at the end, the diffuse over the
+    // base both come from the same composites, in O(n).
+    std::vector<double> t_above(n + 1);
     for (int c = 0; c < 3; ++c) {
-        // KM R and T of every layer at this thickness (§4.1).
-        for (size_t i = 0; i < n; ++i)
-            top_to_bottom[n - 1 - i] =
-                thickness_um[i] > 0.0f ? km_layer(layers[i]->absorption[c],
-                                                  layers[i]->scattering[c], thickness_um[i])
-                                       : KmLayer{0.0f, 1.0f};
-        const std::span<const KmLayer> stack(top_to_bottom);
-        // Interface k lies under the n - k layers above it: the first n - k of top_to_bottom,
-        // composited into one (§4.2: "sequentially combining two layers into a single layer").
+        shading::KmLayers<double> above;  // nothing above the top interface
+        t_above[n] = above.t;
+        for (size_t k = n; k-- > 0;) {
+            // KM R and T of layer k at its thickness (§4.1), added under the layers above.
+            const shading::KmLayers<double> layer =
+                thickness_um[k] > 0.0f
+                    ? shading::km_layer(layers[k]->absorption[c], layers[k]->scattering[c],
+                                        thickness_um[k])
+                    : shading::KmLayers<double>{};
+            above = shading::km_composite(above, layer);
+            t_above[k] = above.t;
+        }
         for (size_t k = 0; k <= n; ++k) {
             const float fade =
                 k == 0 ? 1.0f : std::clamp(thickness_um[k - 1] / kInterfaceFadeUm, 0.0f, 1.0f);
             const PatinaMaterial& below = k == 0 ? base : *layers[k - 1];
-            const KmLayer above = km_composite_stack(stack.first(n - k));
             // §4.3: the specular colour "multiplied twice by diffuse transmittance of the
             // intervening layers calculated using the KM equations".
-            out.interfaces[k].specular[c] = fade * below.specular[c] * above.T * above.T;
+            out.interfaces[k].specular[c] =
+                fade * below.specular[c] * static_cast<float>(t_above[k] * t_above[k]);
             out.interfaces[k].roughness = below.roughness;
         }
-        // Diffuse: the stack over the opaque base (§4.2, the base a layer with T = 0).
-        float diffuse = km_reflectance_over(stack, base.color[c]);
-        if (base.is_metal) {
-            // The metal's own once-through reflection is the base lobe (interface 0).
-            const KmLayer all = km_composite_stack(stack);
-            diffuse = std::max(0.0f, diffuse - all.T * all.T * base.color[c]);
-        }
-        out.diffuse[c] = diffuse;
+        // Diffuse: the whole stack over the opaque base (§4.2, the base a layer with T = 0).
+        const double rho = base.color[c];
+        double diffuse = shading::km_reflectance_over(above, rho);
+        if (base.is_metal)  // the metal's own once-through reflection is the base lobe
+            diffuse = std::max(0.0, diffuse - above.t * above.t * rho);
+        out.diffuse[c] = static_cast<float>(diffuse);
     }
 
     int top = 0;

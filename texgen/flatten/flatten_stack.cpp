@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <map>
@@ -213,7 +214,13 @@ FlattenedStack flatten_stack(const PatinaStackFiles& stack,
                                           flat.height);
         }
         for (FlatMap& map : flat.maps)
-            map.tiles[tile].assign(texels * map.channels.size(), 0.0f);
+            if (options.only.empty() ||
+                std::find(options.only.begin(), options.only.end(), map.name) !=
+                    options.only.end() ||
+                (map.name == "height" &&  // the normal map is made from it
+                 std::find(options.only.begin(), options.only.end(), "normal") !=
+                     options.only.end()))
+                map.tiles[tile].assign(texels * map.channels.size(), 0.0f);
 
         tbb::parallel_for(tbb::blocked_range<size_t>(0, texels, 1024),
                           [&](const tbb::blocked_range<size_t>& range) {
@@ -224,12 +231,19 @@ FlattenedStack flatten_stack(const PatinaStackFiles& stack,
                 const FlatTexel f = flatten_texel(base, layer_materials, d);
                 size_t m = 0;
                 auto put3 = [&](const Imath::V3f& v) {
-                    float* p = &flat.maps[m++].tiles[tile][t * 3];
+                    std::vector<float>& texels_of = flat.maps[m++].tiles[tile];
+                    if (texels_of.empty())
+                        return;  // a map not asked for
+                    float* p = &texels_of[t * 3];
                     p[0] = v.x;
                     p[1] = v.y;
                     p[2] = v.z;
                 };
-                auto put1 = [&](float v) { flat.maps[m++].tiles[tile][t] = v; };
+                auto put1 = [&](float v) {
+                    std::vector<float>& texels_of = flat.maps[m++].tiles[tile];
+                    if (!texels_of.empty())
+                        texels_of[t] = v;
+                };
                 put3(f.diffuse);
                 for (const InterfaceLobe& lobe : f.interfaces) {
                     put3(lobe.specular);
@@ -243,9 +257,11 @@ FlattenedStack flatten_stack(const PatinaStackFiles& stack,
             }
         });
         const size_t height_map = 1 + 2 * (n + 1);
-        flat.maps[height_map + 1].tiles[tile] =
-            normal_map_from_height(flat.maps[height_map].tiles[tile], flat.width, flat.height,
-                                   flat.texel_size_m * 1e6, options.normal_scale);
+        if (!flat.maps[height_map + 1].tiles[tile].empty())
+            flat.maps[height_map + 1].tiles[tile] =
+                normal_map_from_height(flat.maps[height_map].tiles[tile], flat.width,
+                                       flat.height, flat.texel_size_m * 1e6,
+                                       options.normal_scale);
     }
     return flat;
 }

@@ -20,6 +20,10 @@ struct FlattenOptions {
     bool half = false;           ///< half-float EXRs
     double texel_size_m = 0.0;   ///< world size of a texel; 0: from a strip's strip_size_m
     double normal_scale = 1.0;   ///< height exaggeration of the normal map (1: true relief)
+    /// The maps to fill (by name; "normal" fills "height" too, which it is made from);
+    /// empty: all. The others are listed with no texels, and their memory is never touched
+    /// (export needs the glTF maps, normal and height only).
+    std::vector<std::string> only;
 };
 
 /// One flattened map in memory: what it holds and its values per tile (texel-major,
