@@ -33,7 +33,8 @@ namespace {
         double time_years = 0.0;
         std::string label;  ///< "t30": the step's folder, or "stack" for a lone stack
         PatinaStackFiles stack;
-        FlattenedStack flat;
+        FlattenedStack flat;  ///< for the gltf preset, its maps are dropped once encoded
+        std::vector<std::pair<std::string, std::vector<unsigned char>>> pngs;  ///< gltf: $map, PNG
     };
 
     std::string expand(std::string pattern, const std::string& mesh, const std::string& material,
@@ -241,15 +242,37 @@ ExportResult export_patina(const fs::path& input, const fs::path& output,
     flatten.normal_scale = options.normal_scale;
     flatten.only = {"gltf_base_color", "gltf_metallic_roughness", "gltf_clearcoat", "normal",
                     "height"};
+    // Each step flattened (and, for glTF, encoded) in parallel with the others; the first
+    // failure in step order is reported, whatever the threads' order.
+    std::vector<std::exception_ptr> failures(steps.size());
+    tbb::parallel_for(size_t(0), steps.size(), [&](size_t k) {
+        Step& step = steps[k];
+        try {
+            throw_if_cancelled();
+            if (!(step.stack.strip_size_m > 0.0))
+                throw std::runtime_error(fmt::format(
+                    "export of '{}': the stack was made on a mesh; export takes strips "
+                    "(flatten the stack and wire its maps to the mesh)",
+                    step.stack.manifest.string()));
+            step.flat = flatten_stack(
+                step.stack, resolve_stack_materials(step.stack, library, colors), flatten);
+            check_finite(step);
+            if (!textures && step.flat.udims.size() == 1) {
+                const std::vector<PresetMap> maps = preset_maps("gltf", step.flat, 0, 0.0, colors);
+                std::vector<std::vector<unsigned char>> pngs =
+                    encode_all(maps, step.flat.width, step.flat.height, 8);
+                for (size_t m = 0; m < maps.size(); ++m)
+                    step.pngs.emplace_back(maps[m].name, std::move(pngs[m]));
+                step.flat.maps.clear();  // encoded: the memory goes back
+            }
+        } catch (...) {
+            failures[k] = std::current_exception();
+        }
+    });
+    for (const std::exception_ptr& failure : failures)
+        if (failure)
+            std::rethrow_exception(failure);
     for (Step& step : steps) {
-        throw_if_cancelled();
-        if (!(step.stack.strip_size_m > 0.0))
-            throw std::runtime_error(fmt::format(
-                "export of '{}': the stack was made on a mesh; export takes strips (flatten "
-                "the stack and wire its maps to the mesh)", step.stack.manifest.string()));
-        step.flat = flatten_stack(step.stack, resolve_stack_materials(step.stack, library, colors),
-                                  flatten);
-        check_finite(step);
         const Step& first = steps.front();
         if (step.flat.width != first.flat.width || step.flat.height != first.flat.height ||
             step.flat.udims != first.flat.udims || step.stack.strip_size_m != first.stack.strip_size_m)
@@ -308,14 +331,11 @@ ExportResult export_patina(const fs::path& input, const fs::path& output,
     std::vector<int> materials;
     for (const Step& step : steps) {
         throw_if_cancelled();
-        const FlattenedStack& flat = step.flat;
         // The gltf preset: base colour sRGB-encoded, as glTF's baseColorTexture is; the
         // data maps linear.
         std::map<std::string, int> tex;
-        const std::vector<PresetMap> maps = preset_maps("gltf", flat, 0, 0.0, colors);
-        std::vector<std::vector<unsigned char>> pngs = encode_all(maps, width, height, 8);
-        for (size_t m = 0; m < maps.size(); ++m)
-            tex[maps[m].name] = texture(step, maps[m].name, std::move(pngs[m]));
+        for (const auto& [map, png] : step.pngs)
+            tex[map] = texture(step, map, png);
         const int base_tex = tex.at("base_color"), mr_tex = tex.at("metallic_roughness"),
                   normal_tex = tex.at("normal"), coat_tex = tex.at("clearcoat");
         json material = {

@@ -19,41 +19,41 @@ FlatTexel flatten_texel(const PatinaMaterial& base, std::span<const PatinaMateri
     for (size_t i = 0; i < n; ++i)
         out.height_um += thickness_um[i];
 
-    // Per channel, one pass from the top down (§4.2, patina/shading/kubelka_munk.h): the
-    // layers above each interface as one composite, its reflectance from both sides and its
-    // transmittance, so that interface k's attenuation and, at the end, the diffuse over the
-    // base both come from the same composites, in O(n).
-    std::vector<double> t_above(n + 1);
-    for (int c = 0; c < 3; ++c) {
-        shading::KmLayers<double> above;  // nothing above the top interface
-        t_above[n] = above.t;
-        for (size_t k = n; k-- > 0;) {
-            // KM R and T of layer k at its thickness (§4.1), added under the layers above.
-            const shading::KmLayers<double> layer =
-                thickness_um[k] > 0.0f
-                    ? shading::km_layer(layers[k]->absorption[c], layers[k]->scattering[c],
-                                        thickness_um[k])
-                    : shading::KmLayers<double>{};
-            above = shading::km_composite(above, layer);
-            t_above[k] = above.t;
-        }
-        for (size_t k = 0; k <= n; ++k) {
-            const float fade =
-                k == 0 ? 1.0f : std::clamp(thickness_um[k - 1] / kInterfaceFadeUm, 0.0f, 1.0f);
-            const PatinaMaterial& below = k == 0 ? base : *layers[k - 1];
-            // §4.3: the specular colour "multiplied twice by diffuse transmittance of the
-            // intervening layers calculated using the KM equations".
-            out.interfaces[k].specular[c] =
-                fade * below.specular[c] * static_cast<float>(t_above[k] * t_above[k]);
-            out.interfaces[k].roughness = below.roughness;
-        }
-        // Diffuse: the whole stack over the opaque base (§4.2, the base a layer with T = 0).
-        const double rho = base.color[c];
-        double diffuse = shading::km_reflectance_over(above, rho);
-        if (base.is_metal)  // the metal's own once-through reflection is the base lobe
-            diffuse = std::max(0.0, diffuse - above.t * above.t * rho);
-        out.diffuse[c] = static_cast<float>(diffuse);
+    // One pass from the top down, the three channels in the lanes of one register (§4.2,
+    // patina/shading/kubelka_munk.h): the layers above each interface as one composite,
+    // its reflectance from both sides and its transmittance, so that interface k's
+    // attenuation and, at the end, the diffuse over the base both come from the same
+    // composites, in O(n).
+    using shading::simd::V4;
+    auto lanes = [](const Imath::V3f& v) { return V4{v.x, v.y, v.z, 0.0f}; };
+    std::vector<V4> t_above(n + 1);
+    shading::KmLayers<V4> above;  // nothing above the top interface
+    t_above[n] = above.t;
+    for (size_t k = n; k-- > 0;) {
+        // KM R and T of layer k at its thickness (§4.1), added under the layers above.
+        const shading::KmLayers<V4> layer = shading::km_layer4(
+            lanes(layers[k]->absorption), lanes(layers[k]->scattering), thickness_um[k]);
+        above = shading::km_composite(above, layer);
+        t_above[k] = above.t;
     }
+    for (size_t k = 0; k <= n; ++k) {
+        const float fade =
+            k == 0 ? 1.0f : std::clamp(thickness_um[k - 1] / kInterfaceFadeUm, 0.0f, 1.0f);
+        const PatinaMaterial& below = k == 0 ? base : *layers[k - 1];
+        // §4.3: the specular colour "multiplied twice by diffuse transmittance of the
+        // intervening layers calculated using the KM equations".
+        const V4 attenuation = t_above[k] * t_above[k];
+        for (int c = 0; c < 3; ++c)
+            out.interfaces[k].specular[c] = fade * below.specular[c] * attenuation[c];
+        out.interfaces[k].roughness = below.roughness;
+    }
+    // Diffuse: the whole stack over the opaque base (§4.2, the base a layer with T = 0).
+    const V4 rho = lanes(base.color);
+    V4 diffuse = shading::km_reflectance_over(above, rho);
+    if (base.is_metal)  // the metal's own once-through reflection is the base lobe
+        diffuse = diffuse - above.t * above.t * rho;
+    for (int c = 0; c < 3; ++c)
+        out.diffuse[c] = std::max(0.0f, diffuse[c]);
 
     int top = 0;
     for (size_t i = n; i > 0; --i)

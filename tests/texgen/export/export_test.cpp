@@ -9,6 +9,7 @@
 #include "test_util.h"
 
 #include <OpenImageIO/imageio.h>
+#include <tbb/global_control.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -235,6 +236,24 @@ TEST_F(Export, PresetsPackTheFlattenedMapsAsDocumented)
     const ImageData disp = read_image(dir_ / "exr" / "exr_t30_displacement.exr");
     for (size_t t = 0; t < texels; t += 7)
         EXPECT_FLOAT_EQ(disp.at(int(t % f.width), int(t / f.width), 0), height[t] * 1e-6f);
+}
+
+TEST_F(Export, SameBytesWithAnyThreadCount)
+{
+    // Steps are flattened and their maps encoded in parallel; the asset must not depend on
+    // the threads' order.
+    fs::create_directories(dir_ / "one_thread");
+    fs::create_directories(dir_ / "threads");
+    {
+        tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
+        export_patina(dir_ / "rural", dir_ / "one_thread" / "a.glb", {}, library_, colors_);
+    }
+    export_patina(dir_ / "rural", dir_ / "threads" / "a.glb", {}, library_, colors_);
+    auto bytes = [](const fs::path& f) {
+        std::ifstream in(f, std::ios::binary);
+        return std::string((std::istreambuf_iterator<char>(in)), {});
+    };
+    EXPECT_EQ(bytes(dir_ / "one_thread" / "a.glb"), bytes(dir_ / "threads" / "a.glb"));
 }
 
 TEST_F(Export, BadInputsNameTheOptionOrFile)
