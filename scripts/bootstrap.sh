@@ -12,6 +12,7 @@ packages=(
   libembree-dev libtbb-dev libassimp-dev
   libgtest-dev libgmock-dev libbenchmark-dev embree-tools
   libcli11-dev libfmt-dev libspdlog-dev libtomlplusplus-dev nlohmann-json3-dev
+  libopenvdb-dev libboost-dev
   colord-data fonts-dejavu-core
   blender python3-numpy
 )

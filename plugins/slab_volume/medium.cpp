@@ -60,6 +60,7 @@
 #include <patina/volume/majorant_grid.h>
 #include <patina/volume/medium_phase.h>
 #include <patina/volume/schlick_phase.h>
+#include <patina/volume/stone_albedo.h>
 #include <patina/volume/tracking.h>
 
 #include <cmath>
@@ -201,22 +202,13 @@ namespace {
     /// The single-scattering albedo at x from the voxels' composition (see the top).
     SpectralArray albedo_at(const SlabVolume& m, Vec3 x, const PatinaWavelengths& wl)
     {
-        float density = 0.0f, q[volume::kCompositionCount] = {};
+        float density = 0.0f, q[volume::kCompositionCount] = {}, w[4];
         m.grid.sample(x, &density, q);
-        float sum = 0.0f;
-        for (int c = 0; c < volume::kCompositionCount; ++c) {
-            q[c] = std::clamp(q[c] * m.gain[c], 0.0f, 1.0f);
-            sum += q[c];
-        }
-        if (sum > 1.0f) {
-            for (float& f : q)
-                f /= sum;
-            sum = 1.0f;
-        }
-        SpectralArray a = eval_rgb(m.albedo[0], wl) * (1.0f - sum);
-        a += eval_rgb(m.albedo[1], wl) * q[volume::kCrust];
-        a += eval_rgb(m.albedo[2], wl) * q[volume::kIron];
-        a += eval_rgb(m.albedo[3], wl) * q[volume::kSalt];
+        volume::albedo_weights(q, m.gain, w);
+        SpectralArray a = eval_rgb(m.albedo[0], wl) * w[0];
+        a += eval_rgb(m.albedo[1], wl) * w[1];
+        a += eval_rgb(m.albedo[2], wl) * w[2];
+        a += eval_rgb(m.albedo[3], wl) * w[3];
         return a;
     }
 

@@ -4,6 +4,7 @@
 
 #include "core/color_management.h"
 #include "texgen/export/export_patina.h"
+#include "texgen/export/vdb_export.h"
 #include "texgen/patina/material_library.h"
 
 #include <chrono>
@@ -28,6 +29,17 @@ void run_export(const ExportCommandOptions& o)
 {
     const auto start = std::chrono::steady_clock::now();
     const ColorManager colors(ColorManager::default_config_path());
+    if (o.output.extension() == ".vdb") {
+        // A stone run's volumes as OpenVDB, one file per step.
+        const std::vector<fs::path> files = export_stone_vdb(o.input, o.output, {}, colors);
+        if (!o.quiet)
+            std::fprintf(stderr, "export: %s, %zu stone volume(s) -> %s%s (%.2f s)\n",
+                         o.input.string().c_str(), files.size(), files.front().string().c_str(),
+                         files.size() > 1 ? " ..." : "",
+                         std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
+                             .count());
+        return;
+    }
     const MaterialLibrary library = MaterialLibrary::load_default(o.materials, colors);
     const ExportResult r = export_patina(o.input, o.output, o.exporting, library, colors);
     if (!o.quiet) {
@@ -50,7 +62,8 @@ void register_export_command(CLI::App& app)
                   "maps, one material variant per step named by age; or as textures packed "
                   "for Unreal, Unity HDRP or look files (--preset)");
     cmd->add_option("input", o->input, "a stack folder or its stack.toml, or a time-series "
-                                       "folder (series.toml) written by `patina-texgen patina`")
+                                       "folder (series.toml) written by `patina-texgen patina`; "
+                                       "with -o X.vdb a `patina-texgen stone` output folder")
         ->required();
     cmd->add_option("-o,--out", o->output,
                     "the .glb (or .gltf with --separate) to write; a folder for the texture "

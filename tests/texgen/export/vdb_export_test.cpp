@@ -1,0 +1,99 @@
+// Stone volumes exported as OpenVDB (texgen/export/vdb_export.h), read back with OpenVDB
+// itself: the grids renderers expect by name and class, the voxels where the volume.exr has
+// them, density as the extinction sigma_t x density, colour as the medium's albedo mix, and
+// a step series as frame-numbered files.
+#include "texgen/export/vdb_export.h"
+
+#include "texgen/stone/volume_export.h"
+#include "test_util.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <openvdb/openvdb.h>
+
+namespace patina::texgen {
+namespace {
+
+namespace fs = std::filesystem;
+
+stone::WorldVolume small_volume()
+{
+    stone::WorldVolume v;
+    v.nx = 4;
+    v.ny = 3;
+    v.nz = 2;
+    v.bounds = Imath::Box3d(Imath::V3d(-0.2, 0.0, -0.1), Imath::V3d(0.2, 0.3, 0.1));
+    const size_t n = 4 * 3 * 2;
+    v.density.assign(n, 0.0f);
+    v.crust.assign(n, 0.0f);
+    v.iron.assign(n, 0.0f);
+    v.salt.assign(n, 0.0f);
+    v.density[v.index(1, 2, 1)] = 0.5f;
+    v.crust[v.index(1, 2, 1)] = 0.25f;
+    v.iron[v.index(1, 2, 1)] = 0.125f;
+    v.density[v.index(3, 0, 0)] = 1.0f;
+    return v;
+}
+
+TEST(VdbExport, GridsHoldTheVolumeAsRenderersReadIt)
+{
+    const fs::path dir = fs::path(PATINA_TEST_BUILD_DIR) / "vdb_export_test";
+    fs::remove_all(dir);
+    for (const char* step : {"cycle_0000", "cycle_0030"}) {
+        fs::create_directories(dir / "run" / step);
+        stone::write_world_volume(dir / "run" / step / "volume.exr", small_volume());
+    }
+    const ColorManager colors(fs::path(PATINA_SOURCE_DIR) / "ocio/config.ocio");
+    const VdbOptions options;
+    const std::vector<fs::path> files =
+        export_stone_vdb(dir / "run", dir / "out" / "block.vdb", options, colors);
+    ASSERT_EQ(files.size(), 2u);
+    EXPECT_EQ(files[1], dir / "out" / "block.0030.vdb");  // frame = the step's cycle
+
+    openvdb::initialize();
+    openvdb::io::File file(files[1].string());
+    file.open();
+    std::vector<std::string> names;
+    for (auto it = file.beginName(); it != file.endName(); ++it)
+        names.push_back(it.gridName());
+    std::sort(names.begin(), names.end());
+    EXPECT_EQ(names, (std::vector<std::string>{"color", "crust", "density", "iron", "salt"}));
+    auto density = openvdb::gridPtrCast<openvdb::FloatGrid>(file.readGrid("density"));
+    auto color = openvdb::gridPtrCast<openvdb::Vec3SGrid>(file.readGrid("color"));
+    auto crust = openvdb::gridPtrCast<openvdb::FloatGrid>(file.readGrid("crust"));
+    file.close();
+    ASSERT_TRUE(density && color && crust);
+    EXPECT_EQ(density->getGridClass(), openvdb::GRID_FOG_VOLUME);
+    EXPECT_EQ(density->activeVoxelCount(), 2u);  // only where there is stone
+    // 0.1 m voxels (the volume.exr keeps its bounds as floats); voxel (i, j, k) centred at
+    // min + (i + 1/2, j + 1/2, k + 1/2) h.
+    EXPECT_NEAR(density->voxelSize()[0], 0.1, 1e-7);
+    const openvdb::Vec3d centre = density->indexToWorld(openvdb::Coord(1, 2, 1));
+    EXPECT_NEAR(centre[0], -0.05, 1e-7);
+    EXPECT_NEAR(centre[1], 0.25, 1e-7);
+    EXPECT_NEAR(centre[2], 0.05, 1e-7);
+    // Extinction sigma_t x density (1/m), the fractions as they are.
+    EXPECT_FLOAT_EQ(density->tree().getValue(openvdb::Coord(1, 2, 1)), 0.5f * 200.0f);
+    EXPECT_FLOAT_EQ(density->tree().getValue(openvdb::Coord(3, 0, 0)), 200.0f);
+    EXPECT_FLOAT_EQ(density->tree().getValue(openvdb::Coord(0, 0, 0)), 0.0f);
+    EXPECT_FLOAT_EQ(crust->tree().getValue(openvdb::Coord(1, 2, 1)), 0.25f);
+    // The albedo mix (patina/volume/stone_albedo.h): 5/8 stone, 1/4 crust, 1/8 iron, in
+    // linear Rec.709 (the defaults are in the working space).
+    float albedo[4][3];
+    for (int m = 0; m < 4; ++m) {
+        std::copy(options.albedo[m], options.albedo[m] + 3, albedo[m]);
+        colors.convert(colors.working_space(), "lin_rec709", albedo[m], 1);
+    }
+    const openvdb::Vec3s mixed = color->tree().getValue(openvdb::Coord(1, 2, 1));
+    for (int c = 0; c < 3; ++c)
+        EXPECT_NEAR(mixed[c], 0.625f * albedo[0][c] + 0.25f * albedo[1][c] + 0.125f * albedo[2][c],
+                    1e-6);
+
+    const std::string m = test::message_of(
+        [&] { export_stone_vdb(dir / "out", dir / "none.vdb", options, colors); });
+    EXPECT_NE(m.find("no stone volume"), std::string::npos) << m;
+}
+
+}  // namespace
+}  // namespace patina::texgen

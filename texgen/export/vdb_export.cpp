@@ -1,0 +1,137 @@
+#include "texgen/export/vdb_export.h"
+
+#include "core/cancel.h"
+#include "core/output_transaction.h"
+#include "texgen/stone/volume_export.h"
+
+#include <patina/volume/stone_albedo.h>
+
+#include <fmt/format.h>
+#include <openvdb/openvdb.h>
+
+#include <algorithm>
+#include <optional>
+#include <regex>
+#include <stdexcept>
+
+namespace patina::texgen {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+    /// The volume.exr files of `input` with their frame numbers (cycles), in order.
+    std::vector<std::pair<int, fs::path>> volumes_of(const fs::path& input)
+    {
+        std::error_code ec;
+        std::vector<std::pair<int, fs::path>> out;
+        if (fs::is_regular_file(input / "volume.exr", ec))
+            return {{-1, input / "volume.exr"}};
+        const std::regex step("cycle_([0-9]+)");
+        for (const fs::directory_entry& e : fs::directory_iterator(input, ec)) {
+            std::smatch m;
+            const std::string name = e.path().filename().string();
+            if (e.is_directory() && std::regex_match(name, m, step) &&
+                fs::is_regular_file(e.path() / "volume.exr", ec))
+                out.emplace_back(std::stoi(m[1]), e.path() / "volume.exr");
+        }
+        std::sort(out.begin(), out.end());
+        if (out.empty())
+            throw std::runtime_error(fmt::format(
+                "export of '{}': no stone volume (volume.exr, or cycle_NNNN folders holding "
+                "one) written by patina-texgen stone",
+                input.string()));
+        return out;
+    }
+
+    void write_vdb(const fs::path& path, const stone::WorldVolume& v, const VdbOptions& o,
+                   const float albedo_rec709[4][3])
+    {
+        const double h = (v.bounds.max.x - v.bounds.min.x) / v.nx;  // cubic voxels
+        // Index (i, j, k) is the voxel centred at min + (i + 1/2, j + 1/2, k + 1/2) h.
+        openvdb::math::Transform::Ptr xform = openvdb::math::Transform::createLinearTransform(h);
+        xform->postTranslate(openvdb::Vec3d(v.bounds.min.x + 0.5 * h, v.bounds.min.y + 0.5 * h,
+                                            v.bounds.min.z + 0.5 * h));
+        auto grid = [&](const char* name) {
+            openvdb::FloatGrid::Ptr g = openvdb::FloatGrid::create(0.0f);
+            g->setName(name);
+            g->setTransform(xform);
+            g->setGridClass(openvdb::GRID_FOG_VOLUME);
+            return g;
+        };
+        openvdb::FloatGrid::Ptr density = grid("density"), crust = grid("crust"),
+                                iron = grid("iron"), salt = grid("salt");
+        openvdb::Vec3SGrid::Ptr color = openvdb::Vec3SGrid::create(openvdb::Vec3s(0.0f));
+        color->setName("color");
+        color->setTransform(xform);
+        color->setGridClass(openvdb::GRID_FOG_VOLUME);
+        auto d = density->getAccessor();
+        auto c = crust->getAccessor();
+        auto fe = iron->getAccessor();
+        auto s = salt->getAccessor();
+        auto a = color->getAccessor();
+        const float gain[volume::kCompositionCount] = {1.0f, 1.0f, 1.0f};
+        for (int k = 0; k < v.nz; ++k) {
+            throw_if_cancelled();
+            for (int j = 0; j < v.ny; ++j)
+                for (int i = 0; i < v.nx; ++i) {
+                    const size_t at = v.index(i, j, k);
+                    if (!(v.density[at] > 0.0f))
+                        continue;  // no stone: the grids' background
+                    const openvdb::Coord ijk(i, j, k);
+                    d.setValue(ijk, static_cast<float>(o.sigma_t * v.density[at]));
+                    c.setValue(ijk, v.crust[at]);
+                    fe.setValue(ijk, v.iron[at]);
+                    s.setValue(ijk, v.salt[at]);
+                    float q[volume::kCompositionCount], w[4];
+                    q[volume::kCrust] = v.crust[at];
+                    q[volume::kIron] = v.iron[at];
+                    q[volume::kSalt] = v.salt[at];
+                    volume::albedo_weights(q, gain, w);
+                    openvdb::Vec3s rgb(0.0f);
+                    for (int m = 0; m < 4; ++m)
+                        rgb += openvdb::Vec3s(albedo_rec709[m][0], albedo_rec709[m][1],
+                                              albedo_rec709[m][2]) * w[m];
+                    a.setValue(ijk, rgb);
+                }
+        }
+        openvdb::GridPtrVec grids = {density, color, crust, iron, salt};
+        // Staged in the run's output transaction (or one of its own), moved into place when
+        // the whole export succeeded.
+        std::optional<OutputTransaction> own;
+        OutputTransaction* outputs = current_output_transaction();
+        if (!outputs)
+            outputs = &own.emplace();
+        openvdb::io::File file(outputs->stage(path).string());
+        file.setCompression(openvdb::io::COMPRESS_ZIP | openvdb::io::COMPRESS_ACTIVE_MASK);
+        file.write(grids);
+        file.close();
+        if (own)
+            own->commit();
+    }
+
+}  // namespace
+
+std::vector<fs::path> export_stone_vdb(const fs::path& input, const fs::path& output,
+                                       const VdbOptions& options, const ColorManager& colors)
+{
+    openvdb::initialize();
+    const std::vector<std::pair<int, fs::path>> volumes = volumes_of(input);
+    float albedo[4][3];
+    for (int m = 0; m < 4; ++m) {
+        std::copy(options.albedo[m], options.albedo[m] + 3, albedo[m]);
+        colors.convert(colors.working_space(), "lin_rec709", albedo[m], 1);
+    }
+    std::vector<fs::path> written;
+    for (const auto& [frame, file] : volumes) {
+        const fs::path path =
+            frame < 0 ? output
+                      : output.parent_path() /
+                            fmt::format("{}.{:04}.vdb", output.stem().string(), frame);
+        write_vdb(path, stone::read_world_volume(file), options, albedo);
+        written.push_back(path);
+    }
+    return written;
+}
+
+}  // namespace patina::texgen

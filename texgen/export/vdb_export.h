@@ -1,0 +1,36 @@
+// `patina-texgen export` of stone volumes as OpenVDB (the sparse volume format Blender,
+// Houdini and the production renderers read): one file per time step, frame-numbered, with
+// world-space fog-volume grids named as renderers expect them — `density` (the extinction
+// coefficient, 1/m), `color` (the single-scattering albedo, linear Rec.709) — and the
+// simulation's own fields `crust`, `iron` and `salt` (fractions). docs/export.md.
+#pragma once
+
+#include "core/color_management.h"
+
+#include <filesystem>
+#include <vector>
+
+namespace patina::texgen {
+
+struct VdbOptions {
+    /// Extinction of solid stone (1/m) and the albedos of stone, crust, iron oxide and salt
+    /// in the working space: the slab_volume medium's defaults, so that a renderer sees what
+    /// patina-render's default stone shows.
+    double sigma_t = 200.0;
+    float albedo[4][3] = {{0.93f, 0.90f, 0.84f},
+                          {0.06f, 0.05f, 0.05f},
+                          {0.80f, 0.55f, 0.25f},
+                          {0.97f, 0.97f, 0.96f}};
+};
+
+/// The stone volumes of `input` (a `patina-texgen stone` output folder holding volume.exr,
+/// or one holding cycle_NNNN step folders) as `output` (e.g. column.vdb): with steps, one
+/// file per step, `<stem>.<frame>.vdb` with frame = the step's cycle (Blender's and
+/// Houdini's sequence naming); else `output` itself. Each file is written under a temporary
+/// name and renamed. Throws std::runtime_error naming the folder when it holds no volume.
+std::vector<std::filesystem::path> export_stone_vdb(const std::filesystem::path& input,
+                                                    const std::filesystem::path& output,
+                                                    const VdbOptions& options,
+                                                    const ColorManager& colors);
+
+}  // namespace patina::texgen
