@@ -21,7 +21,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const fs::path kDir = fs::path(PATINA_TEST_BUILD_DIR) / "blender_gltf_test";
 const std::string kBin = PATINA_TEST_BIN_DIR;
 const std::string kSource = PATINA_SOURCE_DIR;
 
@@ -45,35 +44,41 @@ Imath::V3d mean_rgb(const fs::path& file)
 
 class BlenderGltf : public ::testing::Test {
 protected:
-    static void SetUpTestSuite()
+    // Each test in a folder of its own: CTest runs the tests of this file in parallel
+    // processes.
+    void SetUp() override
     {
         // Never skipped: without Blender the test fails and says what to install.
         if (run("blender --version > /dev/null 2>&1") != 0)
             GTEST_FAIL() << "Blender not found: install Debian 12's blender and python3-numpy "
                             "(scripts/bootstrap.sh does)";
-        fs::remove_all(kDir);
-        fs::create_directories(kDir);
+        dir_ = fs::path(PATINA_TEST_BUILD_DIR) / "blender_gltf_test" /
+               ::testing::UnitTest::GetInstance()->current_test_info()->name();
+        fs::remove_all(dir_);
+        fs::create_directories(dir_);
     }
+
+    fs::path dir_;
 
     /// Grows `env`'s strip over 0 and 30 years, exports it, and runs Blender on the .glb
     /// (rendering the 30-year variant); returns Blender's report.
     nlohmann::json grow_export_and_open(const std::string& env)
     {
-        const fs::path stack = kDir / env;
+        const fs::path stack = dir_ / env;
         EXPECT_EQ(run(kBin + "/patina-texgen patina '" + kSource + "/samples/copper_strips/" +
                       env + ".patina' -o '" + stack.string() +
                       "' --resolution 64 --times 0,30 --quiet --no-preview"), 0);
         EXPECT_EQ(run(kBin + "/patina-texgen export '" + stack.string() + "' -o '" +
-                      (kDir / (env + ".glb")).string() + "' --quiet"), 0);
+                      (dir_ / (env + ".glb")).string() + "' --quiet"), 0);
         // --python-exit-code 1: Blender exits 0 after a Python error without it.
         const std::string blender =
             "blender -b --factory-startup --python-exit-code 1 --python '" + kSource +
-            "/tests/clients/blender_gltf_check.py' -- '" + (kDir / (env + ".glb")).string() +
-            "' '" + (kDir / (env + "_report.json")).string() + "' '" +
-            (kDir / (env + "_blender.exr")).string() + "' '30 y' 48 64 > '" +
-            (kDir / (env + "_blender.log")).string() + "' 2>&1";
-        EXPECT_EQ(run(blender), 0) << "see " << (kDir / (env + "_blender.log")).string();
-        std::ifstream in(kDir / (env + "_report.json"));
+            "/tests/clients/blender_gltf_check.py' -- '" + (dir_ / (env + ".glb")).string() +
+            "' '" + (dir_ / (env + "_report.json")).string() + "' '" +
+            (dir_ / (env + "_blender.exr")).string() + "' '30 y' 48 64 > '" +
+            (dir_ / (env + "_blender.log")).string() + "' 2>&1";
+        EXPECT_EQ(run(blender), 0) << "see " << (dir_ / (env + "_blender.log")).string();
+        std::ifstream in(dir_ / (env + "_report.json"));
         if (!in)
             return {};
         return nlohmann::json::parse(in);
@@ -83,17 +88,17 @@ protected:
     /// filling the frame, under a uniform white sky (linear Rec.709 (1, 1, 1)).
     fs::path render_with_patina(const std::string& env)
     {
-        const fs::path scene = kDir / (env + "_scene.toml");
+        const fs::path scene = dir_ / (env + "_scene.toml");
         std::ofstream(scene) << "[film]\nwidth = 48\nheight = 48\nspp = 64\nseed = 1\n"
                                 "max_depth = 8\n[camera]\nfrom = [0.0, 1.0, 0.0]\n"
                                 "to = [0.0, 0.0, 0.0]\nup = [0.0, 0.0, -1.0]\nfov_deg = 5.0\n"
                                 "[environment]\ncolor = [1.0, 1.0, 1.0]\n"
                                 "colorspace = \"lin_rec709\"\nintensity = 1.0\n"
                                 "[[shader]]\nname = \"strip\"\ntype = \"layered_km\"\n"
-                             << "stack = \"" << (kDir / env / "t30" / "stack.toml").string()
+                             << "stack = \"" << (dir_ / env / "t30" / "stack.toml").string()
                              << "\"\n[[object]]\nshape = \"plane\"\nsize = 0.1\n"
                                 "bsdf = \"strip\"\n";
-        const fs::path out = kDir / (env + "_patina.exr");
+        const fs::path out = dir_ / (env + "_patina.exr");
         EXPECT_EQ(run(kBin + "/patina-render '" + scene.string() + "' -o '" + out.string() +
                       "' --quiet"), 0);
         return out;
@@ -102,7 +107,7 @@ protected:
     /// ΔE00 between Blender's and patina-render's mean colours.
     double delta_e(const std::string& env)
     {
-        Imath::V3d blender = mean_rgb(kDir / (env + "_blender.exr"));  // Cycles: lin Rec.709
+        Imath::V3d blender = mean_rgb(dir_ / (env + "_blender.exr"));  // Cycles: lin Rec.709
         Imath::V3d patina = mean_rgb(render_with_patina(env));           // ACEScg
         Imath::V3d white(1.0);
         auto to_xyz = [&](Imath::V3d& c, const char* space) {

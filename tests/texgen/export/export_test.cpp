@@ -24,9 +24,12 @@ namespace fs = std::filesystem;
 
 class Export : public ::testing::Test {
 protected:
-    static void SetUpTestSuite()
+    // Each test in a folder of its own: CTest runs the tests of this file in parallel
+    // processes.
+    void SetUp() override
     {
-        dir_ = fs::path(PATINA_TEST_BUILD_DIR) / "export_test";
+        dir_ = fs::path(PATINA_TEST_BUILD_DIR) / "export_test" /
+               ::testing::UnitTest::GetInstance()->current_test_info()->name();
         fs::remove_all(dir_);
         fs::create_directories(dir_);
         const std::string command = std::string(PATINA_TEST_BIN_DIR) +
@@ -75,7 +78,7 @@ protected:
         return px;
     }
 
-    static inline fs::path dir_;
+    fs::path dir_;
     ColorManager colors_{fs::path(PATINA_SOURCE_DIR) / "ocio/config.ocio"};
     MaterialLibrary library_;
 };
