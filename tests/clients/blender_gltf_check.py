@@ -9,6 +9,7 @@
 # orthographic camera that the strip fills, under a uniform white world (strength 1), with
 # the Standard view transform: scene-linear Rec.709 values a test can compare.
 import json
+import os
 import sys
 
 import numpy
@@ -20,6 +21,9 @@ if not hasattr(numpy, "bool"):
     numpy.bool = bool
 
 import bpy  # noqa: E402
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import blender_render  # noqa: E402
 
 
 def linked_image(socket):
@@ -80,36 +84,10 @@ def main():
             bpy.ops.scene.gltf2_display_variant()
         report["rendered"] = obj.material_slots[0].material.name
         # The strip faces glTF's +Z, Blender's -Y after the importer's Y-up to Z-up turn.
-        camera_data = bpy.data.cameras.new("camera")
-        camera_data.type = "ORTHO"
-        camera_data.ortho_scale = max(obj.dimensions.x, obj.dimensions.z)
-        camera = bpy.data.objects.new("camera", camera_data)
-        camera.location = (0.0, -1.0, 0.0)
-        camera.rotation_euler = (1.5707963267948966, 0.0, 0.0)
-        scene.collection.objects.link(camera)
-        scene.camera = camera
-        world = bpy.data.worlds.new("white")
-        world.use_nodes = True
-        background = world.node_tree.nodes["Background"]
-        background.inputs["Color"].default_value = (1.0, 1.0, 1.0, 1.0)
-        background.inputs["Strength"].default_value = 1.0
-        scene.world = world
-        scene.render.engine = "CYCLES"
-        scene.cycles.device = "CPU"
-        scene.cycles.samples = samples
-        scene.cycles.use_denoising = False
-        scene.cycles.seed = 1
-        scene.render.resolution_x = size
-        scene.render.resolution_y = size
-        scene.render.resolution_percentage = 100
-        scene.view_settings.view_transform = "Standard"
-        scene.view_settings.look = "None"
-        scene.view_settings.exposure = 0.0
-        scene.view_settings.gamma = 1.0
-        scene.render.image_settings.file_format = "OPEN_EXR"
-        scene.render.image_settings.color_depth = "32"
-        scene.render.filepath = render_path
-        bpy.ops.render.render(write_still=True)
+        blender_render.ortho_camera(scene, (0.0, -1.0, 0.0),
+                                    max(obj.dimensions.x, obj.dimensions.z))
+        blender_render.world(scene, 1.0)
+        blender_render.render_exr(scene, render_path, size, samples)
 
     with open(report_path, "w") as f:
         json.dump(report, f, indent=1)

@@ -7,9 +7,13 @@
 # colour is the `color` grid, lit by a sun against a black world, so that any light in
 # RENDER.exr is light the volume scattered.
 import json
+import os
 import sys
 
 import bpy
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import blender_render  # noqa: E402
 
 
 def main():
@@ -43,36 +47,15 @@ def main():
     scene = bpy.context.scene
     centre = [(a + b) / 2 for a, b in zip(lo, hi)]
     extent = max(b - a for a, b in zip(lo, hi))
-    camera_data = bpy.data.cameras.new("camera")
-    camera_data.type = "ORTHO"
-    camera_data.ortho_scale = 1.5 * extent
-    camera = bpy.data.objects.new("camera", camera_data)
-    camera.location = (centre[0], centre[1] - 3.0 * extent, centre[2])
-    camera.rotation_euler = (1.5707963267948966, 0.0, 0.0)
-    scene.collection.objects.link(camera)
-    scene.camera = camera
+    blender_render.ortho_camera(scene, (centre[0], centre[1] - 3.0 * extent, centre[2]),
+                                1.5 * extent)
     sun_data = bpy.data.lights.new("sun", "SUN")
     sun_data.energy = 3.0
     sun = bpy.data.objects.new("sun", sun_data)
     sun.rotation_euler = (0.8, 0.2, 0.3)
     scene.collection.objects.link(sun)
-    world = bpy.data.worlds.new("black")
-    world.use_nodes = True
-    world.node_tree.nodes["Background"].inputs["Strength"].default_value = 0.0
-    scene.world = world
-    scene.render.engine = "CYCLES"
-    scene.cycles.device = "CPU"
-    scene.cycles.samples = samples
-    scene.cycles.use_denoising = False
-    scene.cycles.seed = 1
-    scene.render.resolution_x = size
-    scene.render.resolution_y = size
-    scene.render.resolution_percentage = 100
-    scene.view_settings.view_transform = "Standard"
-    scene.render.image_settings.file_format = "OPEN_EXR"
-    scene.render.image_settings.color_depth = "32"
-    scene.render.filepath = render_path
-    bpy.ops.render.render(write_still=True)
+    blender_render.world(scene, 0.0)
+    blender_render.render_exr(scene, render_path, size, samples)
     with open(report_path, "w") as f:
         json.dump(report, f, indent=1)
 
