@@ -116,24 +116,6 @@ namespace {
         return pngs;
     }
 
-    /// Every texel of every flattened map finite, or an error naming the stack, the map and
-    /// the texel.
-    void check_finite(const Step& step)
-    {
-        const FlattenedStack& flat = step.flat;
-        for (const FlatMap& map : flat.maps)
-            for (size_t tile = 0; tile < map.tiles.size(); ++tile)
-                for (size_t i = 0; i < map.tiles[tile].size(); ++i)
-                    if (!std::isfinite(map.tiles[tile][i])) {
-                        const size_t texel = i / map.channels.size();
-                        throw std::runtime_error(fmt::format(
-                            "export of '{}': map '{}' texel ({}, {}) of tile {} is not finite; "
-                            "nothing was written",
-                            step.stack.manifest.string(), map.name, texel % flat.width,
-                            texel / flat.width, flat.udims[tile]));
-                    }
-    }
-
     /// The largest height of every step (µm): the range of the height maps.
     double height_range_um(const std::vector<Step>& steps)
     {
@@ -256,7 +238,7 @@ ExportResult export_patina(const fs::path& input, const fs::path& output,
                     step.stack.manifest.string()));
             step.flat = flatten_stack(
                 step.stack, resolve_stack_materials(step.stack, library, colors), flatten);
-            check_finite(step);
+            check_finite_maps(step.flat, step.stack.manifest, "export");
             if (!textures && step.flat.udims.size() == 1) {
                 const std::vector<PresetMap> maps = preset_maps("gltf", step.flat, 0, 0.0, colors);
                 std::vector<std::vector<unsigned char>> pngs =

@@ -119,6 +119,22 @@ std::vector<const PatinaMaterial*> resolve_stack_materials(const PatinaStackFile
     return out;
 }
 
+void check_finite_maps(const FlattenedStack& flat, const fs::path& manifest, const char* command)
+{
+    for (const FlatMap& map : flat.maps)
+        for (size_t tile = 0; tile < map.tiles.size(); ++tile)
+            for (size_t i = 0; i < map.tiles[tile].size(); ++i)
+                if (!std::isfinite(map.tiles[tile][i])) {
+                    const size_t texel = i / map.channels.size();
+                    throw std::runtime_error(fmt::format(
+                        "{} of '{}': map '{}' texel ({}, {}) of tile {} channel '{}' is not "
+                        "finite; nothing was written",
+                        command, manifest.string(), map.name, texel % flat.width,
+                        texel / flat.width, flat.udims[tile],
+                        map.channels[i % map.channels.size()]));
+                }
+}
+
 FlattenedStack flatten_stack(const PatinaStackFiles& stack,
                              const std::vector<const PatinaMaterial*>& materials,
                              const FlattenOptions& options)

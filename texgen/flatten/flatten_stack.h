@@ -65,6 +65,12 @@ FlattenedStack flatten_stack(const PatinaStackFiles& stack,
                              const std::vector<const PatinaMaterial*>& materials,
                              const FlattenOptions& options);
 
+/// Throws std::runtime_error "<command> of '<manifest>': map '<name>' texel (x, y) of tile T
+/// channel 'C' is not finite; nothing was written" for the first NaN or infinite value of
+/// `flat`'s maps; a map with no texels (FlattenOptions::only) is skipped.
+void check_finite_maps(const FlattenedStack& flat, const std::filesystem::path& manifest,
+                       const char* command);
+
 /// Write every map of `flat` into `out_dir` as tiled, mip-mapped EXRs (colour maps
 /// converted through OCIO to options.color_space, data maps raw), and record them in
 /// `<out_dir>/stack.toml` (baker "flatten", with a [flatten] table), replacing an earlier

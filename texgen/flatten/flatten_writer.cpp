@@ -52,17 +52,7 @@ std::vector<fs::path> write_flattened(const fs::path& out_dir, const FlattenedSt
 {
     const std::string colorspace = flatten_colorspace(options.color_space);
     // Check every value before the first file is written: a NaN never becomes a map.
-    for (const FlatMap& map : flat.maps)
-        for (size_t tile = 0; tile < map.tiles.size(); ++tile)
-            for (size_t i = 0; i < map.tiles[tile].size(); ++i)
-                if (!std::isfinite(map.tiles[tile][i])) {
-                    const size_t texel = i / map.channels.size();
-                    throw std::runtime_error(fmt::format(
-                        "flatten of '{}': map '{}' texel ({}, {}) of tile {} channel '{}' is "
-                        "not finite; nothing was written", stack.manifest.string(), map.name,
-                        texel % flat.width, texel / flat.width, flat.udims[tile],
-                        map.channels[i % map.channels.size()]));
-                }
+    check_finite_maps(flat, stack.manifest, "flatten");
 
     // An earlier flatten into this folder: its entries go, and its files where not rewritten.
     for (const std::string& file : forget_maps_of(out_dir, kBaker, "flatten"))
