@@ -259,6 +259,24 @@ TEST_F(Export, SameBytesWithAnyThreadCount)
     EXPECT_EQ(bytes(dir_ / "one_thread" / "a.glb"), bytes(dir_ / "threads" / "a.glb"));
 }
 
+TEST_F(Export, StepsThatDisagreeAreRefusedBeforeAnythingIsWritten)
+{
+    // Step t12 replaced by a stack grown at another resolution: one asset cannot hold both.
+    const std::string command = std::string(PATINA_TEST_BIN_DIR) + "/patina-texgen patina '" +
+                                PATINA_SOURCE_DIR + "/samples/copper_strips/rural.patina' -o '" +
+                                (dir_ / "other").string() +
+                                "' --resolution 16 --times 12 --quiet --no-preview";
+    ASSERT_EQ(std::system(command.c_str()), 0) << command;
+    fs::remove_all(dir_ / "rural" / "t12");
+    fs::copy(dir_ / "other", dir_ / "rural" / "t12", fs::copy_options::recursive);
+    const std::string m = test::message_of(
+        [&] { export_patina(dir_ / "rural", dir_ / "x.glb", {}, library_, colors_); });
+    EXPECT_NE(m.find("the steps disagree: t00 is 24x24 texels on 1 tile(s)"), std::string::npos)
+        << m;
+    EXPECT_NE(m.find("t12 is 16x16"), std::string::npos) << m;
+    EXPECT_FALSE(fs::exists(dir_ / "x.glb"));
+}
+
 TEST_F(Export, BadInputsNameTheOptionOrFile)
 {
     ExportOptions o;
