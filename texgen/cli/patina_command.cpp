@@ -61,6 +61,16 @@ std::string step_folder(double t, double last)
     return fmt::format("t{:0{}.3f}", t, digits + 4);
 }
 
+/// `mesh` as a path relative to the folder `dir` (both made absolute), or absolute when
+/// they share no root: recorded in the stack so that export finds the mesh again when the
+/// stack and the mesh move together.
+fs::path mesh_path_from(const fs::path& dir, const fs::path& mesh)
+{
+    const fs::path to = fs::absolute(mesh).lexically_normal();
+    const fs::path rel = to.lexically_relative(fs::absolute(dir).lexically_normal());
+    return rel.empty() ? to : rel;
+}
+
 void run_patina(const PatinaOptions& o)
 {
     std::optional<tbb::global_control> threads;
@@ -132,7 +142,11 @@ void run_patina(const PatinaOptions& o)
         const fs::path dir =
             series ? o.out_dir / step_folder(steps[k].time_years, steps.back().time_years)
                    : o.out_dir;
-        write_patina_step(dir, steps[k], domain, out, colors);
+        PatinaOutputOptions step_out = out;
+        if (!o.mesh.empty())  // where export finds the mesh: relative to the step's folder
+            step_out.parameters.emplace_back(
+                "patina:mesh", mesh_path_from(dir, o.mesh).generic_string());
+        write_patina_step(dir, steps[k], domain, step_out, colors);
         series_toml.steps.push_back({steps[k].time_years, dir.filename().string()});
     }
     if (series)

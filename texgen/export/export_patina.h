@@ -1,8 +1,9 @@
 // `patina-texgen export` of patina stacks: one stack or a whole time series flattened
 // (texgen/flatten: the maps `flatten` defines, one code path for both) and written as
-// glTF 2.0 — the strip as a plane of its real size, a metallic-roughness material with
-// KHR_materials_clearcoat per step, and a series as one asset whose steps are
-// KHR_materials_variants named by age. docs/export.md has the maps and their encodings.
+// glTF 2.0 — the strip as a plane of its real size or the mesh the stack was grown on, a
+// metallic-roughness material with KHR_materials_clearcoat per step (and per UDIM tile),
+// and a series as one asset whose steps are KHR_materials_variants named by age.
+// docs/export.md has the maps and their encodings.
 #pragma once
 
 #include "core/color_management.h"
@@ -23,6 +24,8 @@ struct ExportOptions {
     /// File names of the maps with --separate: $mesh (the output's stem), $material (the
     /// step, e.g. "t30"), $map (base_color, ...), $udim (the tile).
     std::string name_template = "$mesh_$material_$map";
+    /// The mesh a stack grown on a mesh was grown on; empty: the path the stack records.
+    std::filesystem::path mesh;
 };
 
 /// What an export wrote and of what.
@@ -36,8 +39,9 @@ struct ExportResult {
 /// series folder holding series.toml) to `output`: a .glb (or .gltf with `separate`) for
 /// the gltf preset, a folder of textures for the others.
 /// Throws std::runtime_error naming the file or option for: an unknown preset, an output
-/// whose extension does not match, a stack made on a mesh (export takes strips), a series
-/// whose steps differ in resolution or tiles, a UDIM tile beyond 1099, a NaN texel; the
+/// whose extension does not match, a mesh stack whose mesh is not found (or does not fit
+/// its tiles), a series whose steps differ in resolution, tiles or domain, a UDIM tile
+/// beyond 1099, a NaN texel; the
 /// output is written last, under a temporary name, so nothing is left half-written.
 ExportResult export_patina(const std::filesystem::path& input,
                            const std::filesystem::path& output, const ExportOptions& options,

@@ -1,6 +1,7 @@
 #include "texgen/export/vdb_export.h"
 
 #include "core/cancel.h"
+#include "core/image_io.h"
 #include "core/output_transaction.h"
 #include "texgen/stone/volume_export.h"
 
@@ -8,11 +9,15 @@
 
 #include <fmt/format.h>
 #include <openvdb/openvdb.h>
+#include <toml++/toml.h>
 
 #include <algorithm>
+#include <fstream>
+#include <iterator>
 #include <optional>
 #include <regex>
 #include <stdexcept>
+#include <type_traits>
 
 namespace patina::texgen {
 
@@ -70,7 +75,7 @@ namespace {
         auto fe = iron->getAccessor();
         auto s = salt->getAccessor();
         auto a = color->getAccessor();
-        const float gain[volume::kCompositionCount] = {1.0f, 1.0f, 1.0f};
+        const float* gain = o.gain;  // crust, iron, salt: volume::kCrust, kIron, kSalt
         for (int k = 0; k < v.nz; ++k) {
             throw_if_cancelled();
             for (int j = 0; j < v.ny; ++j)
@@ -112,6 +117,85 @@ namespace {
 
 }  // namespace
 
+VdbOptions read_medium_options(const fs::path& scene, const std::string& name,
+                               const ColorManager& colors)
+{
+    toml::table root;
+    try {
+        root = toml::parse_file(scene.string());
+    } catch (const toml::parse_error& e) {
+        throw std::runtime_error(fmt::format("{}:{}:{}: {}", scene.string(),
+                                             e.source().begin.line, e.source().begin.column,
+                                             e.description()));
+    }
+    const toml::table* medium = nullptr;
+    if (const toml::array* shaders = root["shader"].as_array())
+        for (const toml::node& node : *shaders) {
+            const toml::table* t = node.as_table();
+            if (t && (*t)["type"].value_or(std::string()) == "slab_volume" &&
+                (name.empty() || (*t)["name"].value_or(std::string()) == name)) {
+                medium = t;
+                break;
+            }
+        }
+    if (!medium)
+        throw std::runtime_error(fmt::format(
+            "--medium: {} has no slab_volume shader{}", scene.string(),
+            name.empty() ? std::string() : fmt::format(" named '{}'", name)));
+    auto where = [&](const toml::node& n) {
+        return fmt::format("{}:{}:{}", scene.string(), n.source().begin.line,
+                           n.source().begin.column);
+    };
+    VdbOptions o;
+    auto number = [&](const char* key, auto* out) {
+        if (const toml::node* n = medium->get(key)) {
+            const std::optional<double> v = n->value<double>();
+            if (!v || !(*v >= 0.0))
+                throw std::runtime_error(fmt::format("{}: {} must be a number >= 0", where(*n), key));
+            *out = static_cast<std::remove_pointer_t<decltype(out)>>(*v);
+        }
+    };
+    number("sigma_t", &o.sigma_t);
+    const char* gains[3] = {"crust_gain", "iron_gain", "salt_gain"};
+    for (int g = 0; g < 3; ++g)
+        number(gains[g], &o.gain[g]);
+    const char* albedos[4] = {"stone_albedo", "crust_albedo", "iron_albedo", "salt_albedo"};
+    for (int m = 0; m < 4; ++m) {
+        const toml::node* n = medium->get(albedos[m]);
+        if (!n)
+            continue;
+        const toml::node* rgb = n;
+        std::string space = colors.working_space();
+        if (const toml::table* t = n->as_table()) {
+            rgb = t->get("rgb");
+            space = (*t)["colorspace"].value_or(space);
+            if (!rgb || !colors.has_colorspace(space))
+                throw std::runtime_error(fmt::format(
+                    "{}: {} as a table takes rgb = [r, g, b] and a colorspace of the OCIO "
+                    "config", where(*n), albedos[m]));
+        }
+        float value[3];
+        if (const auto grey = rgb->value<double>()) {
+            value[0] = value[1] = value[2] = static_cast<float>(*grey);
+        } else if (const toml::array* a = rgb->as_array(); a && a->size() == 3) {
+            for (int c = 0; c < 3; ++c) {
+                const std::optional<double> v = (*a)[static_cast<size_t>(c)].value<double>();
+                if (!v)
+                    throw std::runtime_error(fmt::format("{}: {} must hold three numbers",
+                                                         where(*n), albedos[m]));
+                value[c] = static_cast<float>(*v);
+            }
+        } else {
+            throw std::runtime_error(fmt::format("{}: {} must be [r, g, b], a number or "
+                                                 "{{ rgb = [...], colorspace = \"...\" }}",
+                                                 where(*n), albedos[m]));
+        }
+        colors.convert(space, colors.working_space(), value, 1);
+        std::copy(value, value + 3, o.albedo[m]);
+    }
+    return o;
+}
+
 std::vector<fs::path> export_stone_vdb(const fs::path& input, const fs::path& output,
                                        const VdbOptions& options, const ColorManager& colors)
 {
@@ -130,6 +214,21 @@ std::vector<fs::path> export_stone_vdb(const fs::path& input, const fs::path& ou
                             fmt::format("{}.{:04}.vdb", output.stem().string(), frame);
         write_vdb(path, stone::read_world_volume(file), options, albedo);
         written.push_back(path);
+        // The boundary (the eroded surface the run extracted from the same volume, in the
+        // same frame and metres) beside it, for a renderer that wants the surface too.
+        std::error_code ec;
+        const fs::path boundary = file.parent_path() / "eroded.obj";
+        if (fs::is_regular_file(boundary, ec)) {
+            std::ifstream in(boundary, std::ios::binary);
+            const std::string text((std::istreambuf_iterator<char>(in)),
+                                   std::istreambuf_iterator<char>());
+            if (!in && !in.eof())
+                throw std::runtime_error(fmt::format("export: cannot read '{}'", boundary.string()));
+            fs::path obj = path;
+            obj.replace_extension(".obj");
+            write_file_atomic(obj, {text}, "boundary mesh");
+            written.push_back(obj);
+        }
     }
     return written;
 }

@@ -25,6 +25,10 @@ PatinaStackFiles read_patina_stack(const fs::path& stack)
         out.height = map.height;
         if (const auto s = map.parameters["strip_size_m"].value<double>())
             out.strip_size_m = *s;
+        if (const auto d = map.parameters["domain"].value<std::string>())
+            out.domain = *d;
+        if (const auto m = map.parameters["mesh"].value<std::string>())
+            out.mesh = (file.folder() / fs::path(*m)).lexically_normal();
     };
     for (const formats::PatinaLayer& layer : patina.layers) {
         const formats::StackMap& map = file.map(layer.map);

@@ -31,6 +31,11 @@ struct PatinaStackFiles {
     int width = 0, height = 0;            ///< texels per tile (the maps' `resolution`)
     /// Side of a flat strip in metres (the maps' parameter strip_size_m); 0 for a mesh.
     double strip_size_m = 0.0;
+    /// The mesh the stack was grown on (the maps' parameter `mesh`, resolved against the
+    /// manifest's folder), or empty: a strip, or a stack written before the path was kept.
+    std::filesystem::path mesh;
+    /// The maps' parameter `domain`: "strip", or the file name of the mesh.
+    std::string domain;
     /// The optics the stack records for its base and layers ([patina.materials]).
     std::map<std::string, formats::MaterialOptics> materials;
 };

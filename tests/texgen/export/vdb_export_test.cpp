@@ -10,6 +10,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <fstream>
+#include <iterator>
 #include <openvdb/openvdb.h>
 
 namespace patina::texgen {
@@ -93,6 +95,71 @@ TEST(VdbExport, GridsHoldTheVolumeAsRenderersReadIt)
     const std::string m = test::message_of(
         [&] { export_stone_vdb(dir / "out", dir / "none.vdb", options, colors); });
     EXPECT_NE(m.find("no stone volume"), std::string::npos) << m;
+}
+
+TEST(VdbExport, BoundaryMeshGoesBesideItsVolume)
+{
+    const fs::path dir = fs::path(PATINA_TEST_BUILD_DIR) / "vdb_export_boundary_test";
+    fs::remove_all(dir);
+    fs::create_directories(dir / "run" / "cycle_0060");
+    stone::write_world_volume(dir / "run" / "cycle_0060" / "volume.exr", small_volume());
+    const std::string obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    {
+        std::ofstream(dir / "run" / "cycle_0060" / "eroded.obj") << obj;
+    }
+    const ColorManager colors(fs::path(PATINA_SOURCE_DIR) / "ocio/config.ocio");
+    const std::vector<fs::path> files =
+        export_stone_vdb(dir / "run", dir / "out" / "column.vdb", {}, colors);
+    ASSERT_EQ(files.size(), 2u);
+    EXPECT_EQ(files[0], dir / "out" / "column.0060.vdb");
+    EXPECT_EQ(files[1], dir / "out" / "column.0060.obj");
+    std::ifstream in(files[1]);
+    EXPECT_EQ(std::string((std::istreambuf_iterator<char>(in)), {}), obj);
+}
+
+TEST(VdbExport, MediumParametersComeFromTheScene)
+{
+    const fs::path dir = fs::path(PATINA_TEST_BUILD_DIR) / "vdb_export_medium_test";
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    {
+        std::ofstream(dir / "scene.toml") << R"([[shader]]
+name = "glass"
+type = "dielectric"
+
+[[shader]]
+name = "sandstone"
+type = "slab_volume"
+sigma_t = 150.0
+stone_albedo = [0.99, 0.96, 0.90]
+crust_albedo = 0.05
+iron_albedo = { rgb = [0.5, 0.5, 0.5], colorspace = "lin_rec709" }
+iron_gain = 0.35
+forward_k = 0.2
+)";
+    }
+    const ColorManager colors(fs::path(PATINA_SOURCE_DIR) / "ocio/config.ocio");
+    const VdbOptions o = read_medium_options(dir / "scene.toml", "", colors);
+    EXPECT_EQ(o.sigma_t, 150.0);
+    EXPECT_FLOAT_EQ(o.albedo[0][1], 0.96f);  // [r, g, b]: the working space, as given
+    EXPECT_FLOAT_EQ(o.albedo[1][2], 0.05f);
+    // lin_rec709 grey is grey in ACEScg too (both white points D65 after the config's
+    // Bradford adaptation): 0.5 in every channel, to float rounding.
+    for (int c = 0; c < 3; ++c)
+        EXPECT_NEAR(o.albedo[2][c], 0.5f, 1e-4f);
+    EXPECT_FLOAT_EQ(o.albedo[3][0], VdbOptions().albedo[3][0]);  // not given: the default
+    EXPECT_FLOAT_EQ(o.gain[1], 0.35f);
+    EXPECT_FLOAT_EQ(o.gain[0], 1.0f);
+
+    std::string m = test::message_of([&] { read_medium_options(dir / "scene.toml", "marble", colors); });
+    EXPECT_NE(m.find("no slab_volume shader named 'marble'"), std::string::npos) << m;
+    {
+        std::ofstream(dir / "bad.toml") << "[[shader]]\nname = \"s\"\ntype = \"slab_volume\"\n"
+                                           "stone_albedo = [0.9, 0.9]\n";
+    }
+    m = test::message_of([&] { read_medium_options(dir / "bad.toml", "s", colors); });
+    EXPECT_NE(m.find("bad.toml:4:"), std::string::npos) << m;
+    EXPECT_NE(m.find("stone_albedo must be"), std::string::npos) << m;
 }
 
 }  // namespace

@@ -1,0 +1,273 @@
+#include "texgen/export/export_fade.h"
+
+#include "formats/fade_stack.h"
+#include "texgen/export/export_asset.h"
+#include "texgen/texels/mesh_merge.h"
+
+#include "core/cancel.h"
+#include "core/image_io.h"
+#include "core/spectrum.h"
+
+#include <fmt/format.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace patina::texgen {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+    /// The side of the swatch a uniform dose is exported on, in metres.
+    constexpr double kSwatchSide = 0.1;
+
+    struct FadeStep {
+        fs::path folder, manifest;
+        formats::FadeDescription description;
+        double seconds = -1.0;  ///< the exposure's length; -1: not known
+        bool uniform = false;   ///< a --dose stack: no exposure maps
+    };
+
+    FadeStep read_step(const fs::path& input)
+    {
+        FadeStep step;
+        std::error_code ec;
+        step.folder = fs::is_directory(input, ec) ? input : input.parent_path();
+        step.manifest = step.folder / formats::kFadeDescription;
+        step.description = formats::read_fade_description(input);
+        const formats::FadeExposure& exposure = step.description.exposure;
+        step.uniform = exposure.files.empty();
+        // As `fade` labels its plot: each map is one period (or --duration) of exposure.
+        const double each = exposure.duration_s > 0.0 ? exposure.duration_s : exposure.period_s;
+        if (step.uniform && step.description.max_dose_in_map == 0.0)
+            step.seconds = 0.0;
+        else if (each > 0.0)
+            step.seconds = each * static_cast<double>(std::max<size_t>(exposure.files.size(), 1));
+        return step;
+    }
+
+    /// R_total of every table row as linear Rec.709 (3 floats per row): the reflectance
+    /// seen under D65 (CIE 1931 2°, spectrum_to_xyz), through OCIO from CIE-XYZ-D65. Linear
+    /// interpolation between rows commutes with this linear map, so a texel's colour is the
+    /// interpolation of its rows' colours, as spectral_km interpolates the spectra.
+    std::vector<float> row_colors(const FadeStep& step, const ColorManager& colors)
+    {
+        const formats::FadeDescription& d = step.description;
+        const fs::path file = d.table_path(step.folder);
+        const ImageData table = read_image(file);
+        const int c = table.channel("R_total");
+        if (c < 0 || table.width != static_cast<int>(d.wavelength_nm.size()) ||
+            table.height != static_cast<int>(d.doses.size()))
+            throw std::runtime_error(fmt::format(
+                "{}: expected a {}x{} table with a channel R_total (wavelengths x doses, as "
+                "{} says); it is {}x{}{}",
+                file.string(), d.wavelength_nm.size(), d.doses.size(), step.manifest.string(),
+                table.width, table.height, c < 0 ? " without R_total" : ""));
+        const std::vector<double>& nm = d.wavelength_nm;
+        std::vector<float> rgb(3 * static_cast<size_t>(table.height));
+        for (int row = 0; row < table.height; ++row) {
+            auto reflectance = [&](double lambda) {
+                const auto hi = std::upper_bound(nm.begin(), nm.end(), lambda);
+                if (hi == nm.begin())
+                    return double(table.at(0, row, c));
+                if (hi == nm.end())
+                    return double(table.at(table.width - 1, row, c));
+                const int i = static_cast<int>(hi - nm.begin());
+                const double t = (lambda - nm[i - 1]) / (nm[i] - nm[i - 1]);
+                return (1.0 - t) * table.at(i - 1, row, c) + t * table.at(i, row, c);
+            };
+            const Xyz xyz = spectrum_to_xyz(reflectance, d65);
+            for (int k = 0; k < 3; ++k)
+                rgb[3 * row + k] = static_cast<float>(xyz[k]);
+        }
+        colors.convert("CIE-XYZ-D65", "lin_rec709", rgb.data(), static_cast<size_t>(table.height));
+        return rgb;
+    }
+
+    /// The maps export writes for a fade stack at `width` x `height`: the base colour at
+    /// every texel's table row, and the constant maps of a rough dielectric.
+    FlattenedStack fade_maps(const FadeStep& step, int width, int height,
+                             const ColorManager& colors)
+    {
+        const std::vector<float> rows = row_colors(step, colors);
+        const int last = static_cast<int>(rows.size() / 3) - 1;
+        const fs::path dose_file = step.description.dose_map_path(step.folder);
+        const ImageData dose = read_image(dose_file);
+        const int coordinate = dose.channel("coordinate");
+        if (coordinate < 0)
+            throw std::runtime_error(fmt::format("{}: no channel 'coordinate' (the table row "
+                                                 "of each texel's dose)",
+                                                 dose_file.string()));
+        if (!step.uniform && (dose.width != width || dose.height != height))
+            throw std::runtime_error(fmt::format("{}: {}x{} texels, not {}x{}",
+                                                 dose_file.string(), dose.width, dose.height,
+                                                 width, height));
+        FlattenedStack flat;
+        flat.width = width;
+        flat.height = height;
+        flat.udims = {1001};
+        const size_t texels = static_cast<size_t>(width) * height;
+        std::vector<float> base(3 * texels);
+        for (size_t i = 0; i < texels; ++i) {
+            // A uniform stack's small map holds one dose: its first texel, everywhere.
+            const float u = step.uniform ? dose.pixels[coordinate]
+                                         : dose.pixels[i * dose.channels + coordinate];
+            if (!std::isfinite(u))
+                throw std::runtime_error(fmt::format(
+                    "{}: texel ({}, {}) has a coordinate that is not finite", dose_file.string(),
+                    i % width, i / width));
+            const float x = std::clamp(u, 0.0f, static_cast<float>(last));
+            const int r = std::min(static_cast<int>(x), std::max(last - 1, 0));
+            const float t = x - static_cast<float>(r);
+            for (int k = 0; k < 3; ++k)
+                base[3 * i + k] = last == 0 ? rows[k]
+                                            : (1.0f - t) * rows[3 * r + k] + t * rows[3 * (r + 1) + k];
+        }
+        auto constant = [&](std::initializer_list<float> value) {
+            std::vector<float> v(value.size() * texels);
+            for (size_t i = 0; i < texels; ++i)
+                std::copy(value.begin(), value.end(), v.begin() + i * value.size());
+            return std::vector<std::vector<float>>{std::move(v)};
+        };
+        flat.maps = {
+            {"gltf_base_color", {"R", "G", "B"}, "1", "R_total under D65", true, {std::move(base)}},
+            // R occlusion 1, G roughness 1, B metallic 0: spectral_km is Lambertian.
+            {"gltf_metallic_roughness", {"R", "G", "B"}, "1", "", false, constant({1, 1, 0})},
+            {"gltf_clearcoat", {"R", "G", "B"}, "1", "", false, constant({0, 0, 0})},
+            {"normal", {"R", "G", "B"}, "1", "", false, constant({0.5f, 0.5f, 1})},
+            {"height", {"height"}, "um", "", false, constant({0})}};
+        return flat;
+    }
+
+    /// The mesh the first exposure map was baked on, as its stack.toml records it ("" when
+    /// it records none).
+    fs::path baked_mesh(const std::vector<FadeStep>& steps)
+    {
+        for (const FadeStep& step : steps) {
+            for (const fs::path& given : step.description.exposure.files) {
+                const fs::path map = given.is_absolute() ? given : step.folder / given;
+                std::error_code ec;
+                const fs::path manifest = map.parent_path() / formats::kStackManifest;
+                if (!fs::exists(manifest, ec))
+                    continue;
+                const formats::TextureStack stack = formats::read_texture_stack(manifest);
+                for (const auto& [name, entry] : stack.maps) {
+                    if (entry.file.empty() || !fs::equivalent(stack.folder() / entry.file, map, ec))
+                        continue;
+                    if (const auto mesh = entry.parameters["mesh"].value<std::string>()) {
+                        const fs::path path(*mesh);
+                        if (path.is_absolute() || fs::exists(path, ec))
+                            return path;
+                        return stack.folder() / path;
+                    }
+                }
+            }
+        }
+        return {};
+    }
+
+}  // namespace
+
+bool is_fade_stack(const fs::path& input)
+{
+    std::error_code ec;
+    if (fs::is_directory(input, ec))
+        return fs::exists(input / formats::kFadeDescription, ec);
+    return input.filename() == formats::kFadeDescription;
+}
+
+std::string fade_age_name(double seconds, double unit_s)
+{
+    const char* unit = unit_s >= 365.0 * 86400.0 ? "y" : unit_s >= 86400.0 ? "d" : "h";
+    const double scale = unit_s >= 365.0 * 86400.0 ? 365.0 * 86400.0
+                         : unit_s >= 86400.0        ? 86400.0
+                                                    : 3600.0;
+    return fmt::format("{:.4g} {}", seconds / scale, unit);
+}
+
+ExportResult export_fade(const std::vector<fs::path>& inputs, const fs::path& output,
+                         const ExportOptions& given, const ColorManager& colors)
+{
+    ExportOptions options = given;
+    check_export_options(options, output);
+    if (options.resolution > 0)
+        throw std::runtime_error("--resolution: a fade stack exports at its dose map's "
+                                 "resolution");
+
+    std::vector<FadeStep> steps;
+    for (const fs::path& input : inputs)
+        steps.push_back(read_step(input));
+    // In order of age: by time where every step's is known, else by mean dose.
+    const bool timed = std::all_of(steps.begin(), steps.end(),
+                                   [](const FadeStep& s) { return s.seconds >= 0.0; });
+    auto age = [&](const FadeStep& s) { return timed ? s.seconds : s.description.mean_dose; };
+    for (size_t k = 1; k < steps.size(); ++k)
+        if (!(age(steps[k]) > age(steps[k - 1])))
+            throw std::runtime_error(fmt::format(
+                "export: the fade stacks must be given in order of age: '{}' ({} {}) comes after "
+                "'{}' ({} {})",
+                steps[k].manifest.string(), age(steps[k]), timed ? "s" : "J/m^2 mean dose",
+                steps[k - 1].manifest.string(), age(steps[k - 1]),
+                timed ? "s" : "J/m^2 mean dose"));
+
+    // The dose maps' size: the first map-made stack's (uniform ones take it too).
+    int width = 4, height = 4;
+    for (const FadeStep& step : steps)
+        if (!step.uniform) {
+            width = step.description.width;
+            height = step.description.height;
+            break;
+        }
+
+    ExportGeometry geometry;
+    const fs::path mesh_file = options.mesh.empty() ? baked_mesh(steps) : options.mesh;
+    if (!mesh_file.empty()) {
+        std::error_code ec;
+        if (!fs::is_regular_file(mesh_file, ec))
+            throw std::runtime_error(fmt::format(
+                "export of '{}': the mesh '{}' its exposure maps were baked on does not exist "
+                "(pass --mesh)", steps.front().manifest.string(), mesh_file.string()));
+        geometry.mesh = load_merged_mesh(mesh_file);
+    } else if (std::any_of(steps.begin(), steps.end(), [](const FadeStep& s) { return !s.uniform; })) {
+        throw std::runtime_error(fmt::format(
+            "export of '{}': the exposure maps do not say which mesh they were baked on; pass "
+            "--mesh", steps.front().manifest.string()));
+    } else {
+        geometry.width_m = geometry.height_m = kSwatchSide;
+    }
+
+    const double oldest = steps.back().seconds;
+    std::vector<ExportStep> exported(steps.size());
+    std::vector<std::exception_ptr> failures(steps.size());
+    tbb::parallel_for(size_t(0), steps.size(), [&](size_t k) {
+        const FadeStep& step = steps[k];
+        ExportStep& out = exported[k];
+        try {
+            throw_if_cancelled();
+            out.label = step.folder.filename().string();
+            if (out.label.empty())
+                out.label = "fade";
+            out.variant = timed ? fade_age_name(step.seconds, std::max(oldest, 3600.0))
+                                : fmt::format("{:.3g} J/m2", step.description.mean_dose);
+            out.manifest = step.manifest;
+            out.extras = {{"fade", relative_to(step.manifest, output.parent_path())},
+                          {"mean_dose_j_per_m2", step.description.mean_dose}};
+            if (timed)
+                out.extras["time_s"] = step.seconds;
+            out.flat = fade_maps(step, width, height, colors);
+            encode_step(out, options, colors);
+        } catch (...) {
+            failures[k] = std::current_exception();
+        }
+    });
+    for (const std::exception_ptr& failure : failures)
+        if (failure)
+            std::rethrow_exception(failure);
+    return write_export(exported, geometry, inputs.front(), output, options, colors);
+}
+
+}  // namespace patina::texgen

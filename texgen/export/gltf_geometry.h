@@ -1,0 +1,47 @@
+// The geometry of an exported asset: a strip as a plane of its real size, or the mesh a
+// stack was grown on split into one primitive per UDIM tile (glTF has no UDIM: each tile's
+// triangles get the tile's material, their uvs moved into the unit square).
+#pragma once
+
+#include "core/mesh.h"
+#include "texgen/export/gltf_document.h"
+
+#include <nlohmann/json.hpp>
+
+#include <string>
+#include <vector>
+
+namespace patina::texgen {
+
+/// One primitive: its attributes and index accessor, and the tile (index into the stack's
+/// udims) whose material it takes.
+struct TilePrimitive {
+    size_t tile = 0;
+    nlohmann::json attributes;
+    int indices = -1;
+};
+
+/// A strip of `width_m` x `height_m` as a plane facing +Z (glTF's front), uv (0, 0) at
+/// the top-left corner of the maps (glTF's uv origin is the image's first row), with
+/// tangents along +X.
+TilePrimitive add_strip_plane(gltf::Document& doc, double width_m, double height_m);
+
+/// `mesh` (with uvs) as one primitive per tile of `udims` that holds triangles: a triangle
+/// belongs to the tile of its uv centroid, and its uvs become glTF's, (u − u0, v0 + 1 − v)
+/// (Patina's uvs have v up, glTF's first image row at v = 0). Normals are the mesh's
+/// (area-weighted vertex normals when it has none, the face normal where those vanish);
+/// tangents follow the uv gradients (a normal map's green up the image, as flatten makes
+/// it). Throws
+/// std::runtime_error starting with `context` for a mesh without uvs or a triangle on a
+/// tile the stack does not have.
+std::vector<TilePrimitive> add_mesh_primitives(gltf::Document& doc, const TriangleMesh& mesh,
+                                               const std::vector<int>& udims,
+                                               const std::string& context);
+
+/// The mean edge of a texel on `mesh`, in metres, for maps of `width` texels per tile side:
+/// sqrt(surface area / uv area) / width (the uv area in tiles). It turns a height map's
+/// texel differences into slopes for the normal map. Throws starting with `context` for a
+/// mesh whose uvs cover no area.
+double mean_texel_size_m(const TriangleMesh& mesh, int width, const std::string& context);
+
+}  // namespace patina::texgen
