@@ -37,7 +37,7 @@ namespace {
         replace("$material", material);
         replace("$map", map);
         if (tiled && pattern.find(std::to_string(udim)) == std::string::npos)
-            pattern += "." + std::to_string(udim);
+            pattern.append(".").append(std::to_string(udim));
         return pattern + ".png";
     }
 

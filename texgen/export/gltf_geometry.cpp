@@ -113,9 +113,8 @@ TilePrimitive add_strip_plane(gltf::Document& doc, double width_m, double height
                          {{0, 0}, {1, 0}, {1, 1}, {0, 1}}, {0, 3, 2, 0, 2, 1});
 }
 
-std::vector<TilePrimitive> add_mesh_primitives(gltf::Document& doc, const TriangleMesh& given,
-                                               const std::vector<int>& udims,
-                                               const std::string& context)
+std::vector<TileGeometry> split_by_tile(const TriangleMesh& given, const std::vector<int>& udims,
+                                        const std::string& context)
 {
     if (!given.has_uvs())
         throw std::runtime_error(fmt::format("{}: the mesh has no uvs", context));
@@ -127,13 +126,9 @@ std::vector<TilePrimitive> add_mesh_primitives(gltf::Document& doc, const Triang
         mesh = &normals_source;
     }
 
-    struct Tile {
-        std::vector<Imath::V3f> positions, normals;
-        std::vector<Imath::V2f> uvs;
-        std::vector<uint32_t> indices;
-        std::unordered_map<uint32_t, uint32_t> vertex_of;  // the mesh's vertex -> this tile's
-    };
-    std::vector<Tile> tiles(udims.size());
+    std::vector<TileGeometry> tiles(udims.size());
+    // Per tile: the mesh's vertex -> the tile's.
+    std::vector<std::unordered_map<uint32_t, uint32_t>> vertex_of(udims.size());
     const size_t count = mesh->triangle_count();
     for (size_t t = 0; t < count; ++t) {
         const uint32_t* v = &mesh->indices[3 * t];
@@ -155,10 +150,11 @@ std::vector<TilePrimitive> add_mesh_primitives(gltf::Document& doc, const Triang
                 context, t, cu, cv, udim < 0 ? "outside" : fmt::format("on tile {}, not one of", udim),
                 fmt::join(udims, ", ")));
         }
-        Tile& tile = tiles[static_cast<size_t>(found - udims.begin())];
+        const size_t k = static_cast<size_t>(found - udims.begin());
+        TileGeometry& tile = tiles[k];
         for (int i = 0; i < 3; ++i) {
             const auto [at, added] =
-                tile.vertex_of.emplace(v[i], static_cast<uint32_t>(tile.positions.size()));
+                vertex_of[k].emplace(v[i], static_cast<uint32_t>(tile.positions.size()));
             if (added) {
                 tile.positions.push_back(mesh->positions[v[i]]);
                 const Imath::V2d uv(mesh->uvs[v[i]]);
@@ -174,16 +170,28 @@ std::vector<TilePrimitive> add_mesh_primitives(gltf::Document& doc, const Triang
             tile.indices.push_back(at->second);
         }
     }
-    std::vector<TilePrimitive> out;
-    for (size_t k = 0; k < tiles.size(); ++k)
-        if (!tiles[k].indices.empty())
-            out.push_back(add_primitive(
-                doc, k, tiles[k].positions, tiles[k].normals,
-                vertex_tangents(tiles[k].positions, tiles[k].normals, tiles[k].uvs,
-                                tiles[k].indices),
-                tiles[k].uvs, tiles[k].indices));
+    std::vector<TileGeometry> out;
+    for (size_t k = 0; k < tiles.size(); ++k) {
+        TileGeometry& tile = tiles[k];
+        if (tile.indices.empty())
+            continue;
+        tile.tile = k;
+        tile.tangents = vertex_tangents(tile.positions, tile.normals, tile.uvs, tile.indices);
+        out.push_back(std::move(tile));
+    }
     if (out.empty())
         throw std::runtime_error(fmt::format("{}: the mesh has no triangle with uvs", context));
+    return out;
+}
+
+std::vector<TilePrimitive> add_mesh_primitives(gltf::Document& doc, const TriangleMesh& mesh,
+                                               const std::vector<int>& udims,
+                                               const std::string& context)
+{
+    std::vector<TilePrimitive> out;
+    for (const TileGeometry& tile : split_by_tile(mesh, udims, context))
+        out.push_back(add_primitive(doc, tile.tile, tile.positions, tile.normals, tile.tangents,
+                                    tile.uvs, tile.indices));
     return out;
 }
 

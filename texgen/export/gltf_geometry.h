@@ -26,14 +26,26 @@ struct TilePrimitive {
 /// tangents along +X.
 TilePrimitive add_strip_plane(gltf::Document& doc, double width_m, double height_m);
 
-/// `mesh` (with uvs) as one primitive per tile of `udims` that holds triangles: a triangle
+/// The vertices and triangles of one UDIM tile of a mesh, as glTF stores them.
+struct TileGeometry {
+    size_t tile = 0;  ///< index into the stack's udims
+    std::vector<Imath::V3f> positions, normals;
+    std::vector<Imath::V4f> tangents;  ///< xyz, w = ±1 (glTF's bitangent = cross(N, T) w)
+    std::vector<Imath::V2f> uvs;       ///< glTF's: (0, 0) at the image's top-left
+    std::vector<uint32_t> indices;
+};
+
+/// `mesh` (with uvs) split into the tiles of `udims` that hold triangles: a triangle
 /// belongs to the tile of its uv centroid, and its uvs become glTF's, (u − u0, v0 + 1 − v)
 /// (Patina's uvs have v up, glTF's first image row at v = 0). Normals are the mesh's
 /// (area-weighted vertex normals when it has none, the face normal where those vanish);
 /// tangents follow the uv gradients (a normal map's green up the image, as flatten makes
-/// it). Throws
-/// std::runtime_error starting with `context` for a mesh without uvs or a triangle on a
-/// tile the stack does not have.
+/// it). Throws std::runtime_error starting with `context` for a mesh without uvs or a
+/// triangle on a tile the stack does not have.
+std::vector<TileGeometry> split_by_tile(const TriangleMesh& mesh, const std::vector<int>& udims,
+                                        const std::string& context);
+
+/// split_by_tile's tiles as primitives of `doc`, one per tile.
 std::vector<TilePrimitive> add_mesh_primitives(gltf::Document& doc, const TriangleMesh& mesh,
                                                const std::vector<int>& udims,
                                                const std::string& context);
