@@ -10,6 +10,10 @@
 //   part 1 "bounds"  width 3, height 4, one channel "value": row 0 the min corner xyz (m),
 //                    row 1 the max corner, row 2 (nx, ny, nz), row 3 (format, 0, 0). A file
 //                    of 3 rows is format 1 (written before the row existed).
+//   part 2 "fields"  optional (files written before it have none; the medium does not read
+//                    it): part 0's layout, float channels kFieldChannels, the simulation's
+//                    decay index and moisture (saturation, 0 dry, 1 saturated) sampled like
+//                    the voxels, 0 outside the weathered shell.
 //
 // Voxel (i, j, k) has its centre at min + (i + 1/2, j + 1/2, k + 1/2) (max − min) / n. The
 // parts are read as raw floats (an OIIO reader in texgen, the host's read_image in the
@@ -25,7 +29,8 @@ namespace patina::formats {
 
 /// The layout this build writes and reads; a newer file is refused.
 inline constexpr int kVolumeFormatVersion = 1;
-inline constexpr int kVoxelPart = 0, kBoundsPart = 1;
+inline constexpr int kVoxelPart = 0, kBoundsPart = 1, kFieldsPart = 2;
+inline constexpr std::array<const char*, 2> kFieldChannels = {"decay", "moisture"};
 inline constexpr std::array<const char*, 4> kVolumeChannels = {"crust", "density", "iron",
                                                                "salt"};
 inline constexpr int kCrustChannel = 0, kDensityChannel = 1, kIronChannel = 2, kSaltChannel = 3;

@@ -65,7 +65,9 @@ namespace {
             return g;
         };
         openvdb::FloatGrid::Ptr density = grid("density"), crust = grid("crust"),
-                                iron = grid("iron"), salt = grid("salt");
+                                iron = grid("iron"), salt = grid("salt"),
+                                moisture = grid("moisture"), decay = grid("decay");
+        const bool fields = !v.moisture.empty() && !v.decay.empty();
         openvdb::Vec3SGrid::Ptr color = openvdb::Vec3SGrid::create(openvdb::Vec3s(0.0f));
         color->setName("color");
         color->setTransform(xform);
@@ -75,6 +77,8 @@ namespace {
         auto fe = iron->getAccessor();
         auto s = salt->getAccessor();
         auto a = color->getAccessor();
+        auto wet = moisture->getAccessor();
+        auto rot = decay->getAccessor();
         const float* gain = o.gain;  // crust, iron, salt: volume::kCrust, kIron, kSalt
         for (int k = 0; k < v.nz; ++k) {
             throw_if_cancelled();
@@ -88,6 +92,10 @@ namespace {
                     c.setValue(ijk, v.crust[at]);
                     fe.setValue(ijk, v.iron[at]);
                     s.setValue(ijk, v.salt[at]);
+                    if (fields) {
+                        wet.setValue(ijk, v.moisture[at]);
+                        rot.setValue(ijk, v.decay[at]);
+                    }
                     float q[volume::kCompositionCount], w[4];
                     q[volume::kCrust] = v.crust[at];
                     q[volume::kIron] = v.iron[at];
@@ -101,6 +109,10 @@ namespace {
                 }
         }
         openvdb::GridPtrVec grids = {density, color, crust, iron, salt};
+        if (fields) {
+            grids.push_back(moisture);
+            grids.push_back(decay);
+        }
         // Staged in the run's output transaction (or one of its own), moved into place when
         // the whole export succeeded.
         std::optional<OutputTransaction> own;

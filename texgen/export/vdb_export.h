@@ -2,7 +2,8 @@
 // Houdini and the production renderers read): one file per time step, frame-numbered, with
 // world-space fog-volume grids named as renderers expect them — `density` (the extinction
 // coefficient, 1/m), `color` (the single-scattering albedo, linear Rec.709) — and the
-// simulation's own fields `crust`, `iron` and `salt` (fractions). docs/export.md.
+// simulation's own fields `crust`, `iron` and `salt` (fractions), `moisture` and `decay`
+// (when the volume holds them). docs/export.md.
 #pragma once
 
 #include "core/color_management.h"

@@ -85,8 +85,9 @@ void check_world_volume_memory(const TriangleMesh& mesh, int resolution, const c
             "{} {}: a {}x{}x{} world volume is more than the 512^3 voxels a stone volume may "
             "hold; lower {}",
             option, resolution, g.nx, g.ny, g.nz, option));
-    // Four float channels, twice: the volume and the file's interleaved pixels.
-    check_memory(option, 2.0 * 4.0 * sizeof(float) * g.nx * g.ny * g.nz,
+    // Six float channels (four voxel channels, two fields), twice: the volume and the
+    // file's interleaved pixels.
+    check_memory(option, 2.0 * 6.0 * sizeof(float) * g.nx * g.ny * g.nz,
                  fmt::format("a {}x{}x{} world volume", g.nx, g.ny, g.nz));
 }
 
@@ -111,9 +112,14 @@ WorldVolume resample_to_world(const StoneState& st, const TriangleMesh& mesh, in
     vol.crust.assign(n, 0.0f);
     vol.iron.assign(n, 0.0f);
     vol.salt.assign(n, 0.0f);
+    vol.decay.assign(n, 0.0f);
+    vol.moisture.assign(n, 0.0f);
 
     std::vector<float> density = st.density, crust, iron, salt;
+    std::vector<float> decay = st.decay, moisture = st.moisture;
     lat.fill_halo(density.data());
+    lat.fill_halo(decay.data());
+    lat.fill_halo(moisture.data());
     output_fractions(st, crust, iron, salt);
 
     EmbreeScene scene;
@@ -141,6 +147,8 @@ WorldVolume resample_to_world(const StoneState& st, const TriangleMesh& mesh, in
                 vol.crust[v] = std::clamp(lat.sample(crust.data(), *at), 0.0f, 1.0f);
                 vol.iron[v] = std::clamp(lat.sample(iron.data(), *at), 0.0f, 1.0f);
                 vol.salt[v] = std::clamp(lat.sample(salt.data(), *at), 0.0f, 1.0f);
+                vol.decay[v] = std::max(lat.sample(decay.data(), *at), 0.0f);
+                vol.moisture[v] = std::clamp(lat.sample(moisture.data(), *at), 0.0f, 1.0f);
                 continue;
             }
             const float x = float(p.x - start.x);
@@ -170,34 +178,35 @@ namespace {
         }
     }
 
-    /// Write two float parts to `path`, staged in the run's output transaction.
-    void write_two_parts(const fs::path& path, OIIO::ImageSpec a, const std::vector<float>& pa,
-                         OIIO::ImageSpec b, const std::vector<float>& pb, const char* what)
+    /// Write float parts to `path` (every part with part 0's display window), staged in the
+    /// run's output transaction.
+    void write_parts(const fs::path& path, std::vector<OIIO::ImageSpec> specs,
+                     const std::vector<const std::vector<float>*>& pixels, const char* what)
     {
         StagedOutput staged(path);
         const std::string tmp = staged.path().string();
         auto fail = [&](const std::string& msg) {
             throw std::runtime_error(fmt::format("cannot write {} '{}': {}", what, path.string(), msg));
         };
-        // Every part shares part 0's display window.
-        b.full_x = a.full_x;
-        b.full_y = a.full_y;
-        b.full_width = a.full_width;
-        b.full_height = a.full_height;
+        for (OIIO::ImageSpec& spec : specs) {
+            spec.full_x = specs[0].full_x;
+            spec.full_y = specs[0].full_y;
+            spec.full_width = specs[0].full_width;
+            spec.full_height = specs[0].full_height;
+        }
         auto out = OIIO::ImageOutput::create("openexr");
         if (!out)
             fail(OIIO::geterror());
         if (!out->supports("multiimage"))
             fail("the EXR writer does not support multi-part files");
-        OIIO::ImageSpec specs[2] = {a, b};
-        if (!out->open(tmp, 2, specs))
+        if (!out->open(tmp, static_cast<int>(specs.size()), specs.data()))
             fail(out->geterror());
-        if (!out->write_image(OIIO::TypeDesc::FLOAT, pa.data()))
-            fail(out->geterror());
-        if (!out->open(tmp, specs[1], OIIO::ImageOutput::AppendSubimage))
-            fail(out->geterror());
-        if (!out->write_image(OIIO::TypeDesc::FLOAT, pb.data()))
-            fail(out->geterror());
+        for (size_t p = 0; p < specs.size(); ++p) {
+            if (p > 0 && !out->open(tmp, specs[p], OIIO::ImageOutput::AppendSubimage))
+                fail(out->geterror());
+            if (!out->write_image(OIIO::TypeDesc::FLOAT, pixels[p]->data()))
+                fail(out->geterror());
+        }
         if (!out->close())
             fail(out->geterror());
         staged.done();
@@ -229,7 +238,21 @@ void write_world_volume(const fs::path& path, const WorldVolume& v, const Metada
     OIIO::ImageSpec bounds(3, static_cast<int>(b.size() / 3), 1, OIIO::TypeDesc::FLOAT);
     bounds.channelnames = {"value"};
     bounds.attribute("name", "bounds");
-    write_two_parts(path, voxels, pixels, bounds, b, "world volume");
+    if (v.decay.empty() && v.moisture.empty()) {
+        write_parts(path, {voxels, bounds}, {&pixels, &b}, "world volume");
+        return;
+    }
+    // Part 2: the simulation's own fields, in part 0's layout (channels in sorted order).
+    OIIO::ImageSpec fields(v.nx, v.ny * v.nz, 2, OIIO::TypeDesc::FLOAT);
+    fields.channelnames.assign(formats::kFieldChannels.begin(), formats::kFieldChannels.end());
+    fields.attribute("name", "fields");
+    fields.attribute("compression", "zip");
+    std::vector<float> f(size_t(v.nx) * v.ny * v.nz * 2, 0.0f);
+    for (size_t i = 0; i < v.density.size(); ++i) {
+        f[2 * i] = v.decay.empty() ? 0.0f : v.decay[i];
+        f[2 * i + 1] = v.moisture.empty() ? 0.0f : v.moisture[i];
+    }
+    write_parts(path, {voxels, bounds, fields}, {&pixels, &b, &f}, "world volume");
 }
 
 WorldVolume read_world_volume(const fs::path& path)
@@ -240,13 +263,15 @@ WorldVolume read_world_volume(const fs::path& path)
     auto in = OIIO::ImageInput::open(path.string());
     if (!in)
         throw fail(OIIO::geterror());
-    int voxels_part = -1, bounds_part = -1;
+    int voxels_part = -1, bounds_part = -1, fields_part = -1;
     for (int sub = 0; in->seek_subimage(sub, 0); ++sub) {
         const std::string name = in->spec().get_string_attribute("name");
         if (name == "voxels")
             voxels_part = sub;
         else if (name == "bounds")
             bounds_part = sub;
+        else if (name == "fields")
+            fields_part = sub;
     }
     if (voxels_part < 0 || bounds_part < 0)
         throw fail("needs the parts 'voxels' and 'bounds'");
@@ -281,6 +306,27 @@ WorldVolume read_world_volume(const fs::path& path)
         fields[f]->resize(n);
         for (size_t i = 0; i < n; ++i)
             (*fields[f])[i] = px[i * 4 + f];
+    }
+    if (fields_part >= 0) {
+        in->seek_subimage(fields_part, 0);
+        const OIIO::ImageSpec fspec = in->spec();
+        if (fspec.width != spec.width || fspec.height != spec.height ||
+            fspec.nchannels != static_cast<int>(formats::kFieldChannels.size()) ||
+            fspec.channelnames[0] != formats::kFieldChannels[0] ||
+            fspec.channelnames[1] != formats::kFieldChannels[1])
+            throw fail(fmt::format("part 'fields' must be {}x{} pixels of channels decay, "
+                                   "moisture", spec.width, spec.height));
+        std::vector<float> fp(n * 2);
+        if (!in->read_image(fields_part, 0, 0, 2, OIIO::TypeDesc::FLOAT, fp.data()))
+            throw fail(in->geterror());
+        v.decay.resize(n);
+        v.moisture.resize(n);
+        for (size_t i = 0; i < n; ++i) {
+            if (!std::isfinite(fp[2 * i]) || !std::isfinite(fp[2 * i + 1]))
+                throw fail(fmt::format("part 'fields': voxel {} is not finite", i));
+            v.decay[i] = fp[2 * i];
+            v.moisture[i] = fp[2 * i + 1];
+        }
     }
     return v;
 }
@@ -325,7 +371,7 @@ void write_slab_volume(const fs::path& path, const StoneState& st, const Metadat
         for (int c = 0; c < 8; ++c)
             for (int a = 0; a < 3; ++a)
                 cp[(size_t(s) * 8 + c) * 3 + a] = float(lat.slabs()[size_t(s)][c][a]);
-    write_two_parts(path, voxels, px, corners, cp, "slab volume");
+    write_parts(path, {voxels, corners}, {&px, &cp}, "slab volume");
 }
 
 } // namespace patina::texgen::stone

@@ -35,6 +35,8 @@ TEST(BlenderVdb, VolumeImportsWithItsGridsAndRenders)
     v.crust.assign(n, 0.0f);
     v.iron.assign(n, 0.1f);
     v.salt.assign(n, 0.0f);
+    v.decay.assign(n, 0.5f);     // the simulation's own fields, as a stone run writes them
+    v.moisture.assign(n, 0.25f);
     for (int k = 12; k < 16; ++k)
         for (int j = 0; j < 16; ++j)
             for (int i = 0; i < 16; ++i)
@@ -54,8 +56,10 @@ TEST(BlenderVdb, VolumeImportsWithItsGridsAndRenders)
     const nlohmann::json report = nlohmann::json::parse(in);
     EXPECT_EQ(report["grids"], nlohmann::json({{"color", "VECTOR_FLOAT"},
                                                {"crust", "FLOAT"},
+                                               {"decay", "FLOAT"},
                                                {"density", "FLOAT"},
                                                {"iron", "FLOAT"},
+                                               {"moisture", "FLOAT"},
                                                {"salt", "FLOAT"}}));
     for (int a = 0; a < 3; ++a) {
         // Blender bounds a volume by its outer voxels' centres: 0.2 m less half a 0.025 m

@@ -97,6 +97,39 @@ TEST(VdbExport, GridsHoldTheVolumeAsRenderersReadIt)
     EXPECT_NE(m.find("no stone volume"), std::string::npos) << m;
 }
 
+TEST(VdbExport, SimulationFieldsBecomeGridsOfTheirNames)
+{
+    // A volume with the simulation's decay and moisture (formats/stone_volume.h part 2)
+    // round-trips through volume.exr and becomes the grids `moisture` and `decay`.
+    const fs::path dir = fs::path(PATINA_TEST_BUILD_DIR) / "vdb_export_fields_test";
+    fs::remove_all(dir);
+    fs::create_directories(dir / "run");
+    stone::WorldVolume v = small_volume();
+    v.decay.assign(v.density.size(), 0.0f);
+    v.moisture.assign(v.density.size(), 0.0f);
+    v.decay[v.index(1, 2, 1)] = 3.5f;
+    v.moisture[v.index(1, 2, 1)] = 0.75f;
+    v.moisture[v.index(0, 0, 0)] = 0.5f;  // no stone there: not a voxel of the grids
+    stone::write_world_volume(dir / "run" / "volume.exr", v);
+    const stone::WorldVolume back = stone::read_world_volume(dir / "run" / "volume.exr");
+    EXPECT_EQ(back.decay, v.decay);
+    EXPECT_EQ(back.moisture, v.moisture);
+
+    const ColorManager colors(fs::path(PATINA_SOURCE_DIR) / "ocio/config.ocio");
+    ASSERT_EQ(export_stone_vdb(dir / "run", dir / "block.vdb", {}, colors).size(), 1u);
+    openvdb::initialize();
+    openvdb::io::File file((dir / "block.vdb").string());
+    file.open();
+    auto moisture = openvdb::gridPtrCast<openvdb::FloatGrid>(file.readGrid("moisture"));
+    auto decay = openvdb::gridPtrCast<openvdb::FloatGrid>(file.readGrid("decay"));
+    file.close();
+    ASSERT_TRUE(moisture && decay);
+    EXPECT_FLOAT_EQ(moisture->tree().getValue(openvdb::Coord(1, 2, 1)), 0.75f);
+    EXPECT_FLOAT_EQ(decay->tree().getValue(openvdb::Coord(1, 2, 1)), 3.5f);
+    EXPECT_FALSE(moisture->tree().isValueOn(openvdb::Coord(0, 0, 0)));
+    EXPECT_EQ(moisture->activeVoxelCount(), 2u);
+}
+
 TEST(VdbExport, BoundaryMeshGoesBesideItsVolume)
 {
     const fs::path dir = fs::path(PATINA_TEST_BUILD_DIR) / "vdb_export_boundary_test";
