@@ -14,6 +14,8 @@
 #   cmy/                                     figure 15: seven C/M/Y mixtures faded with the
 #                                            four rate sets of Table V
 #   newspaper.png, board.png, cmy.png        the renders (patina-render + spectral_km)
+# and out/export/newspaper.glb: the newspaper unexposed, after one day and after two, as a
+# glTF asset with a material variant per day.
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 root="$(cd "$here/../.." && pwd)"
@@ -82,6 +84,12 @@ sun=(--latitude 43.47 --longitude -80.54 --timezone -5 --start 2026-06-21 --end 
     --scale 0.58 --material newsprint --out "$np/after" --plot "$out/newspaper_curves.png" \
     --plot-title "newsprint in June sun (figure 1)" --quiet
 "$texgen" fade --dose 0 --material newsprint --out "$np/before" --quiet
+# The page after the first day alone, and the three stages as one glTF asset on the page's
+# mesh, a variant per day (0 d, 1 d, 2 d).
+"$texgen" fade --exposure "$np/quarters/exposure.exr" --scale 0.58 --material newsprint \
+    --out "$np/day1" --quiet
+mkdir -p "$root/out/export"
+"$texgen" export "$np/before" "$np/day1" "$np/after" -o "$root/out/export/newspaper.glb" --quiet
 
 # ---- Figure 18: a cork board with papers moved between exposures -------------------------
 # A 0.8 m cork board lying in the open for three periods of 12 overcast hours, with sheets

@@ -7,7 +7,8 @@
 # 0,5,...,30) into out/statue/patina/tNN/ (a thickness stack and a KM preview of the
 # texture per year), renders each year with the layered_km shader into
 # out/statue/frame_00NN.exr and .png (NN = years), and lays the frames side by side in
-# out/statue/frames.png (labelled with the year when oiiotool has a font).
+# out/statue/frames.png (labelled with the year when oiiotool has a font), and exports the
+# series as out/export/statue.glb (glTF, a material variant per year).
 # Environment: STATUE_TIMES, STATUE_SPP (default 32), STATUE_WIDTH (default 240).
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
@@ -35,6 +36,9 @@ cp "$here/statue.patina" "$out/statue.patina"
 "$texgen" patina "$out/statue.patina" --mesh "$out/statue.obj" -o "$out/patina" \
     --resolution 256 --times "$times" --seed 1 --quiet
 echo "statue: maps and stacks in $((SECONDS - start)) s" >&2
+# The series as one glTF asset on the statue's mesh, a material variant per year.
+mkdir -p "$root/out/export"
+"$texgen" export "$out/patina" -o "$root/out/export/statue.glb" --quiet
 
 # One render per year, framed and lit alike.
 font=/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf

@@ -9,6 +9,8 @@
 #  - the project's statue in marble, lit from behind its head so that light shines through
 #    the thin parts, yellowing as it weathers (figures 10-11): out/stone/marble_strip.png,
 #    336 x 420 pixels a cell.
+#  - the column's steps as OpenVDB, out/export/column.NNNN.vdb with column.NNNN.obj (its
+#    boundary) beside each.
 #
 # patina-texgen stone writes one folder per step (volume.exr for the medium, eroded.obj for
 # the boundary): 60 wet/dry cycles in 2 steps, 0, 30 and 60 cycles, as far apart as the
@@ -117,6 +119,12 @@ roughness_exponent = 3.0"
 render_series column back "[0.0, 1.05, -5.6]" "[0.0, 1.0, 0.0]" 22 180 420 "$out/sky_column.exr" \
     "$sandstone" "eta = 1.55
 roughness_exponent = 3.0"
+
+# The column's steps as an OpenVDB sequence (column.0000.vdb, ...) with its boundary meshes,
+# coloured by the medium the renders use.
+mkdir -p "$root/out/export"
+"$texgen" export "$out/column" -o "$root/out/export/column.vdb" \
+    --scene "$out/column/cycle_0000/front.toml" --medium stone --quiet
 
 # --- Marble statue: slabs on a coarse copy of the statue; rain from above.
 "$texgen" mesh statue -o "$out/statue.obj"

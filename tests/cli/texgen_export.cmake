@@ -43,6 +43,10 @@ file(COPY "${WORK_DIR}/urban/" DESTINATION "${WORK_DIR}/broken")
 file(REMOVE "${WORK_DIR}/broken/t06/thickness.exr")
 expect_failure("does not exist" "${PATINA_TEXGEN}" export "${WORK_DIR}/broken"
   -o "${WORK_DIR}/bad4.glb")
+# An output folder that cannot be made (a file is in the way; root can write anywhere else).
+file(WRITE "${WORK_DIR}/a_file" "x")
+expect_failure("'${WORK_DIR}/a_file' is not a folder" "${PATINA_TEXGEN}" export "${WORK_DIR}/urban"
+  -o "${WORK_DIR}/a_file/bad5.glb")
 foreach(f bad1.glb bad2.gltf bad3.glb bad4.glb)
   if(EXISTS "${WORK_DIR}/${f}")
     message(FATAL_ERROR "a failed export left ${WORK_DIR}/${f} behind")
