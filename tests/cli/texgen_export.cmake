@@ -1,7 +1,7 @@
 # patina-texgen export: the §5.1 urban strip (Dorsey & Hanrahan 1996) over three steps as one
-# glTF 2.0 asset with a material variant per age, as .glb and as .gltf with its files; the
-# Khronos glTF validator finds no error and no warning in either; bad inputs fail with one
-# message and write nothing.
+# glTF 2.0 asset with a material variant per age, as .glb and as .gltf with its files, and
+# a step's flattened maps as an asset of their own; the Khronos glTF validator finds no
+# error and no warning in any; bad inputs fail with one message and write nothing.
 include(${CMAKE_CURRENT_LIST_DIR}/lib/expect.cmake)
 include(${CMAKE_CURRENT_LIST_DIR}/lib/gltf_validator.cmake)
 file(REMOVE_RECURSE "${WORK_DIR}")
@@ -31,6 +31,12 @@ foreach(f strip.bin strip_t30_base_color.png strip_t30_metallic_roughness.png
   endif()
 endforeach()
 expect_valid_gltf("${WORK_DIR}/sep/strip.gltf")
+
+# A baked texture stack (flatten's maps) exports as the stack does.
+expect_success("${PATINA_TEXGEN}" flatten "${WORK_DIR}/urban/t30" -o "${WORK_DIR}/flat" --quiet)
+expect_success("${PATINA_TEXGEN}" export "${WORK_DIR}/flat" -o "${WORK_DIR}/flat.glb")
+expect_in("${LAST_STDERR}" "flattened maps of 32x32")
+expect_valid_gltf("${WORK_DIR}/flat.glb")
 
 # Bad inputs: one message, nothing written.
 expect_failure("--preset 'maya'" "${PATINA_TEXGEN}" export "${WORK_DIR}/urban"

@@ -4,6 +4,7 @@
 
 #include "core/color_management.h"
 #include "texgen/export/export_fade.h"
+#include "texgen/export/export_flattened.h"
 #include "texgen/export/export_patina.h"
 #include "texgen/export/vdb_export.h"
 #include "texgen/patina/material_library.h"
@@ -56,6 +57,16 @@ void run_export(const ExportCommandOptions& o)
             "export: {} inputs; several inputs are a series of fade stacks, and '{}' is not "
             "one (a patina series is its folder with series.toml)", o.inputs.size(),
             input.string()));
+    if (is_flattened_stack(input)) {
+        const ExportResult r = export_flattened(input, o.output, o.exporting, colors);
+        if (!o.quiet)
+            std::fprintf(stderr, "export: %s, flattened maps of %dx%d, %zu texture(s) -> %s (%.2f s)\n",
+                         input.string().c_str(), r.width, r.height, r.textures,
+                         o.output.string().c_str(),
+                         std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
+                             .count());
+        return;
+    }
     if (o.output.extension() == ".vdb") {
         // A stone run's volumes as OpenVDB, one file per step.
         const VdbOptions medium =
@@ -93,9 +104,9 @@ void register_export_command(CLI::App& app)
                   "Unreal, Unity HDRP or look files (--preset)");
     cmd->add_option("input", o->inputs,
                     "a stack folder or its stack.toml, or a time-series folder (series.toml) "
-                    "written by `patina-texgen patina`; one or more fade stacks (in order of "
-                    "age) written by `patina-texgen fade`; with -o X.vdb a `patina-texgen "
-                    "stone` output folder")
+                    "written by `patina-texgen patina`; the maps `patina-texgen flatten` "
+                    "wrote; one or more fade stacks (in order of age) written by "
+                    "`patina-texgen fade`; with -o X.vdb a `patina-texgen stone` output folder")
         ->required();
     cmd->add_option("-o,--out", o->output,
                     "the .glb (or .gltf with --separate) to write; a folder for the texture "

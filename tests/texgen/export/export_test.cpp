@@ -2,6 +2,7 @@
 // glTF 2.0 specification), a material variant per step, and every map read back (OIIO)
 // against the flattened maps it was made from: bit depth, packing and colour encoding.
 #include "texgen/export/export_patina.h"
+#include "texgen/export/export_flattened.h"
 
 #include "texgen/flatten/flatten_stack.h"
 #include "texgen/flatten/patina_stack_files.h"
@@ -239,6 +240,44 @@ TEST_F(Export, PresetsPackTheFlattenedMapsAsDocumented)
     const ImageData disp = read_image(dir_ / "exr" / "exr_t30_displacement.exr");
     for (size_t t = 0; t < texels; t += 7)
         EXPECT_FLOAT_EQ(disp.at(int(t % f.width), int(t / f.width), 0), height[t] * 1e-6f);
+}
+
+TEST_F(Export, FlattenedMapsExportAsTheStackDoes)
+{
+    // A baked texture stack (flatten's maps, float EXRs, the colour map sRGB-encoded) gives
+    // the asset the stack gives, to one 8-bit step (the colour map's round trip through
+    // sRGB), on the strip of the stack it came from.
+    const std::string command = std::string(PATINA_TEST_BIN_DIR) + "/patina-texgen flatten '" +
+                                (dir_ / "rural" / "t30").string() + "' -o '" +
+                                (dir_ / "flat").string() + "' --quiet";
+    ASSERT_EQ(std::system(command.c_str()), 0) << command;
+    ASSERT_TRUE(is_flattened_stack(dir_ / "flat"));
+    EXPECT_FALSE(is_flattened_stack(dir_ / "rural" / "t30"));
+    ExportOptions o;
+    o.separate = true;
+    o.name_template = "$map";
+    export_patina(dir_ / "rural" / "t30", dir_ / "from_stack" / "a.gltf", o, library_, colors_);
+    export_flattened(dir_ / "flat", dir_ / "from_maps" / "a.gltf", o, colors_);
+    for (const char* map : {"base_color", "metallic_roughness", "normal", "clearcoat"}) {
+        int bits_a = 0, bits_b = 0, ch_a = 0, ch_b = 0;
+        const std::vector<float> a =
+            read_png(dir_ / "from_stack" / (std::string(map) + ".png"), &bits_a, &ch_a);
+        const std::vector<float> b =
+            read_png(dir_ / "from_maps" / (std::string(map) + ".png"), &bits_b, &ch_b);
+        ASSERT_EQ(a.size(), b.size()) << map;
+        EXPECT_EQ(bits_a, bits_b);
+        double worst = 0.0;
+        for (size_t i = 0; i < a.size(); ++i)
+            worst = std::max(worst, std::abs(double(a[i]) - b[i]));
+        EXPECT_LE(worst, 1.0 / 255.0 + 1e-6) << map;
+    }
+    auto json_of = [](const fs::path& f) {
+        std::ifstream in(f);
+        return nlohmann::json::parse(in);
+    };
+    // The strip's size: 0.1 m wide (rural.patina's strip), as the stack's export has it.
+    EXPECT_EQ(json_of(dir_ / "from_maps" / "a.gltf")["accessors"][0]["max"],
+              json_of(dir_ / "from_stack" / "a.gltf")["accessors"][0]["max"]);
 }
 
 TEST_F(Export, SameBytesWithAnyThreadCount)
