@@ -4,6 +4,8 @@
 
 #include <fmt/format.h>
 
+#include <cstdint>
+#include <fstream>
 #include <stdexcept>
 
 namespace patina::render {
@@ -25,6 +27,24 @@ std::vector<fs::path> film_files(const Scene& scene, const fs::path& exr)
     if (scene.output.png)
         files.push_back(fs::path(exr).replace_extension(".png"));
     return files;
+}
+
+std::string scene_hash(const fs::path& scene_file)
+{
+    std::ifstream in(scene_file, std::ios::binary);
+    if (!in)
+        throw std::runtime_error(fmt::format("cannot read scene '{}'", scene_file.string()));
+    // FNV-1a, 64 bits (Fowler, Noll, Vo): a fingerprint that tells parts of different
+    // scenes apart, not a defence against anyone.
+    uint64_t h = 0xcbf29ce484222325ull;
+    char buffer[65536];
+    while (in.read(buffer, sizeof buffer) || in.gcount() > 0) {
+        for (std::streamsize i = 0; i < in.gcount(); ++i) {
+            h ^= static_cast<unsigned char>(buffer[i]);
+            h *= 0x100000001b3ull;
+        }
+    }
+    return fmt::format("{:016x}", h);
 }
 
 void write_film(const Scene& scene, const FilmResult& film, const fs::path& exr,
@@ -65,6 +85,9 @@ void write_film(const Scene& scene, const FilmResult& film, const fs::path& exr,
     const Metadata meta = {
         {"patina:scene", fs::absolute(scene_file).string()},
         {"patina:spp", film.spp},
+        {"patina:sample_begin", film.sample_begin},
+        {"patina:sample_end", film.sample_begin + film.spp},
+        {"patina:scene_hash", scene_hash(scene_file)},
         {"patina:seed", static_cast<int>(scene.film.seed)},
         {"patina:wavelengths", scene.film.wavelengths},
         {"patina:max_depth", scene.film.max_depth},

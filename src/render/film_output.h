@@ -8,6 +8,7 @@
 #include "core/color_management.h"
 
 #include <filesystem>
+#include <string>
 #include <vector>
 
 namespace patina::render {
@@ -18,6 +19,10 @@ void check_output_path(const std::filesystem::path& exr);
 /// The files write_film writes for `exr`: the EXR, and the PNG beside it when the scene
 /// asks for one.
 std::vector<std::filesystem::path> film_files(const Scene& scene, const std::filesystem::path& exr);
+
+/// The scene file's fingerprint (FNV-1a 64 of its bytes, 16 hex digits), written as
+/// patina:scene_hash so that a merge can refuse parts of different scenes.
+std::string scene_hash(const std::filesystem::path& scene_file);
 
 /// Convert the film's XYZ to the working space, write `exr` (and `<stem>.png` when the scene
 /// asks), each through a temporary name.

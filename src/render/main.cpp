@@ -61,6 +61,9 @@ int main(int argc, char** argv)
     app.add_option("--time-limit", options.time_limit,
                    "seconds; stop after the sample pass that crosses it (spp in the EXR header)")
         ->check(patina::positive);
+    app.add_option("--samples", options.samples,
+                   "A-B: render samples A to B - 1 of every pixel (the same random streams as "
+                   "the whole render), for a farm's sample split; excludes --spp");
     app.add_flag("--quiet", options.quiet, "no progress on stderr");
 
     try {

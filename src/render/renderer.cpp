@@ -21,6 +21,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <stdexcept>
+#include <tuple>
 
 #if defined(__SSE__)
 #include <xmmintrin.h>
@@ -270,6 +271,21 @@ std::pair<int, int> parse_frames(const std::string& text)
     return range;
 }
 
+std::pair<int, int> parse_samples(const std::string& text)
+{
+    const size_t dash = text.find('-', 1);
+    if (dash == std::string::npos)
+        throw std::invalid_argument(fmt::format(
+            "--samples '{}': expected A-B, the samples A to B - 1 of every pixel", text));
+    const std::pair<int, int> range{
+        parse_int(std::string_view(text).substr(0, dash), "--samples"),
+        parse_int(std::string_view(text).substr(dash + 1), "--samples")};
+    if (range.first < 0 || range.second <= range.first)
+        throw std::invalid_argument(fmt::format(
+            "--samples '{}': expected 0 <= A < B (samples A to B - 1)", text));
+    return range;
+}
+
 std::string substitute_frame(const std::string& pattern, int frame)
 {
     const size_t first = pattern.find('#');
@@ -301,8 +317,15 @@ FilmResult render_region(const Scene& scene, const Region& region, const RenderC
     const int tiles_y = (h + kTileSize - 1) / kTileSize;
     // With a time limit the samples come in passes, checked between passes; the sums per
     // pixel are taken in sample order either way, so a pass split does not change bits.
-    const int pass_spp = control.time_limit ? std::max(1, std::min(film.spp, 4)) : film.spp;
-    const int passes = (film.spp + pass_spp - 1) / pass_spp;
+    // Samples [begin, end) of every pixel: the whole render, or a farm's sample range.
+    const int begin = control.sample_begin;
+    const int end = control.sample_end > 0 ? control.sample_end : film.spp;
+    const int count = end - begin;
+    if (begin < 0 || count <= 0)
+        throw std::invalid_argument(fmt::format("samples {}-{}: an empty or negative range",
+                                                begin, end));
+    const int pass_spp = control.time_limit ? std::max(1, std::min(count, 4)) : count;
+    const int passes = (count + pass_spp - 1) / pass_spp;
     Progress progress(static_cast<size_t>(tiles_x) * tiles_y * passes, control.quiet);
 
     std::unique_ptr<tbb::global_control> limit;
@@ -320,7 +343,7 @@ FilmResult render_region(const Scene& scene, const Region& region, const RenderC
 
     int spp_done = 0;
     for (int pass = 0; pass < passes; ++pass) {
-        const int s0 = pass * pass_spp, s1 = std::min(film.spp, s0 + pass_spp);
+        const int s0 = begin + pass * pass_spp, s1 = std::min(end, s0 + pass_spp);
         tbb::parallel_for(0, tiles_x * tiles_y, [&](int tile) {
             const DenormalsAreZero daz;
             const int tx0 = (tile % tiles_x) * kTileSize, ty0 = (tile / tiles_x) * kTileSize;
@@ -401,7 +424,7 @@ FilmResult render_region(const Scene& scene, const Region& region, const RenderC
             progress.step();
         });
         throw_if_cancelled();
-        spp_done = s1;
+        spp_done = s1 - begin;
         if (control.time_limit && progress.seconds() > *control.time_limit)
             break;
     }
@@ -410,6 +433,7 @@ FilmResult render_region(const Scene& scene, const Region& region, const RenderC
     FilmResult out;
     out.region = region;
     out.spp = spp_done;
+    out.sample_begin = begin;
     auto mean = [&](const std::vector<double>& sums) {
         std::vector<float> v(sums.size());
         for (size_t i = 0; i < sums.size(); ++i)
@@ -498,8 +522,14 @@ namespace {
             outputs.reserve(file);
 
         const Region region = region_for(scene, options);
-        const FilmResult film = render_region(scene, region, {options.threads, options.quiet,
-                                                             options.time_limit});
+        RenderControl control{options.threads, options.quiet, options.time_limit};
+        if (!options.samples.empty()) {
+            if (options.spp)
+                throw std::invalid_argument("--samples and --spp exclude each other: --samples "
+                                            "A-B takes samples A to B - 1");
+            std::tie(control.sample_begin, control.sample_end) = parse_samples(options.samples);
+        }
+        const FilmResult film = render_region(scene, region, control);
         write_film(scene, film, exr, scene_file, host.colors());
         outputs.commit();
     }

@@ -42,13 +42,19 @@ struct RenderOptions {
     std::string tile;                ///< "" or "i/n"
     std::string frames;              ///< "" or "first-last": '#' runs in paths become the frame
     std::optional<double> time_limit;  ///< seconds; stops after the last whole sample pass
+    std::string samples;             ///< "" or "A-B": samples A..B-1 of every pixel
     bool quiet = false;
 };
+
+/// Parse "A-B" for --samples: the half-open range [A, B) of sample indices, 0 <= A < B.
+/// Throws std::invalid_argument naming the option.
+std::pair<int, int> parse_samples(const std::string& text);
 
 /// Accumulated film of one region: per-pixel means of what was asked for.
 struct FilmResult {
     Region region;
     int spp = 0;                   ///< samples per pixel actually taken
+    int sample_begin = 0;          ///< the first sample's index (samples sample_begin..+spp-1)
     std::vector<float> xyz;        ///< CIE XYZ (D65), 3 per pixel
     std::vector<float> albedo_xyz; ///< first-hit albedo as XYZ under unit D65 (if asked)
     std::vector<float> normal;     ///< first-hit world shading normal (if asked)
@@ -59,6 +65,10 @@ struct RenderControl {
     int threads = 0;
     bool quiet = true;
     std::optional<double> time_limit;
+    /// The samples of every pixel to take, [sample_begin, sample_end); sample_end 0: the
+    /// film's spp. Sample s draws from the stream of (seed, pixel, s) whatever the range, so
+    /// ranges of one render are its parts.
+    int sample_begin = 0, sample_end = 0;
 };
 
 /// Render `region` of the scene's frame. Pixels depend only on (seed, pixel, sample index),

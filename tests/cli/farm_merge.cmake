@@ -1,0 +1,99 @@
+# patina-farm merge: three tiles merge bitwise into the whole-frame render; four sample
+# ranges (patina-render --samples) merge into the full-spp render to float rounding, with
+# the total sample count in the header; parts that do not belong together (another seed,
+# a gap or an overlap in the samples, two parts holding one pixel, a hole) are refused with
+# the files named, and nothing is written.
+include("${CMAKE_CURRENT_LIST_DIR}/lib/expect.cmake")
+file(REMOVE_RECURSE "${WORK_DIR}")
+file(MAKE_DIRECTORY "${WORK_DIR}")
+file(WRITE "${WORK_DIR}/scene.toml" [=[
+[film]
+width = 40
+height = 23
+spp = 16
+seed = 3
+aovs = ["albedo", "depth"]
+[camera]
+from = [0, 1, 4]
+to = [0, 0.5, 0]
+[environment]
+color = [0.8, 0.9, 1.0]
+[[shader]]
+name = "clay"
+type = "lambert"
+reflectance = [0.7, 0.4, 0.3]
+[[shader]]
+name = "metal"
+type = "conductor"
+roughness = 0.3
+[[object]]
+shape = "plane"
+size = 20.0
+bsdf = "clay"
+[[object]]
+shape = "sphere"
+center = [0, 0.6, 0]
+radius = 0.6
+bsdf = "metal"
+]=])
+set(R "${PATINA_RENDER}" "${WORK_DIR}/scene.toml" --quiet)
+expect_success(${R} --output "${WORK_DIR}/full.exr")
+foreach(i 0 1 2)
+  expect_success(${R} --tile ${i}/3 --output "${WORK_DIR}/tile${i}.exr")
+endforeach()
+expect_success("${PATINA_FARM}" merge "${WORK_DIR}/tile2.exr" "${WORK_DIR}/tile0.exr"
+               "${WORK_DIR}/tile1.exr" -o "${WORK_DIR}/tiles.exr")
+expect_in("${LAST_STDERR}" "3 part(s), samples 0-16, pixels [0, 40) x [0, 23)")
+execute_process(COMMAND oiiotool "${WORK_DIR}/full.exr" "${WORK_DIR}/tiles.exr" --diff
+                        --fail 0 --failpercent 0 --warn 0
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 0 OR NOT out MATCHES "PASS")
+  message(FATAL_ERROR "merged tiles differ from the whole frame:\n${out}${err}")
+endif()
+
+# Four sample ranges of 4: the same random streams as the 16-sample render, so the mean of
+# their means is the full render up to the order of the sums (float rounding).
+foreach(r 0-4 4-8 8-12 12-16)
+  expect_success(${R} --samples ${r} --output "${WORK_DIR}/samples_${r}.exr")
+endforeach()
+expect_success("${PATINA_FARM}" merge "${WORK_DIR}/samples_0-4.exr" "${WORK_DIR}/samples_4-8.exr"
+               "${WORK_DIR}/samples_8-12.exr" "${WORK_DIR}/samples_12-16.exr"
+               -o "${WORK_DIR}/samples.exr")
+execute_process(COMMAND oiiotool "${WORK_DIR}/full.exr" "${WORK_DIR}/samples.exr" --diff
+                        --fail 1e-5 --warn 1e-5
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 0 OR NOT out MATCHES "PASS")
+  message(FATAL_ERROR "merged sample ranges differ from the full render:\n${out}${err}")
+endif()
+expect_success(oiiotool --info -v "${WORK_DIR}/samples.exr")
+expect_in("${LAST_STDOUT}" "patina:spp: 16")
+expect_in("${LAST_STDOUT}" "patina:merged_parts: 4")
+# A range alone differs from the full render (the test can tell them apart).
+execute_process(COMMAND oiiotool "${WORK_DIR}/full.exr" "${WORK_DIR}/samples_0-4.exr" --diff
+                        --fail 1e-5 RESULT_VARIABLE rc OUTPUT_QUIET ERROR_QUIET)
+if(rc EQUAL 0)
+  message(FATAL_ERROR "4 samples of 16 match the full render: the comparison proves nothing")
+endif()
+
+# Parts that do not belong together.
+expect_failure("samples 8-12 are in no part" "${PATINA_FARM}" merge
+  "${WORK_DIR}/samples_0-4.exr" "${WORK_DIR}/samples_4-8.exr" "${WORK_DIR}/samples_12-16.exr"
+  -o "${WORK_DIR}/bad1.exr")
+expect_success(${R} --samples 2-6 --output "${WORK_DIR}/samples_2-6.exr")
+expect_failure("overlap" "${PATINA_FARM}" merge "${WORK_DIR}/samples_0-4.exr"
+  "${WORK_DIR}/samples_2-6.exr" -o "${WORK_DIR}/bad2.exr")
+expect_success(${R} --seed 4 --tile 1/3 --output "${WORK_DIR}/seed4.exr")
+expect_failure("has seed 4" "${PATINA_FARM}" merge "${WORK_DIR}/tile0.exr" "${WORK_DIR}/seed4.exr"
+  -o "${WORK_DIR}/bad3.exr")
+expect_failure("both hold pixel" "${PATINA_FARM}" merge "${WORK_DIR}/tile0.exr"
+  "${WORK_DIR}/tile0.exr" -o "${WORK_DIR}/bad4.exr")
+expect_failure("is in no part, inside the merged window" "${PATINA_FARM}" merge
+  "${WORK_DIR}/tile0.exr" "${WORK_DIR}/tile2.exr" -o "${WORK_DIR}/bad5.exr")
+expect_failure("--samples and --spp exclude each other" ${R} --samples 0-4 --spp 8
+  --output "${WORK_DIR}/bad6.exr")
+expect_failure("expected 0 <= A < B" ${R} --samples 4-4 --output "${WORK_DIR}/bad7.exr")
+foreach(f bad1 bad2 bad3 bad4 bad5 bad6 bad7)
+  if(EXISTS "${WORK_DIR}/${f}.exr")
+    message(FATAL_ERROR "a refused merge or render left ${f}.exr behind")
+  endif()
+endforeach()
