@@ -1,17 +1,19 @@
 // patina-farm: Patina's renders, bakes and simulations on a render farm (docs/farm.md).
 #include "farm/frame_merge.h"
+#include "farm/render_farm.h"
 
 #include "core/cancel.h"
 #include "core/cli_errors.h"
 #include "core/manual_page.h"
-#include "core/output_transaction.h"
 
 #include <CLI/CLI.hpp>
+#include <fmt/format.h>
 
 #include <cstdio>
 #include <exception>
 #include <filesystem>
 #include <memory>
+#include <stdexcept>
 #include <vector>
 
 namespace {
@@ -46,6 +48,73 @@ void register_merge(CLI::App& app)
     cmd->footer(patina::manual_footer("farm.md"));
 }
 
+struct SubmitCommand {
+    patina::farm::RenderJobOptions job;
+    patina::farm::SubmitOptions submit;
+};
+
+void register_submit(CLI::App& app)
+{
+    auto o = std::make_shared<SubmitCommand>();
+    CLI::App* cmd = app.add_subcommand(
+        "submit", "submit a render to Slurm as a job array (a task per frame, tile and sample "
+                  "range) and a merge job that runs after it; writes the job folder (job.toml, "
+                  "the scripts, an OpenJD template, a plain shell loop)");
+    cmd->add_option("scene", o->job.scene, "the scene; with --frames, a run of '#' in its name "
+                                           "is the frame number")
+        ->required();
+    cmd->add_option("--job", o->job.folder, "the job folder to write")->required();
+    cmd->add_option("--frames", o->job.frames, "A-B: the frames to render");
+    cmd->add_option("--tiles", o->job.tiles, "bands of rows per frame, a task each")
+        ->capture_default_str();
+    cmd->add_option("--sample-splits", o->job.sample_splits,
+                    "sample ranges per pixel, a task each (needs --spp)")
+        ->capture_default_str();
+    cmd->add_option("--spp", o->job.spp, "samples per pixel (default: the scene's)");
+    cmd->add_option("--throttle", o->submit.throttle,
+                    "at most this many tasks at once (sbatch --array %N)");
+    cmd->add_option("--partition", o->submit.partition, "the Slurm partition");
+    cmd->add_flag("--dry-run", o->submit.dry_run, "write the job folder, submit nothing");
+    cmd->callback([o] {
+        // The programs the nodes run: this one and patina-render beside it.
+        const fs::path self = fs::read_symlink("/proc/self/exe");
+        const fs::path render = self.parent_path() / "patina-render";
+        const patina::farm::RenderJob job =
+            patina::farm::plan_render_job(o->job, render, self);
+        const patina::farm::Submitted s = patina::farm::submit_render_job(job, o->submit);
+        if (o->submit.dry_run)
+            std::printf("wrote %s (%zu tasks, %zu frame(s)); not submitted\n",
+                        job.folder.string().c_str(), job.tasks.size(), job.merges.size());
+        else
+            std::printf("%s %s\n", s.array_job.c_str(), s.merge_job.c_str());
+    });
+}
+
+void register_task(CLI::App& app)
+{
+    auto folder = std::make_shared<fs::path>();
+    auto index = std::make_shared<int>(0);
+    CLI::App* cmd = app.add_subcommand(
+        "task", "run one task of a job (what a farm node runs); nothing when its output is "
+                "already there and valid");
+    cmd->add_option("job", *folder, "the job folder")->required()->check(CLI::ExistingDirectory);
+    cmd->add_option("index", *index, "the task (SLURM_ARRAY_TASK_ID)")->required();
+    cmd->callback([folder, index] {
+        const int status = patina::farm::run_render_task(*folder, *index);
+        if (status != 0)
+            throw std::runtime_error(fmt::format("task {}: patina-render failed (exit status {})",
+                                                 *index, status));
+    });
+}
+
+void register_finish(CLI::App& app)
+{
+    auto folder = std::make_shared<fs::path>();
+    CLI::App* cmd = app.add_subcommand("finish", "merge every frame of a job from its parts");
+    cmd->add_option("job", *folder, "the job folder")->required()->check(CLI::ExistingDirectory);
+    cmd->callback([folder] { patina::farm::finish_render_job(*folder); });
+}
+
 }  // namespace
 
 int main(int argc, char** argv)
@@ -53,15 +122,17 @@ int main(int argc, char** argv)
     CLI::App app{"patina-farm: Patina's renders, bakes and simulations on a render farm"};
     app.set_version_flag("--version", std::string("patina-farm ") + PATINA_VERSION_STRING);
     app.require_subcommand(1);
+    register_submit(app);
+    register_task(app);
+    register_finish(app);
     register_merge(app);
     app.footer(patina::manual_footer("farm.md"));
 
     patina::install_cancel_handler();
     try {
-        patina::OutputTransaction outputs;
-        const patina::CurrentOutputs current(outputs);
+        // Each file is written under a temporary name and renamed at once: a job's scripts
+        // must be in place before sbatch starts them.
         app.parse(argc, argv);
-        outputs.commit();
         return 0;
     } catch (const CLI::ParseError& e) {
         return patina::report_parse_error(app, e, "patina-farm", argc, argv);

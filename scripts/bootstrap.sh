@@ -15,6 +15,7 @@ packages=(
   libopenvdb-dev libboost-dev
   colord-data fonts-dejavu-core
   blender python3-numpy
+  slurm-wlm munge python3
 )
 # Tools of one script only (scripts/fuzz.sh: clang and libFuzzer), named by that script.
 if [ -n "${PATINA_BOOTSTRAP_EXTRA:-}" ]; then

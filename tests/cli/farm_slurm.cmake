@@ -1,0 +1,126 @@
+# patina-farm submit on a real one-node Slurm (the slurm fixture, tests/farm/slurm_cluster.sh):
+# a 2-frame x 4-tile render and a 1-frame 4-way sample split, each a job array plus a merge
+# job chained with afterok; the merged frames are bitwise (tiles) and to float rounding
+# (samples) the one-process renders. A task run again does nothing (idempotent). A
+# dry run writes the job folder (with its OpenJD template and shell loop) and submits
+# nothing.
+include("${CMAKE_CURRENT_LIST_DIR}/lib/expect.cmake")
+file(REMOVE_RECURSE "${WORK_DIR}")
+file(MAKE_DIRECTORY "${WORK_DIR}")
+if(NOT EXISTS "${SLURM_DIR}/env")
+  message(FATAL_ERROR "no Slurm cluster in ${SLURM_DIR}: the farm.slurm_start fixture failed "
+                      "(see its output; Debian 12's slurm-wlm and munge, scripts/bootstrap.sh)")
+endif()
+file(STRINGS "${SLURM_DIR}/env" slurm_env)
+foreach(line IN LISTS slurm_env)
+  string(REGEX MATCH "^([A-Z_]+)=(.*)$" _ "${line}")
+  set(ENV{${CMAKE_MATCH_1}} "${CMAKE_MATCH_2}")
+endforeach()
+
+foreach(frame 1 2)
+  math(EXPR z "2 + ${frame}")
+  file(WRITE "${WORK_DIR}/shot.000${frame}.toml" "[film]
+width = 32
+height = 20
+spp = 8
+seed = ${frame}
+[camera]
+from = [0, 1, ${z}]
+to = [0, 0.5, 0]
+[environment]
+color = [0.8, 0.9, 1.0]
+[[shader]]
+name = \"clay\"
+type = \"lambert\"
+reflectance = [0.7, 0.4, 0.3]
+[[object]]
+shape = \"plane\"
+size = 20.0
+bsdf = \"clay\"
+[[object]]
+shape = \"sphere\"
+center = [0, 0.6, 0]
+radius = 0.6
+bsdf = \"clay\"
+")
+  expect_success("${PATINA_RENDER}" "${WORK_DIR}/shot.000${frame}.toml" --quiet
+                 --output "${WORK_DIR}/one_process.000${frame}.exr")
+endforeach()
+expect_success("${PATINA_RENDER}" "${WORK_DIR}/shot.0001.toml" --quiet --spp 16
+               --output "${WORK_DIR}/one_process_16spp.exr")
+
+# Wait (at most 180 s) until the jobs `ids` have left the queue.
+function(wait_for_jobs)
+  foreach(i RANGE 360)
+    execute_process(COMMAND squeue -h -j "${ARGV0}" -o %i RESULT_VARIABLE rc
+                    OUTPUT_VARIABLE out ERROR_QUIET)
+    string(STRIP "${out}" out)
+    if(out STREQUAL "")
+      return()
+    endif()
+    execute_process(COMMAND sleep 0.5)
+  endforeach()
+  message(FATAL_ERROR "jobs ${ARGV0} still queued after 180 s:\n${out}")
+endfunction()
+
+function(expect_identical a b tolerance)
+  execute_process(COMMAND oiiotool "${a}" "${b}" --diff --fail ${tolerance} --failpercent 0
+                          --warn ${tolerance}
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0 OR NOT out MATCHES "PASS")
+    message(FATAL_ERROR "${b} differs from ${a}:\n${out}${err}")
+  endif()
+endfunction()
+
+# 2 frames x 4 tiles, at most 2 tasks at once.
+expect_success("${PATINA_FARM}" submit "${WORK_DIR}/shot.####.toml" --frames 1-2 --tiles 4
+               --throttle 2 --job "${WORK_DIR}/tiles")
+string(STRIP "${LAST_STDOUT}" ids)
+string(REPLACE " " ";" ids "${ids}")
+list(LENGTH ids n)
+if(NOT n EQUAL 2)
+  message(FATAL_ERROR "submit printed '${LAST_STDOUT}', not the array and merge job ids")
+endif()
+list(JOIN ids "," id_list)
+wait_for_jobs("${id_list}")
+foreach(frame 1 2)
+  set(merged "${WORK_DIR}/tiles/frames/frame.000${frame}.exr")
+  if(NOT EXISTS "${merged}")
+    file(READ "${WORK_DIR}/tiles/logs/merge.log" log)
+    message(FATAL_ERROR "the merge job wrote no ${merged}; its log:\n${log}")
+  endif()
+  expect_identical("${WORK_DIR}/one_process.000${frame}.exr" "${merged}" 0)
+endforeach()
+file(GLOB task_logs "${WORK_DIR}/tiles/logs/task_*.log")
+list(LENGTH task_logs n)
+if(NOT n EQUAL 8)
+  message(FATAL_ERROR "expected 8 task logs, found ${n}")
+endif()
+# A task run again finds its valid output and does nothing.
+file(TIMESTAMP "${WORK_DIR}/tiles/parts/f0001_t002_s000.exr" before "%s" UTC)
+expect_success("${PATINA_FARM}" task "${WORK_DIR}/tiles" 2)
+expect_in("${LAST_STDERR}" "already rendered")
+
+# One frame, its 16 samples in 4 ranges.
+expect_success("${PATINA_FARM}" submit "${WORK_DIR}/shot.0001.toml" --sample-splits 4 --spp 16
+               --job "${WORK_DIR}/samples")
+string(STRIP "${LAST_STDOUT}" ids)
+string(REPLACE " " "," id_list "${ids}")
+wait_for_jobs("${id_list}")
+expect_identical("${WORK_DIR}/one_process_16spp.exr" "${WORK_DIR}/samples/frames/frame.0000.exr" 1e-5)
+
+# A dry run: the folder, nothing submitted.
+expect_success("${PATINA_FARM}" submit "${WORK_DIR}/shot.0001.toml" --tiles 2
+               --job "${WORK_DIR}/dry" --dry-run)
+expect_in("${LAST_STDOUT}" "not submitted")
+foreach(f job.toml slurm_task.sh slurm_merge.sh run_local.sh job.openjd.yaml)
+  if(NOT EXISTS "${WORK_DIR}/dry/${f}")
+    message(FATAL_ERROR "the dry run wrote no ${f}")
+  endif()
+endforeach()
+if(EXISTS "${WORK_DIR}/dry/submitted.toml")
+  message(FATAL_ERROR "the dry run submitted")
+endif()
+# The plain shell loop renders and merges the same frame without a scheduler.
+expect_success(bash "${WORK_DIR}/dry/run_local.sh")
+expect_identical("${WORK_DIR}/one_process.0001.exr" "${WORK_DIR}/dry/frames/frame.0000.exr" 0)
