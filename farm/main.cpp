@@ -45,7 +45,6 @@ void register_merge(CLI::App& app)
                          r.parts, r.sample_begin, r.sample_end, r.x, r.x + r.width, r.y,
                          r.y + r.height, o->output.string().c_str());
     });
-    cmd->footer(patina::manual_footer("farm.md"));
 }
 
 struct SubmitCommand {
@@ -127,6 +126,8 @@ int main(int argc, char** argv)
     register_finish(app);
     register_merge(app);
     app.footer(patina::manual_footer("farm.md"));
+    for (CLI::App* command : app.get_subcommands({}))
+        command->footer(patina::manual_footer("farm.md"));
 
     patina::install_cancel_handler();
     try {
