@@ -9,6 +9,7 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
@@ -114,6 +115,55 @@ void register_finish(CLI::App& app)
     cmd->callback([folder] { patina::farm::finish_render_job(*folder); });
 }
 
+void register_status(CLI::App& app)
+{
+    auto folder = std::make_shared<fs::path>();
+    CLI::App* cmd = app.add_subcommand(
+        "status", "where a job stands: each task done, running, pending or missing (with the "
+                  "last line of its log), and the frames merged");
+    cmd->add_option("job", *folder, "the job folder")->required()->check(CLI::ExistingDirectory);
+    cmd->callback([folder] {
+        const patina::farm::RenderJob job = patina::farm::read_render_job(*folder);
+        const patina::farm::JobStatus st = patina::farm::render_job_status(*folder);
+        for (size_t i = 0; i < st.tasks.size(); ++i) {
+            const patina::farm::RenderTask& t = job.tasks[i];
+            std::printf("task %zu (frame %d, tile %d%s): %s%s%s\n", i, t.frame, t.tile,
+                        t.sample_end > 0
+                            ? fmt::format(", samples {}-{}", t.sample_begin, t.sample_end).c_str()
+                            : "",
+                        st.tasks[i].c_str(), st.failures[i].empty() ? "" : ": ",
+                        st.failures[i].c_str());
+        }
+        const size_t merged = static_cast<size_t>(std::count(st.merged.begin(), st.merged.end(), true));
+        std::printf("%zu task(s): %zu done, %zu running, %zu pending, %zu missing; %zu of %zu "
+                    "frame(s) merged%s%s\n",
+                    st.tasks.size(), st.count("done"), st.count("running"), st.count("pending"),
+                    st.count("missing"), merged, st.merged.size(),
+                    st.merge_queued ? "; the merge is queued" : "",
+                    st.queue_known ? "" : " (Slurm's queue could not be asked)");
+    });
+}
+
+void register_resubmit(CLI::App& app)
+{
+    auto folder = std::make_shared<fs::path>();
+    auto options = std::make_shared<patina::farm::SubmitOptions>();
+    CLI::App* cmd = app.add_subcommand(
+        "resubmit", "submit again the tasks of a job whose outputs are missing or invalid, and "
+                    "its merge");
+    cmd->add_option("job", *folder, "the job folder")->required()->check(CLI::ExistingDirectory);
+    cmd->add_option("--throttle", options->throttle, "at most this many tasks at once");
+    cmd->add_option("--partition", options->partition, "the Slurm partition");
+    cmd->callback([folder, options] {
+        const patina::farm::Submitted s = patina::farm::resubmit_render_job(*folder, *options);
+        if (s.merge_job.empty())
+            std::printf("nothing to resubmit: every task is done and every frame merged\n");
+        else
+            std::printf("%s %s\n", s.array_job.empty() ? "-" : s.array_job.c_str(),
+                        s.merge_job.c_str());
+    });
+}
+
 }  // namespace
 
 int main(int argc, char** argv)
@@ -124,6 +174,8 @@ int main(int argc, char** argv)
     register_submit(app);
     register_task(app);
     register_finish(app);
+    register_status(app);
+    register_resubmit(app);
     register_merge(app);
     app.footer(patina::manual_footer("farm.md"));
     for (CLI::App* command : app.get_subcommands({}))

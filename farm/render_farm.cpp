@@ -8,8 +8,14 @@
 #include "render/film_output.h"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
+#include <toml++/toml.h>
 
+#include <algorithm>
+#include <charconv>
 #include <cstdio>
+#include <fstream>
+#include <sstream>
 #include <stdexcept>
 
 namespace patina::farm {
@@ -33,6 +39,80 @@ namespace {
             s.pop_back();
         // sbatch --parsable prints "id" or "id;cluster".
         return s.substr(0, s.find(';'));
+    }
+
+    /// "0-7" or "1,4,5": the --array index list of `tasks` (the array task id is the
+    /// task's index in job.toml, whichever submission runs it).
+    std::string index_list(const std::vector<size_t>& tasks)
+    {
+        const bool contiguous = tasks.back() - tasks.front() + 1 == tasks.size();
+        return contiguous ? fmt::format("{}-{}", tasks.front(), tasks.back())
+                          : fmt::format("{}", fmt::join(tasks, ","));
+    }
+
+    /// The job ids of the submissions so far (submitted.toml), oldest first.
+    void read_submitted(const fs::path& dir, std::vector<std::string>& arrays,
+                        std::vector<std::string>& merges)
+    {
+        const fs::path file = dir / "submitted.toml";
+        std::error_code ec;
+        if (!fs::exists(file, ec))
+            return;
+        try {
+            const toml::table t = toml::parse_file(file.string());
+            for (auto [key, out] : {std::pair{"array_jobs", &arrays}, std::pair{"merge_jobs", &merges}})
+                if (const toml::array* a = t[key].as_array())
+                    for (const toml::node& id : *a)
+                        out->push_back(id.value_or(std::string()));
+        } catch (const toml::parse_error& e) {
+            throw std::runtime_error(fmt::format("{}:{}: {}", file.string(), e.source().begin.line,
+                                                 e.description()));
+        }
+    }
+
+    /// Submits `tasks` of the job (none: the merge alone) as an array, then the merge after
+    /// it (afterok), and appends their ids to submitted.toml.
+    Submitted sbatch_tasks_and_merge(const RenderJob& job, const std::vector<size_t>& tasks,
+                                     const SubmitOptions& options, Submitted out)
+    {
+        const fs::path& dir = job.folder;
+        auto base = [&](const std::string& name, const fs::path& log) {
+            std::vector<std::string> a = {"sbatch", "--parsable", "--job-name", name,
+                                          "--output", log.string(), "--chdir", dir.string()};
+            if (!options.partition.empty())
+                a.insert(a.end(), {"--partition", options.partition});
+            return a;
+        };
+        const std::string name = "patina-" + dir.filename().string();
+        if (!tasks.empty()) {
+            std::vector<std::string> array = base(name, dir / "logs" / "task_%a.log");
+            array.push_back("--array=" + index_list(tasks) +
+                            (options.throttle > 0 ? fmt::format("%{}", options.throttle) : ""));
+            array.push_back((dir / "slurm_task.sh").string());
+            out.array_job = trimmed(run_and_capture(array));
+        }
+        std::vector<std::string> merge = base(name + "-merge", dir / "logs" / "merge.log");
+        if (!out.array_job.empty())
+            merge.insert(merge.end(), {"--dependency=afterok:" + out.array_job,
+                                       "--kill-on-invalid-dep=yes"});
+        merge.push_back((dir / "slurm_merge.sh").string());
+        out.merge_job = trimmed(run_and_capture(merge));
+
+        std::vector<std::string> arrays, merges;
+        read_submitted(dir, arrays, merges);
+        if (!out.array_job.empty())
+            arrays.push_back(out.array_job);
+        merges.push_back(out.merge_job);
+        toml::array a, m;
+        for (const std::string& id : arrays)
+            a.push_back(id);
+        for (const std::string& id : merges)
+            m.push_back(id);
+        std::ostringstream text;
+        text << "# Slurm job ids of this job, oldest first (patina-farm submit, resubmit).\n"
+             << toml::table{{"array_jobs", a}, {"merge_jobs", m}} << "\n";
+        write_file_atomic(dir / "submitted.toml", {text.str()}, "job file");
+        return out;
     }
 
 }  // namespace
@@ -103,29 +183,13 @@ Submitted submit_render_job(const RenderJob& job, const SubmitOptions& options)
     if (options.dry_run)
         return out;
 
-    std::vector<std::string> array = {
-        "sbatch", "--parsable", "--job-name", "patina-" + dir.filename().string(),
-        "--output", (dir / "logs" / "task_%a.log").string(), "--chdir", dir.string(),
-        options.throttle > 0 ? fmt::format("--array=0-{}%{}", n - 1, options.throttle)
-                             : fmt::format("--array=0-{}", n - 1)};
-    if (!options.partition.empty())
-        array.insert(array.begin() + 2, {"--partition", options.partition});
-    array.push_back((dir / "slurm_task.sh").string());
-    out.array_job = trimmed(run_and_capture(array));
-    std::vector<std::string> merge = {
-        "sbatch", "--parsable", "--job-name", "patina-" + dir.filename().string() + "-merge",
-        "--output", (dir / "logs" / "merge.log").string(), "--chdir", dir.string(),
-        "--dependency=afterok:" + out.array_job, "--kill-on-invalid-dep=yes"};
-    if (!options.partition.empty())
-        merge.insert(merge.begin() + 2, {"--partition", options.partition});
-    merge.push_back((dir / "slurm_merge.sh").string());
-    out.merge_job = trimmed(run_and_capture(merge));
-    write_file_atomic(dir / "submitted.toml",
-                      {fmt::format("# Slurm job ids of this job (patina-farm submit).\n"
-                                   "array_job = \"{}\"\nmerge_job = \"{}\"\n",
-                                   out.array_job, out.merge_job)},
-                      "job file");
-    return out;
+    const std::vector<size_t> all = [&] {
+        std::vector<size_t> v(n);
+        for (size_t i = 0; i < n; ++i)
+            v[i] = i;
+        return v;
+    }();
+    return sbatch_tasks_and_merge(job, all, options, out);
 }
 
 bool valid_part(const RenderTask& task, const fs::path& part)
@@ -187,6 +251,93 @@ void finish_render_job(const fs::path& folder)
         std::fprintf(stderr, "frame %d: %zu part(s), samples %d-%d -> %s\n", m.frame, r.parts,
                      r.sample_begin, r.sample_end, (job.folder / m.output).string().c_str());
     }
+}
+
+size_t JobStatus::count(const std::string& state) const
+{
+    return static_cast<size_t>(std::count(tasks.begin(), tasks.end(), state));
+}
+
+JobStatus render_job_status(const fs::path& folder)
+{
+    const RenderJob job = read_render_job(folder);
+    JobStatus st;
+    st.tasks.assign(job.tasks.size(), "missing");
+    st.failures.assign(job.tasks.size(), "");
+    std::vector<std::string> arrays, merges;
+    read_submitted(job.folder, arrays, merges);
+    std::vector<std::string> queued(job.tasks.size());
+    if (!arrays.empty() || !merges.empty()) {
+        std::vector<std::string> ids = arrays;
+        ids.insert(ids.end(), merges.begin(), merges.end());
+        try {
+            // One line per job or array task: its array job id, task id (N/A for a plain
+            // job) and state; -r lists pending array tasks one by one.
+            const std::string out = run_and_capture(
+                {"squeue", "-h", "-r", "-j", fmt::format("{}", fmt::join(ids, ",")), "-o",
+                 "%F %K %t"});
+            std::istringstream lines(out);
+            std::string array, task, state;
+            while (lines >> array >> task >> state) {
+                if (std::find(merges.begin(), merges.end(), array) != merges.end()) {
+                    st.merge_queued = true;
+                    continue;
+                }
+                size_t index = 0;
+                if (std::from_chars(task.data(), task.data() + task.size(), index).ec == std::errc() &&
+                    index < queued.size())
+                    queued[index] = state == "PD" ? "pending" : "running";
+            }
+        } catch (const std::exception&) {
+            st.queue_known = false;  // squeue failed: the files alone tell
+        }
+    }
+    for (size_t i = 0; i < job.tasks.size(); ++i) {
+        if (!queued[i].empty())
+            st.tasks[i] = queued[i];
+        else if (valid_part(job.tasks[i], job.folder / job.tasks[i].output))
+            st.tasks[i] = "done";
+        else {
+            // Its log says why: the first error line (the renderer's, before the task's
+            // own), else the last line.
+            std::ifstream log(job.folder / "logs" / fmt::format("task_{}.log", i));
+            std::string line, last, error;
+            while (std::getline(log, line)) {
+                if (!line.empty())
+                    last = line;
+                if (error.empty() && line.find("error:") != std::string::npos)
+                    error = line;
+            }
+            st.failures[i] = error.empty() ? last : error;
+        }
+    }
+    for (const FrameMerge& m : job.merges) {
+        std::error_code ec;
+        st.merged.push_back(fs::is_regular_file(job.folder / m.output, ec));
+    }
+    return st;
+}
+
+Submitted resubmit_render_job(const fs::path& folder, const SubmitOptions& options)
+{
+    const RenderJob job = read_render_job(folder);
+    const JobStatus st = render_job_status(folder);
+    if (!st.queue_known)
+        throw std::runtime_error(fmt::format("resubmit of '{}': squeue could not be asked, so "
+                                             "the queued tasks are not known",
+                                             folder.string()));
+    if (st.merge_queued || st.count("running") + st.count("pending") > 0)
+        throw std::runtime_error(fmt::format(
+            "resubmit of '{}': {} task(s) and {} merge still in Slurm's queue; wait for them "
+            "or scancel them first", folder.string(), st.count("running") + st.count("pending"),
+            st.merge_queued ? "a" : "no"));
+    std::vector<size_t> missing;
+    for (size_t i = 0; i < st.tasks.size(); ++i)
+        if (st.tasks[i] == "missing")
+            missing.push_back(i);
+    if (missing.empty() && std::all_of(st.merged.begin(), st.merged.end(), [](bool b) { return b; }))
+        return {};
+    return sbatch_tasks_and_merge(job, missing, options, {});
 }
 
 }  // namespace patina::farm

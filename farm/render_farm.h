@@ -41,4 +41,27 @@ bool valid_part(const RenderTask& task, const std::filesystem::path& part);
 /// Merges every frame of the job in `folder` from its parts.
 void finish_render_job(const std::filesystem::path& folder);
 
+/// Where a job stands: per task "done" (its part is valid), "running" or "pending" (in
+/// Slurm's queue), or "missing" (neither: failed, cancelled or never run, with the first
+/// error line of its log, or its last line); per frame whether it is merged, and whether a
+/// merge job is queued.
+struct JobStatus {
+    std::vector<std::string> tasks;     ///< per task: done, running, pending, missing
+    std::vector<std::string> failures;  ///< per task: what its log says when missing
+    std::vector<bool> merged;           ///< per frame
+    bool merge_queued = false;
+    bool queue_known = true;            ///< false when squeue could not be asked
+    size_t count(const std::string& state) const;
+};
+
+/// The status of the job in `folder`, from its parts, its frames and (when it was
+/// submitted) Slurm's queue.
+JobStatus render_job_status(const std::filesystem::path& folder);
+
+/// Submits again what is left of the job in `folder`: its missing tasks as a job array
+/// and a merge after them (or the merge alone when only it is missing). Refuses while any
+/// of its tasks or merges is still queued. Returns the new ids (empty when the job is
+/// complete: nothing is submitted).
+Submitted resubmit_render_job(const std::filesystem::path& folder, const SubmitOptions& options);
+
 }  // namespace patina::farm

@@ -124,3 +124,87 @@ endif()
 # The plain shell loop renders and merges the same frame without a scheduler.
 expect_success(bash "${WORK_DIR}/dry/run_local.sh")
 expect_identical("${WORK_DIR}/one_process.0001.exr" "${WORK_DIR}/dry/frames/frame.0000.exr" 0)
+
+# A broken scene: every task fails, so the merge job (afterok) never runs; status names each
+# task's failure from its log.
+file(WRITE "${WORK_DIR}/broken.toml" "[film]
+width = 16
+height = 8
+spp = 4
+[camera]
+from = [0, 1, 4]
+to = [0, 0, 0]
+[[shader]]
+name = \"x\"
+type = \"no_such_shader\"
+[[object]]
+shape = \"sphere\"
+radius = 1.0
+bsdf = \"x\"
+")
+expect_success("${PATINA_FARM}" submit "${WORK_DIR}/broken.toml" --tiles 2
+               --job "${WORK_DIR}/broken")
+string(STRIP "${LAST_STDOUT}" ids)
+string(REPLACE " " "," id_list "${ids}")
+wait_for_jobs("${id_list}")
+if(EXISTS "${WORK_DIR}/broken/frames/frame.0000.exr" OR EXISTS "${WORK_DIR}/broken/logs/merge.log")
+  message(FATAL_ERROR "the merge job ran although every task failed")
+endif()
+expect_success("${PATINA_FARM}" status "${WORK_DIR}/broken")
+expect_in("${LAST_STDOUT}" "task 0 (frame 0, tile 0): missing: patina-render: error:")
+expect_in("${LAST_STDOUT}" "no_such_shader")
+expect_in("${LAST_STDOUT}" "2 task(s): 0 done, 0 running, 0 pending, 2 missing; 0 of 1 frame(s) merged")
+
+# A task cancelled while it runs and requeued (what preemption does): the array's afterok
+# fails, so Slurm cancels the merge; resubmit finds every part there and valid, submits the
+# merge alone, and the frame is bitwise the one-process render.
+file(READ "${WORK_DIR}/shot.0001.toml" heavy)
+string(REPLACE "width = 32" "width = 320" heavy "${heavy}")
+string(REPLACE "height = 20" "height = 200" heavy "${heavy}")
+string(REPLACE "spp = 8" "spp = 256" heavy "${heavy}")
+file(WRITE "${WORK_DIR}/heavy.toml" "${heavy}")
+expect_success("${PATINA_FARM}" submit "${WORK_DIR}/heavy.toml" --tiles 2 --throttle 1
+               --job "${WORK_DIR}/requeue")
+string(STRIP "${LAST_STDOUT}" ids)
+string(REPLACE " " ";" ids "${ids}")
+list(GET ids 0 array)
+list(GET ids 1 merge)
+set(running "")
+foreach(i RANGE 120)
+  execute_process(COMMAND squeue -h -r -j "${array}" -o "%K %t" OUTPUT_VARIABLE q ERROR_QUIET)
+  if(q MATCHES "0 R")
+    set(running 1)
+    break()
+  endif()
+  execute_process(COMMAND sleep 0.25)
+endforeach()
+if(NOT running)
+  message(FATAL_ERROR "task 0 of job ${array} never ran within 30 s")
+endif()
+expect_success(scancel "${array}_0")
+expect_success(scontrol requeue "${array}_0")
+# A requeued job waits for a begin time (two minutes): once it does, release it.
+foreach(i RANGE 120)
+  execute_process(COMMAND squeue -h -r -j "${array}" -o "%K %t %r" OUTPUT_VARIABLE q ERROR_QUIET)
+  if(q MATCHES "0 PD BeginTime")
+    expect_success(scontrol update "jobid=${array}_0" StartTime=now)
+  elseif(NOT q MATCHES "(^|\n)0 ")
+    break()
+  endif()
+  execute_process(COMMAND sleep 0.25)
+endforeach()
+wait_for_jobs("${array},${merge}")
+expect_success("${PATINA_FARM}" status "${WORK_DIR}/requeue")
+expect_in("${LAST_STDOUT}" "2 task(s): 2 done, 0 running, 0 pending, 0 missing; 0 of 1 frame(s) merged")
+expect_success("${PATINA_FARM}" resubmit "${WORK_DIR}/requeue")
+string(STRIP "${LAST_STDOUT}" ids)
+if(NOT ids MATCHES "^- [0-9]+$")
+  message(FATAL_ERROR "resubmit printed '${LAST_STDOUT}', not the merge alone")
+endif()
+string(REPLACE "- " "" merge "${ids}")
+wait_for_jobs("${merge}")
+expect_success("${PATINA_RENDER}" "${WORK_DIR}/heavy.toml" --quiet
+               --output "${WORK_DIR}/heavy_one_process.exr")
+expect_identical("${WORK_DIR}/heavy_one_process.exr" "${WORK_DIR}/requeue/frames/frame.0000.exr" 0)
+expect_success("${PATINA_FARM}" resubmit "${WORK_DIR}/requeue")
+expect_in("${LAST_STDOUT}" "nothing to resubmit")
