@@ -38,6 +38,7 @@ MergeResult merge_render_parts(const std::vector<fs::path>& files, const fs::pat
     for (const RenderPart& p : parts) {
         require_same(first, p, "scene hash", first.scene_hash, p.scene_hash);
         require_same(first, p, "seed", std::to_string(first.seed), std::to_string(p.seed));
+        require_same(first, p, "plugins", "'" + first.plugins + "'", "'" + p.plugins + "'");
         require_same(first, p, "frame size",
                      fmt::format("{}x{}", first.full_width, first.full_height),
                      fmt::format("{}x{}", p.full_width, p.full_height));

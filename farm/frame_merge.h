@@ -19,8 +19,8 @@ struct MergeResult {
 
 /// Merges `parts` into `output` (written under a temporary name and renamed; its header
 /// holds the total sample count as patina:spp and the range as patina:sample_begin/end).
-/// Refuses, naming the files: parts of different scenes (patina:scene_hash), seeds, frame
-/// sizes or channels; sample ranges with a gap or an overlap; two parts of one sample range
+/// Refuses, naming the files: parts of different scenes (patina:scene_hash), seeds,
+/// plugins (patina:plugins), frame sizes or channels; sample ranges with a gap or an overlap; two parts of one sample range
 /// sharing a pixel; a sample range that lacks pixels the others have; pixels that leave a
 /// hole in the merged rectangle.
 MergeResult merge_render_parts(const std::vector<std::filesystem::path>& parts,

@@ -79,8 +79,8 @@ void register_submit(CLI::App& app)
         // The programs the nodes run: this one and patina-render beside it.
         const fs::path self = fs::read_symlink("/proc/self/exe");
         const fs::path render = self.parent_path() / "patina-render";
-        const patina::farm::RenderJob job =
-            patina::farm::plan_render_job(o->job, render, self);
+        patina::farm::RenderJob job = patina::farm::plan_render_job(o->job, render, self);
+        job.plugins = patina::farm::plugin_set_of(job.tasks.front().scene);
         const patina::farm::Submitted s = patina::farm::submit_render_job(job, o->submit);
         if (o->submit.dry_run)
             std::printf("wrote %s (%zu tasks, %zu frame(s)); not submitted\n",

@@ -6,6 +6,11 @@
 
 #include "core/image_io.h"
 #include "render/film_output.h"
+#include "render/plugin_setup.h"
+#include "render/scene.h"
+
+#include "core/host.h"
+#include "core/plugin_registry.h"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -192,7 +197,7 @@ Submitted submit_render_job(const RenderJob& job, const SubmitOptions& options)
     return sbatch_tasks_and_merge(job, all, options, out);
 }
 
-bool valid_part(const RenderTask& task, const fs::path& part)
+bool valid_part(const RenderJob& job, const RenderTask& task, const fs::path& part)
 {
     std::error_code ec;
     if (!fs::is_regular_file(part, ec))
@@ -201,7 +206,8 @@ bool valid_part(const RenderTask& task, const fs::path& part)
         const RenderPart p = read_render_part(part, false);
         const bool samples = task.sample_end == 0 ||
                              (p.sample_begin == task.sample_begin && p.sample_end == task.sample_end);
-        return samples && p.scene_hash == render::scene_hash(task.scene);
+        return samples && p.scene_hash == render::scene_hash(task.scene) &&
+               (job.plugins.empty() || p.plugins == job.plugins);
     } catch (const std::exception&) {
         return false;
     }
@@ -215,7 +221,7 @@ int run_render_task(const fs::path& folder, int index)
                                              folder.string(), job.tasks.size() - 1));
     const RenderTask& task = job.tasks[static_cast<size_t>(index)];
     const fs::path output = job.folder / task.output;
-    if (valid_part(task, output)) {
+    if (valid_part(job, task, output)) {
         std::fprintf(stderr, "task %d: %s is already rendered\n", index, output.string().c_str());
         return 0;
     }
@@ -245,8 +251,16 @@ void finish_render_job(const fs::path& folder)
     const RenderJob job = read_render_job(folder);
     for (const FrameMerge& m : job.merges) {
         std::vector<fs::path> parts;
-        for (const fs::path& p : m.parts)
+        for (const fs::path& p : m.parts) {
             parts.push_back(job.folder / p);
+            const RenderPart header = read_render_part(parts.back(), false);
+            if (!job.plugins.empty() && header.plugins != job.plugins)
+                throw std::runtime_error(fmt::format(
+                    "finish: part '{}' was rendered with the plugins '{}', the job was "
+                    "submitted with '{}': point every node at the same plugin folder "
+                    "(PATINA_PLUGIN_PATH) and resubmit the task",
+                    parts.back().string(), header.plugins, job.plugins));
+        }
         const MergeResult r = merge_render_parts(parts, job.folder / m.output);
         std::fprintf(stderr, "frame %d: %zu part(s), samples %d-%d -> %s\n", m.frame, r.parts,
                      r.sample_begin, r.sample_end, (job.folder / m.output).string().c_str());
@@ -295,7 +309,7 @@ JobStatus render_job_status(const fs::path& folder)
     for (size_t i = 0; i < job.tasks.size(); ++i) {
         if (!queued[i].empty())
             st.tasks[i] = queued[i];
-        else if (valid_part(job.tasks[i], job.folder / job.tasks[i].output))
+        else if (valid_part(job, job.tasks[i], job.folder / job.tasks[i].output))
             st.tasks[i] = "done";
         else {
             // Its log says why: the first error line (the renderer's, before the task's
@@ -338,6 +352,17 @@ Submitted resubmit_render_job(const fs::path& folder, const SubmitOptions& optio
     if (missing.empty() && std::all_of(st.merged.begin(), st.merged.end(), [](bool b) { return b; }))
         return {};
     return sbatch_tasks_and_merge(job, missing, options, {});
+}
+
+std::string plugin_set_of(const fs::path& scene)
+{
+    const render::SceneFile file = render::parse_scene_file(scene);
+    render::PluginSearch search;
+    render::check_scene_plugins(file.plugin_dirs, file.plugins_where, search);
+    search.scene = file.plugin_dirs;
+    PluginRegistry registry(default_host().c_host());
+    render::load_plugins(registry, search);
+    return render::scene_plugin_set(file.root, registry);
 }
 
 }  // namespace patina::farm

@@ -35,10 +35,16 @@ Submitted submit_render_job(const RenderJob& job, const SubmitOptions& options);
 int run_render_task(const std::filesystem::path& folder, int index);
 
 /// True when `part` is a complete output of `task`: its header names the task's scene
-/// (hash) and sample range.
-bool valid_part(const RenderTask& task, const std::filesystem::path& part);
+/// (hash), sample range and the job's plugins.
+bool valid_part(const RenderJob& job, const RenderTask& task, const std::filesystem::path& part);
 
-/// Merges every frame of the job in `folder` from its parts.
+/// The plugin set (render/plugin_setup.h scene_plugin_set) `scene` renders with here: the
+/// plugins patina-render would load (bundled, $PATINA_PLUGIN_PATH, the scene's trusted
+/// [plugins] path), those of its shaders.
+std::string plugin_set_of(const std::filesystem::path& scene);
+
+/// Merges every frame of the job in `folder` from its parts, after checking that each was
+/// rendered with the job's plugins (naming the part and both sets otherwise).
 void finish_render_job(const std::filesystem::path& folder);
 
 /// Where a job stands: per task "done" (its part is valid), "running" or "pending" (in

@@ -76,7 +76,8 @@ std::string render_job_text(const RenderJob& job)
                   {"sample_splits", job.sample_splits},
                   {"spp", job.spp},
                   {"render", job.render.string()},
-                  {"farm", job.farm.string()}};
+                  {"farm", job.farm.string()},
+                  {"plugins", job.plugins}};
     root.insert_or_assign("job", std::move(j));
     toml::array tasks;
     for (const RenderTask& t : job.tasks)
@@ -131,6 +132,7 @@ RenderJob read_render_job(const fs::path& folder)
     job.spp = (*j)["spp"].value_or(0);
     job.render = (*j)["render"].value_or(std::string());
     job.farm = (*j)["farm"].value_or(std::string());
+    job.plugins = (*j)["plugins"].value_or(std::string());
     if (const toml::array* tasks = root["task"].as_array())
         for (const toml::node& n : *tasks) {
             const toml::table* t = n.as_table();

@@ -31,6 +31,9 @@ struct RenderJob {
     bool frames = false;               ///< the scene path holds '#': one scene per frame
     int tiles = 1, sample_splits = 1, spp = 0;
     std::filesystem::path render, farm;  ///< the programs' absolute paths, as submitted
+    /// The plugins of the scene's shaders where it was submitted (scene_plugin_set): every
+    /// part must have been rendered with them.
+    std::string plugins;
     std::vector<RenderTask> tasks;
     std::vector<FrameMerge> merges;
 };

@@ -25,6 +25,8 @@ RenderPart read_render_part(const std::filesystem::path& file, bool pixels)
     };
     part.scene_hash = need("patina:scene_hash")->get_string();
     part.seed = need("patina:seed")->get_int();
+    if (const OIIO::ParamValue* p = spec.find_attribute("patina:plugins"))
+        part.plugins = p->get_string();
     part.sample_begin = need("patina:sample_begin")->get_int();
     part.sample_end = need("patina:sample_end")->get_int();
     part.full_width = spec.full_width;

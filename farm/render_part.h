@@ -17,6 +17,7 @@ struct RenderPart {
     std::filesystem::path file;
     std::string scene_hash;          ///< patina:scene_hash
     int seed = 0;                    ///< patina:seed
+    std::string plugins;             ///< patina:plugins (render/plugin_setup.h), or ""
     int sample_begin = 0, sample_end = 0;  ///< samples [begin, end) of every pixel
     int full_width = 0, full_height = 0;   ///< the frame (the display window)
     int x = 0, y = 0, width = 0, height = 0;  ///< the pixels it holds (the data window)

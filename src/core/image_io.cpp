@@ -81,7 +81,7 @@ void write_image_atomic(const std::filesystem::path& path, const float* pixels, 
                         int height, int channels,
                         const std::vector<std::string>& channel_names,
                         OIIO::TypeDesc format, const Metadata& metadata,
-                        const ImageWindow* window)
+                        const ImageWindow* window, const UintPart* second)
 {
     check_format(path, format);
     if (!pixels)
@@ -103,8 +103,33 @@ void write_image_atomic(const std::filesystem::path& path, const float* pixels, 
     if (!out)
         throw std::runtime_error(fmt::format("cannot write image '{}': {}", path.string(), oiio_error("")));
     StagedOutput staged(path);
-    bool ok = out->open(staged.path().string(), spec) &&
-              out->write_image(OIIO::TypeDesc::FLOAT, pixels);
+    bool ok = false;
+    if (!second) {
+        ok = out->open(staged.path().string(), spec) &&
+             out->write_image(OIIO::TypeDesc::FLOAT, pixels);
+    } else {
+        if (!out->supports("multiimage") || !second->pixels)
+            throw std::runtime_error(fmt::format("cannot write image '{}': a second part needs "
+                                                 "OpenEXR", path.string()));
+        OIIO::ImageSpec part(spec.width, spec.height, static_cast<int>(second->channels.size()),
+                             OIIO::TypeDesc::UINT32);
+        part.channelnames = second->channels;
+        part.x = spec.x;
+        part.y = spec.y;
+        part.full_x = spec.full_x;
+        part.full_y = spec.full_y;
+        part.full_width = spec.full_width;
+        part.full_height = spec.full_height;
+        part.attribute("name", second->name);
+        part.attribute("compression", "zip");
+        if (spec.get_string_attribute("name").empty())
+            spec.attribute("name", "rgba");
+        const OIIO::ImageSpec specs[2] = {spec, part};
+        ok = out->open(staged.path().string(), 2, specs) &&
+             out->write_image(OIIO::TypeDesc::FLOAT, pixels) &&
+             out->open(staged.path().string(), specs[1], OIIO::ImageOutput::AppendSubimage) &&
+             out->write_image(OIIO::TypeDesc::UINT32, second->pixels);
+    }
     ok = out->close() && ok;
     if (!ok)
         throw std::runtime_error(fmt::format("cannot write image '{}': {}", path.string(),

@@ -7,6 +7,7 @@
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/typedesc.h>
 
+#include <cstdint>
 #include <filesystem>
 #include <initializer_list>
 #include <string>
@@ -69,11 +70,20 @@ void write_file_atomic(const std::filesystem::path& path,
 /// OpenEXR file keeps them sorted by name; readers must look channels up by name).
 /// Staged like write_file_atomic: on any failure `path` is untouched and std::runtime_error
 /// names the file with OIIO's error text.
+/// A second part of an OpenEXR file written by write_image_atomic: `name`, the first
+/// part's size and window, channels of 32-bit unsigned ints (`channels` per pixel,
+/// interleaved): exact bits, e.g. a double as two of them.
+struct UintPart {
+    std::string name;
+    std::vector<std::string> channels;
+    const uint32_t* pixels = nullptr;
+};
+
 void write_image_atomic(const std::filesystem::path& path, const float* pixels, int width,
                         int height, int channels,
                         const std::vector<std::string>& channel_names,
                         OIIO::TypeDesc format, const Metadata& metadata = {},
-                        const ImageWindow* window = nullptr);
+                        const ImageWindow* window = nullptr, const UintPart* second = nullptr);
 
 /// How make_texture_atomic builds a texture.
 struct TextureOptions {

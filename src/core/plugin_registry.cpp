@@ -225,7 +225,9 @@ void PluginRegistry::load_file(const fs::path& file)
                 "plugin '{}': shader '{}' is already provided by plugin '{}'; remove one of "
                 "the two from the plugin search path",
                 file.string(), d.name, other->plugin_file.string()));
-        lib->shaders.push_back(LoadedShader{&d, canonical, plugin_name});
+        lib->shaders.push_back(LoadedShader{
+            &d, canonical, plugin_name,
+            lib->info->plugin_version ? lib->info->plugin_version : "", *version});
     }
     libraries_.push_back(std::move(lib));
 }

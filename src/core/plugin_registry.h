@@ -28,6 +28,8 @@ struct LoadedShader {
     const PatinaShaderDesc* desc = nullptr;
     std::filesystem::path plugin_file;
     std::string plugin_name;
+    std::string plugin_version;  ///< the plugin's own version string
+    int abi_version = 0;         ///< the plugin's ABI version, major*100 + minor
 };
 
 /// The set of loaded plugins. Not copyable; unloads every plugin on destruction, so every

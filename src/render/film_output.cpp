@@ -1,11 +1,14 @@
 #include "render/film_output.h"
 
+#include "core/file_fingerprint.h"
 #include "core/image_io.h"
 
+#include <OpenImageIO/imageio.h>
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <bit>
 #include <cstdint>
-#include <fstream>
 #include <stdexcept>
 
 namespace patina::render {
@@ -31,24 +34,83 @@ std::vector<fs::path> film_files(const Scene& scene, const fs::path& exr)
 
 std::string scene_hash(const fs::path& scene_file)
 {
-    std::ifstream in(scene_file, std::ios::binary);
+    return file_fingerprint(scene_file);
+}
+
+Checkpoint read_checkpoint(const fs::path& exr)
+{
+    auto fail = [&](const std::string& what) {
+        return std::runtime_error(fmt::format("--resume '{}': {}", exr.string(), what));
+    };
+    auto in = OIIO::ImageInput::open(exr.string());
     if (!in)
-        throw std::runtime_error(fmt::format("cannot read scene '{}'", scene_file.string()));
-    // FNV-1a, 64 bits (Fowler, Noll, Vo): a fingerprint that tells parts of different
-    // scenes apart, not a defence against anyone.
-    uint64_t h = 0xcbf29ce484222325ull;
-    char buffer[65536];
-    while (in.read(buffer, sizeof buffer) || in.gcount() > 0) {
-        for (std::streamsize i = 0; i < in.gcount(); ++i) {
-            h ^= static_cast<unsigned char>(buffer[i]);
-            h *= 0x100000001b3ull;
-        }
+        throw fail(OIIO::geterror());
+    Checkpoint c;
+    const OIIO::ImageSpec beauty = in->spec();
+    auto get = [&](const char* key) {
+        const OIIO::ParamValue* p = beauty.find_attribute(key);
+        if (!p)
+            throw fail(fmt::format("no {} in its header: not a render Patina can continue", key));
+        return p;
+    };
+    c.scene_hash = get("patina:scene_hash")->get_string();
+    c.seed = get("patina:seed")->get_int();
+    c.sample_begin = get("patina:sample_begin")->get_int();
+    c.sample_end = get("patina:sample_end")->get_int();
+    c.full_width = beauty.full_width;
+    c.full_height = beauty.full_height;
+    c.region = {beauty.x, beauty.y, beauty.x + beauty.width, beauty.y + beauty.height};
+    int part = -1;
+    for (int sub = 1; in->seek_subimage(sub, 0); ++sub)
+        if (in->spec().get_string_attribute("name") == "sums")
+            part = sub;
+    if (part < 0)
+        throw fail("it holds no sums (part \"sums\"): render with --checkpoint to continue later");
+    in->seek_subimage(part, 0);
+    const OIIO::ImageSpec spec = in->spec();
+    const size_t npix = static_cast<size_t>(beauty.width) * beauty.height;
+    // The layout the header names: xyz, then the AOVs the render kept.
+    const std::string layout = beauty.get_string_attribute("patina:sums_layout");
+    const bool with_albedo = layout.find("albedo") != std::string::npos;
+    const bool with_normal = layout.find("normal") != std::string::npos;
+    const bool with_depth = layout.find("depth") != std::string::npos;
+    const int doubles = 3 + (with_albedo ? 3 : 0) + (with_normal ? 3 : 0) + (with_depth ? 1 : 0);
+    if (spec.width != beauty.width || spec.height != beauty.height ||
+        spec.nchannels != 2 * doubles)
+        throw fail(fmt::format("part \"sums\" is {}x{} pixels of {} channels, not {}x{} of {} "
+                               "(patina:sums_layout '{}')",
+                               spec.width, spec.height, spec.nchannels, beauty.width,
+                               beauty.height, 2 * doubles, layout));
+    std::vector<uint32_t> bits(npix * static_cast<size_t>(spec.nchannels));
+    if (!in->read_image(part, 0, 0, spec.nchannels, OIIO::TypeDesc::UINT32, bits.data()))
+        throw fail(in->geterror());
+    c.sums.xyz.resize(npix * 3);
+    if (with_albedo)
+        c.sums.albedo.resize(npix * 3);
+    if (with_normal)
+        c.sums.normal.resize(npix * 3);
+    if (with_depth)
+        c.sums.depth.resize(npix);
+    size_t at = 0;
+    auto take = [&](std::vector<double>& v, size_t i, size_t n) {
+        for (size_t k = 0; k < n; ++k, at += 2)
+            v[i * n + k] = std::bit_cast<double>((uint64_t(bits[at]) << 32) | bits[at + 1]);
+    };
+    for (size_t i = 0; i < npix; ++i) {
+        take(c.sums.xyz, i, 3);
+        if (with_albedo)
+            take(c.sums.albedo, i, 3);
+        if (with_normal)
+            take(c.sums.normal, i, 3);
+        if (with_depth)
+            take(c.sums.depth, i, 1);
     }
-    return fmt::format("{:016x}", h);
+    return c;
 }
 
 void write_film(const Scene& scene, const FilmResult& film, const fs::path& exr,
-                const fs::path& scene_file, const ColorManager& colors)
+                const fs::path& scene_file, const std::string& plugins,
+                const ColorManager& colors)
 {
     const size_t npix = static_cast<size_t>(film.region.width()) * film.region.height();
     // XYZ -> working space (OCIO) for the beauty and the albedo.
@@ -88,6 +150,13 @@ void write_film(const Scene& scene, const FilmResult& film, const fs::path& exr,
         {"patina:sample_begin", film.sample_begin},
         {"patina:sample_end", film.sample_begin + film.spp},
         {"patina:scene_hash", scene_hash(scene_file)},
+        {"patina:plugins", plugins},
+        {"patina:sums_layout",
+         film.sums.xyz.empty()
+             ? std::string()
+             : fmt::format("xyz{}{}{}", film.sums.albedo.empty() ? "" : " albedo",
+                           film.sums.normal.empty() ? "" : " normal",
+                           film.sums.depth.empty() ? "" : " depth")},
         {"patina:seed", static_cast<int>(scene.film.seed)},
         {"patina:wavelengths", scene.film.wavelengths},
         {"patina:max_depth", scene.film.max_depth},
@@ -103,10 +172,38 @@ void write_film(const Scene& scene, const FilmResult& film, const fs::path& exr,
         colors.convert_display(colors.working_space(), scene.output.display, scene.output.view,
                                display.data(), npix);
     }
+    // The sums, exactly: every double as the two 32-bit halves of its bits.
+    std::vector<uint32_t> bits;
+    UintPart sums_part;
+    const FilmSums& sums = film.sums;
+    const size_t per_pixel = (sums.xyz.size() + sums.albedo.size() + sums.normal.size() +
+                              sums.depth.size()) / std::max<size_t>(npix, 1);
+    if (!sums.xyz.empty()) {
+        bits.reserve(2 * per_pixel * npix);
+        for (size_t i = 0; i < npix; ++i) {
+            auto put = [&](const std::vector<double>& v, size_t n) {
+                for (size_t k = 0; k < n; ++k) {
+                    const uint64_t b = std::bit_cast<uint64_t>(v[i * n + k]);
+                    bits.push_back(static_cast<uint32_t>(b >> 32));
+                    bits.push_back(static_cast<uint32_t>(b));
+                }
+            };
+            put(sums.xyz, 3);
+            put(sums.albedo, sums.albedo.empty() ? 0 : 3);
+            put(sums.normal, sums.normal.empty() ? 0 : 3);
+            put(sums.depth, sums.depth.empty() ? 0 : 1);
+        }
+        sums_part.name = "sums";
+        for (size_t d = 0; d < per_pixel; ++d) {
+            sums_part.channels.push_back(fmt::format("d{:02}.hi", d));
+            sums_part.channels.push_back(fmt::format("d{:02}.lo", d));
+        }
+        sums_part.pixels = bits.data();
+    }
     write_image_atomic(exr, pixels.data(), film.region.width(), film.region.height(),
                        static_cast<int>(nc), names,
                        scene.output.half ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT, meta,
-                       &window);
+                       &window, bits.empty() ? nullptr : &sums_part);
     if (scene.output.png)
         write_image_atomic(film_files(scene, exr).back(), display.data(), film.region.width(),
                            film.region.height(), 3, {}, OIIO::TypeDesc::UINT8);

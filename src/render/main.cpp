@@ -64,6 +64,13 @@ int main(int argc, char** argv)
     app.add_option("--samples", options.samples,
                    "A-B: render samples A to B - 1 of every pixel (the same random streams as "
                    "the whole render), for a farm's sample split; excludes --spp");
+    app.add_flag("--checkpoint", options.checkpoint,
+                 "keep the film's exact sums in the EXR (a part \"sums\") so that the render "
+                 "can be continued with --resume");
+    app.add_option("--resume", options.resume,
+                   "continue the render of this EXR (written with --checkpoint) to the scene's "
+                   "or --spp's samples: bitwise the render that never stopped")
+        ->check(CLI::ExistingFile);
     app.add_flag("--quiet", options.quiet, "no progress on stderr");
 
     try {

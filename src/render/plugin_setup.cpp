@@ -2,6 +2,7 @@
 
 #include "formats/toml_location.h"
 
+#include "core/file_fingerprint.h"
 #include "core/one_line.h"
 #include "core/shader_instance.h"
 
@@ -9,6 +10,7 @@
 #include <toml++/toml.h>
 
 #include <cstdlib>
+#include <map>
 
 namespace patina::render {
 
@@ -171,6 +173,28 @@ std::string list_shaders_markdown(const PluginRegistry& registry)
             out += fmt::format(" {}", s->desc->help);
         out += "\n\n" + describe_shader_markdown(*s->desc);
     }
+    return out;
+}
+
+std::string scene_plugin_set(const toml::table& scene, const PluginRegistry& registry)
+{
+    std::map<std::string, std::string> lines;  // by plugin name: sorted, each once
+    if (const toml::array* shaders = scene["shader"].as_array())
+        for (const toml::node& node : *shaders) {
+            const toml::table* t = node.as_table();
+            const std::string type = t ? (*t)["type"].value_or(std::string()) : std::string();
+            const LoadedShader* shader = registry.find(type);
+            if (!shader || lines.count(shader->plugin_name))
+                continue;
+            lines[shader->plugin_name] = fmt::format(
+                "{} {} ABI {}.{} {}", shader->plugin_name,
+                shader->plugin_version.empty() ? "-" : shader->plugin_version,
+                shader->abi_version / 100, shader->abi_version % 100,
+                file_fingerprint(shader->plugin_file));
+        }
+    std::string out;
+    for (const auto& [name, line] : lines)
+        out += (out.empty() ? "" : "; ") + line;
     return out;
 }
 

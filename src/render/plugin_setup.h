@@ -13,6 +13,8 @@
 
 #include "core/plugin_registry.h"
 
+#include <toml++/toml.h>
+
 #include <filesystem>
 #include <vector>
 
@@ -45,6 +47,13 @@ std::filesystem::path bundled_plugin_dir();
 
 /// Load every plugin `search` names into `registry`; throws PluginError on the first problem.
 void load_plugins(PluginRegistry& registry, const PluginSearch& search);
+
+/// The plugins that provide the shaders `scene` declares ([[shader]] type), sorted by name
+/// and joined by "; ": "name version ABI a.b fingerprint" (core/file_fingerprint.h of the
+/// plugin file). Renders record it (patina:plugins) and farm jobs compare it, so that the
+/// parts of a frame come from the same plugins. A type no plugin provides is skipped (the
+/// scene's build reports it).
+std::string scene_plugin_set(const toml::table& scene, const PluginRegistry& registry);
 
 /// The `--list-shaders` text: every shader, its kind, plugin file and parameters.
 std::string list_shaders(const PluginRegistry& registry);

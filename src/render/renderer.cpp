@@ -20,6 +20,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
+#include <optional>
 #include <stdexcept>
 #include <tuple>
 
@@ -43,10 +44,8 @@ namespace {
         return d65(lambda_nm) * k;
     }
 
-    // Per-pixel sums over sample passes, in double so the order of passes cannot matter.
-    struct Accumulator {
-        std::vector<double> xyz, albedo, normal, depth;
-    };
+    // Per-pixel sums over sample passes, in double, each pixel's samples added in order.
+    using Accumulator = FilmSums;
 
     // Camera rays go to Embree in batches of one tile row's pixels times up to
     // kBatchSamples samples each (64 rays, AVX2 packets of 2 pixels x 4 samples).
@@ -312,6 +311,14 @@ FilmResult render_region(const Scene& scene, const Region& region, const RenderC
     if (film.aov_depth)
         acc.depth.assign(npix, 0.0);
     const bool want_aovs = film.aov_albedo || film.aov_normal || film.aov_depth;
+    if (control.resume) {
+        const FilmSums& r = *control.resume;
+        if (r.xyz.size() != acc.xyz.size() || r.albedo.size() != acc.albedo.size() ||
+            r.normal.size() != acc.normal.size() || r.depth.size() != acc.depth.size())
+            throw std::invalid_argument(
+                "the checkpoint's sums do not fit this render's region and AOVs");
+        acc = r;
+    }
 
     const int tiles_x = (w + kTileSize - 1) / kTileSize;
     const int tiles_y = (h + kTileSize - 1) / kTileSize;
@@ -432,18 +439,22 @@ FilmResult render_region(const Scene& scene, const Region& region, const RenderC
 
     FilmResult out;
     out.region = region;
-    out.spp = spp_done;
-    out.sample_begin = begin;
+    // With a checkpoint, the samples before `begin` are in the sums too.
+    const int prior = control.resume ? control.resume_samples : 0;
+    out.spp = prior + spp_done;
+    out.sample_begin = begin - prior;
     auto mean = [&](const std::vector<double>& sums) {
         std::vector<float> v(sums.size());
         for (size_t i = 0; i < sums.size(); ++i)
-            v[i] = static_cast<float>(sums[i] / spp_done);
+            v[i] = static_cast<float>(sums[i] / out.spp);
         return v;
     };
     out.xyz = mean(acc.xyz);
     out.albedo_xyz = mean(acc.albedo);
     out.normal = mean(acc.normal);
     out.depth = mean(acc.depth);
+    if (control.keep_sums)
+        out.sums = std::move(acc);
     return out;
 }
 
@@ -523,14 +534,46 @@ namespace {
 
         const Region region = region_for(scene, options);
         RenderControl control{options.threads, options.quiet, options.time_limit};
+        control.keep_sums = options.checkpoint;
         if (!options.samples.empty()) {
             if (options.spp)
                 throw std::invalid_argument("--samples and --spp exclude each other: --samples "
                                             "A-B takes samples A to B - 1");
+            if (!options.resume.empty())
+                throw std::invalid_argument("--samples and --resume exclude each other");
             std::tie(control.sample_begin, control.sample_end) = parse_samples(options.samples);
         }
+        std::optional<Checkpoint> checkpoint;
+        if (!options.resume.empty()) {
+            // Continue the checkpoint's render: its sums, then the samples after its last.
+            checkpoint = read_checkpoint(options.resume);
+            const Checkpoint& c = *checkpoint;
+            auto refuse = [&](const std::string& why) {
+                return std::invalid_argument(
+                    fmt::format("--resume '{}': {}", options.resume.string(), why));
+            };
+            if (c.scene_hash != scene_hash(scene_file))
+                throw refuse(fmt::format("a render of another scene (hash {}, {} has {})",
+                                         c.scene_hash, scene_file.string(),
+                                         scene_hash(scene_file)));
+            if (c.seed != static_cast<int>(scene.film.seed))
+                throw refuse(fmt::format("rendered with seed {}, this render has seed {}", c.seed,
+                                         scene.film.seed));
+            if (c.full_width != scene.film.width || c.full_height != scene.film.height ||
+                c.region.x0 != region.x0 || c.region.y0 != region.y0 ||
+                c.region.x1 != region.x1 || c.region.y1 != region.y1)
+                throw refuse("other pixels: give the same resolution, --crop or --tile");
+            if (scene.film.spp <= c.sample_end)
+                throw refuse(fmt::format("it has samples {}-{} already; ask for more with --spp",
+                                         c.sample_begin, c.sample_end));
+            control.sample_begin = c.sample_end;
+            control.sample_end = scene.film.spp;
+            control.resume = &c.sums;
+            control.resume_samples = c.sample_end - c.sample_begin;
+        }
         const FilmResult film = render_region(scene, region, control);
-        write_film(scene, film, exr, scene_file, host.colors());
+        write_film(scene, film, exr, scene_file, scene_plugin_set(file.root, registry),
+                   host.colors());
         outputs.commit();
     }
 

@@ -43,12 +43,21 @@ struct RenderOptions {
     std::string frames;              ///< "" or "first-last": '#' runs in paths become the frame
     std::optional<double> time_limit;  ///< seconds; stops after the last whole sample pass
     std::string samples;             ///< "" or "A-B": samples A..B-1 of every pixel
+    bool checkpoint = false;         ///< store the film's sums in the EXR (part "sums")
+    std::filesystem::path resume;    ///< continue this EXR's render (written with --checkpoint)
     bool quiet = false;
 };
 
 /// Parse "A-B" for --samples: the half-open range [A, B) of sample indices, 0 <= A < B.
 /// Throws std::invalid_argument naming the option.
 std::pair<int, int> parse_samples(const std::string& text);
+
+/// A film's per-pixel sums of its samples (double, in sample order): the state a render is
+/// continued from (--checkpoint, --resume). Each vector is empty or 3 (1 for depth) per
+/// pixel of the region.
+struct FilmSums {
+    std::vector<double> xyz, albedo, normal, depth;
+};
 
 /// Accumulated film of one region: per-pixel means of what was asked for.
 struct FilmResult {
@@ -59,6 +68,7 @@ struct FilmResult {
     std::vector<float> albedo_xyz; ///< first-hit albedo as XYZ under unit D65 (if asked)
     std::vector<float> normal;     ///< first-hit world shading normal (if asked)
     std::vector<float> depth;      ///< first-hit distance along the camera ray, 0 = none
+    FilmSums sums;                 ///< the sums themselves, when RenderControl::keep_sums
 };
 
 struct RenderControl {
@@ -69,6 +79,12 @@ struct RenderControl {
     /// film's spp. Sample s draws from the stream of (seed, pixel, s) whatever the range, so
     /// ranges of one render are its parts.
     int sample_begin = 0, sample_end = 0;
+    /// Continue from these sums of `resume_samples` samples (the ones just before
+    /// sample_begin): adding the new samples to them in order gives the bits of the render
+    /// that never stopped.
+    const FilmSums* resume = nullptr;
+    int resume_samples = 0;
+    bool keep_sums = false;  ///< return the sums in FilmResult::sums
 };
 
 /// Render `region` of the scene's frame. Pixels depend only on (seed, pixel, sample index),

@@ -97,3 +97,26 @@ foreach(f bad1 bad2 bad3 bad4 bad5 bad6 bad7)
     message(FATAL_ERROR "a refused merge or render left ${f}.exr behind")
   endif()
 endforeach()
+
+# Plugins: a part rendered with another build of a plugin (here the bundled basic plugin
+# with a byte appended: another fingerprint) is refused by the merge; a job submitted with
+# one plugin set refuses, at its merge, parts rendered with another.
+file(COPY "${PLUGIN_DIR}/" DESTINATION "${WORK_DIR}/other_plugins")
+file(APPEND "${WORK_DIR}/other_plugins/patina_basic.so" "x")
+expect_success(${R} --tile 1/3 --no-bundled-plugins --plugin-path "${WORK_DIR}/other_plugins"
+               --output "${WORK_DIR}/tile1_other.exr")
+expect_failure("has plugins" "${PATINA_FARM}" merge "${WORK_DIR}/tile0.exr"
+  "${WORK_DIR}/tile1_other.exr" "${WORK_DIR}/tile2.exr" -o "${WORK_DIR}/bad8.exr")
+expect_success("${PATINA_FARM}" submit "${WORK_DIR}/scene.toml" --tiles 2 --job "${WORK_DIR}/job"
+               --dry-run)
+file(READ "${WORK_DIR}/job/job.toml" manifest)
+if(NOT manifest MATCHES "plugins = 'basic [^']* ABI [0-9]+\\.[0-9]+ [0-9a-f]+'")
+  message(FATAL_ERROR "job.toml records no plugin set:\n${manifest}")
+endif()
+string(REGEX REPLACE "plugins = '[^']*'" "plugins = 'basic 0.1.0 ABI 1.1 0000000000000000'"
+       manifest "${manifest}")
+file(WRITE "${WORK_DIR}/job/job.toml" "${manifest}")
+expect_failure("was rendered with the plugins" bash "${WORK_DIR}/job/run_local.sh")
+if(EXISTS "${WORK_DIR}/job/frames/frame.0000.exr" OR EXISTS "${WORK_DIR}/bad8.exr")
+  message(FATAL_ERROR "a merge of parts with other plugins wrote its output")
+endif()

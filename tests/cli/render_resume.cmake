@@ -1,0 +1,99 @@
+# patina-render --checkpoint and --resume: a render stopped early (fewer samples, or a time
+# limit) and continued from its own EXR is bitwise the render that never stopped, its sums
+# included, whether continued once or twice; a tile too. A continuation of another scene,
+# seed or tile, of an EXR without sums, or to no more samples is refused.
+include("${CMAKE_CURRENT_LIST_DIR}/lib/expect.cmake")
+file(REMOVE_RECURSE "${WORK_DIR}")
+file(MAKE_DIRECTORY "${WORK_DIR}")
+file(WRITE "${WORK_DIR}/scene.toml" [=[
+[film]
+width = 40
+height = 23
+spp = 16
+seed = 3
+aovs = ["albedo", "normal", "depth"]
+[camera]
+from = [0, 1, 4]
+to = [0, 0.5, 0]
+[environment]
+color = [0.8, 0.9, 1.0]
+[[shader]]
+name = "clay"
+type = "lambert"
+reflectance = [0.7, 0.4, 0.3]
+[[shader]]
+name = "metal"
+type = "conductor"
+roughness = 0.3
+[[object]]
+shape = "plane"
+size = 20.0
+bsdf = "clay"
+[[object]]
+shape = "sphere"
+center = [0, 0.6, 0]
+radius = 0.6
+bsdf = "metal"
+]=])
+set(R "${PATINA_RENDER}" "${WORK_DIR}/scene.toml" --quiet --checkpoint)
+
+function(expect_bitwise a b)
+  # Every part (the beauty and the sums), every channel, every pixel.
+  execute_process(COMMAND oiiotool -a "${a}" -a "${b}" --diff --fail 0 --failpercent 0 --warn 0
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0 OR NOT out MATCHES "PASS")
+    message(FATAL_ERROR "${b} differs from ${a}:\n${out}${err}")
+  endif()
+endfunction()
+
+expect_success(${R} --output "${WORK_DIR}/full.exr")
+expect_success(oiiotool --info -a "${WORK_DIR}/full.exr")
+expect_in("${LAST_STDOUT}" "2 subimages")
+
+# 6 samples, then the other 10.
+expect_success(${R} --spp 6 --output "${WORK_DIR}/six.exr")
+expect_success(${R} --resume "${WORK_DIR}/six.exr" --output "${WORK_DIR}/resumed.exr")
+expect_bitwise("${WORK_DIR}/full.exr" "${WORK_DIR}/resumed.exr")
+# Twice: 3, then 9, then 16 (the EXR continued in place).
+expect_success(${R} --spp 3 --output "${WORK_DIR}/twice.exr")
+expect_success(${R} --spp 9 --resume "${WORK_DIR}/twice.exr" --output "${WORK_DIR}/twice.exr")
+expect_success(${R} --resume "${WORK_DIR}/twice.exr" --output "${WORK_DIR}/twice.exr")
+expect_bitwise("${WORK_DIR}/full.exr" "${WORK_DIR}/twice.exr")
+# Stopped by a time limit after its first pass of 4 samples.
+expect_success(${R} --time-limit 0.000001 --output "${WORK_DIR}/limited.exr")
+expect_success(oiiotool --info -v "${WORK_DIR}/limited.exr")
+expect_in("${LAST_STDOUT}" "patina:spp: 4")
+expect_success(${R} --resume "${WORK_DIR}/limited.exr" --output "${WORK_DIR}/limited.exr")
+expect_bitwise("${WORK_DIR}/full.exr" "${WORK_DIR}/limited.exr")
+# A tile.
+expect_success(${R} --tile 1/3 --output "${WORK_DIR}/tile_full.exr")
+expect_success(${R} --tile 1/3 --spp 5 --output "${WORK_DIR}/tile.exr")
+expect_success(${R} --tile 1/3 --resume "${WORK_DIR}/tile.exr" --output "${WORK_DIR}/tile.exr")
+expect_bitwise("${WORK_DIR}/tile_full.exr" "${WORK_DIR}/tile.exr")
+# The sums matter: 6 samples alone are not the render.
+execute_process(COMMAND oiiotool "${WORK_DIR}/full.exr" "${WORK_DIR}/six.exr" --diff --fail 0
+                RESULT_VARIABLE rc OUTPUT_QUIET ERROR_QUIET)
+if(rc EQUAL 0)
+  message(FATAL_ERROR "6 samples equal 16: the comparison proves nothing")
+endif()
+
+# Refused.
+expect_success("${PATINA_RENDER}" "${WORK_DIR}/scene.toml" --quiet --spp 4
+               --output "${WORK_DIR}/plain.exr")
+expect_failure("holds no sums" ${R} --resume "${WORK_DIR}/plain.exr" --output "${WORK_DIR}/bad1.exr")
+expect_failure("rendered with seed 3, this render has seed 4" ${R} --seed 4
+  --resume "${WORK_DIR}/six.exr" --output "${WORK_DIR}/bad2.exr")
+expect_failure("other pixels" ${R} --tile 0/3 --resume "${WORK_DIR}/six.exr"
+  --output "${WORK_DIR}/bad3.exr")
+expect_failure("ask for more with --spp" ${R} --spp 6 --resume "${WORK_DIR}/six.exr"
+  --output "${WORK_DIR}/bad4.exr")
+file(READ "${WORK_DIR}/scene.toml" text)
+string(REPLACE "seed = 3" "seed = 3\n# another scene" text "${text}")
+file(WRITE "${WORK_DIR}/other.toml" "${text}")
+expect_failure("a render of another scene" "${PATINA_RENDER}" "${WORK_DIR}/other.toml" --quiet
+  --resume "${WORK_DIR}/six.exr" --output "${WORK_DIR}/bad5.exr")
+foreach(f bad1 bad2 bad3 bad4 bad5)
+  if(EXISTS "${WORK_DIR}/${f}.exr")
+    message(FATAL_ERROR "a refused --resume wrote ${f}.exr")
+  endif()
+endforeach()
