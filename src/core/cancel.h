@@ -4,6 +4,7 @@
 #pragma once
 
 #include <stdexcept>
+#include <string>
 
 namespace patina {
 
@@ -11,6 +12,7 @@ namespace patina {
 class Cancelled : public std::runtime_error {
 public:
     Cancelled() : std::runtime_error("cancelled (interrupt or terminate signal)") {}
+    explicit Cancelled(const std::string& what) : std::runtime_error(what) {}
 };
 
 /// Route SIGINT and SIGTERM to the cancellation flag. A second signal terminates at once,
@@ -21,7 +23,7 @@ void install_cancel_handler();
 bool cancel_requested();
 /// Set the flag by hand (tests).
 void request_cancel();
-/// Clear the flag (tests).
+/// Clear the flag (tests; patina-render after it decided to write a checkpoint).
 void reset_cancel();
 /// Throw Cancelled if the flag is set.
 void throw_if_cancelled();

@@ -98,6 +98,9 @@ int main(int argc, char** argv)
         }
         pr::render_scene_file(scene_file, search, options);
         return 0;
+    } catch (const pr::CheckpointWritten& e) {
+        std::fprintf(stderr, "\npatina-render: %s\n", e.what());
+        return 130;
     } catch (const patina::Cancelled& e) {
         std::fprintf(stderr, "\npatina-render: %s; the interrupted frame's outputs were not "
                              "written, earlier files are as they were\n", e.what());

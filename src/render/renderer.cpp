@@ -331,7 +331,10 @@ FilmResult render_region(const Scene& scene, const Region& region, const RenderC
     if (begin < 0 || count <= 0)
         throw std::invalid_argument(fmt::format("samples {}-{}: an empty or negative range",
                                                 begin, end));
-    const int pass_spp = control.time_limit ? std::max(1, std::min(count, 4)) : count;
+    // With a time limit, or sums kept for a checkpoint (a signal then stops the render
+    // after its last whole pass), the samples come in passes of 4.
+    const bool in_passes = control.time_limit || control.keep_sums;
+    const int pass_spp = in_passes ? std::max(1, std::min(count, 4)) : count;
     const int passes = (count + pass_spp - 1) / pass_spp;
     Progress progress(static_cast<size_t>(tiles_x) * tiles_y * passes, control.quiet);
 
@@ -349,8 +352,12 @@ FilmResult render_region(const Scene& scene, const Region& region, const RenderC
     const bool wavefront = wavefront_supported(scene) && !per_path_forced();
 
     int spp_done = 0;
+    bool interrupted = false;
+    FilmSums before_pass;  // with keep_sums: the sums of the whole passes, for a signal
     for (int pass = 0; pass < passes; ++pass) {
         const int s0 = begin + pass * pass_spp, s1 = std::min(end, s0 + pass_spp);
+        if (control.keep_sums)
+            before_pass = acc;
         tbb::parallel_for(0, tiles_x * tiles_y, [&](int tile) {
             const DenormalsAreZero daz;
             const int tx0 = (tile % tiles_x) * kTileSize, ty0 = (tile / tiles_x) * kTileSize;
@@ -430,6 +437,13 @@ FilmResult render_region(const Scene& scene, const Region& region, const RenderC
             }
             progress.step();
         });
+        const int kept = spp_done + (control.resume ? control.resume_samples : 0);
+        if (control.keep_sums && cancel_requested() && kept > 0) {
+            // A signal: the pass it cut is dropped, the whole passes are kept for --resume.
+            acc = std::move(before_pass);
+            interrupted = true;
+            break;
+        }
         throw_if_cancelled();
         spp_done = s1 - begin;
         if (control.time_limit && progress.seconds() > *control.time_limit)
@@ -439,6 +453,7 @@ FilmResult render_region(const Scene& scene, const Region& region, const RenderC
 
     FilmResult out;
     out.region = region;
+    out.interrupted = interrupted;
     // With a checkpoint, the samples before `begin` are in the sums too.
     const int prior = control.resume ? control.resume_samples : 0;
     out.spp = prior + spp_done;
@@ -572,9 +587,18 @@ namespace {
             control.resume_samples = c.sample_end - c.sample_begin;
         }
         const FilmResult film = render_region(scene, region, control);
+        // A render stopped by a signal with --checkpoint is written all the same: its whole
+        // passes are a checkpoint (the flag is cleared so that the outputs commit; a second
+        // signal still ends the process at once).
+        if (film.interrupted)
+            reset_cancel();
         write_film(scene, film, exr, scene_file, scene_plugin_set(file.root, registry),
                    host.colors());
         outputs.commit();
+        if (film.interrupted)
+            throw CheckpointWritten(fmt::format(
+                "interrupted after {} samples per pixel, written with its sums; continue "
+                "with --resume {}", film.spp, exr.string()));
     }
 
 }  // namespace

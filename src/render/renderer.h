@@ -4,6 +4,8 @@
 
 #include "render/plugin_setup.h"
 
+#include "core/cancel.h"
+
 #include <cstdint>
 #include <filesystem>
 #include <optional>
@@ -48,6 +50,13 @@ struct RenderOptions {
     bool quiet = false;
 };
 
+/// A signal stopped a render that keeps its sums (--checkpoint) after its whole passes were
+/// written as a checkpoint; the message names the file to --resume.
+class CheckpointWritten : public Cancelled {
+public:
+    using Cancelled::Cancelled;
+};
+
 /// Parse "A-B" for --samples: the half-open range [A, B) of sample indices, 0 <= A < B.
 /// Throws std::invalid_argument naming the option.
 std::pair<int, int> parse_samples(const std::string& text);
@@ -69,6 +78,8 @@ struct FilmResult {
     std::vector<float> normal;     ///< first-hit world shading normal (if asked)
     std::vector<float> depth;      ///< first-hit distance along the camera ray, 0 = none
     FilmSums sums;                 ///< the sums themselves, when RenderControl::keep_sums
+    /// A signal stopped a render that keeps its sums: the film holds its whole passes.
+    bool interrupted = false;
 };
 
 struct RenderControl {

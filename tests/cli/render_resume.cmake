@@ -1,6 +1,6 @@
-# patina-render --checkpoint and --resume: a render stopped early (fewer samples, or a time
-# limit) and continued from its own EXR is bitwise the render that never stopped, its sums
-# included, whether continued once or twice; a tile too. A continuation of another scene,
+# patina-render --checkpoint and --resume: a render stopped early (fewer samples, a time
+# limit, a terminate signal) and continued from its own EXR is bitwise the render that never
+# stopped, its sums included, whether continued once or twice; a tile too. A continuation of another scene,
 # seed or tile, of an EXR without sums, or to no more samples is refused.
 include("${CMAKE_CURRENT_LIST_DIR}/lib/expect.cmake")
 file(REMOVE_RECURSE "${WORK_DIR}")
@@ -70,6 +70,23 @@ expect_success(${R} --tile 1/3 --output "${WORK_DIR}/tile_full.exr")
 expect_success(${R} --tile 1/3 --spp 5 --output "${WORK_DIR}/tile.exr")
 expect_success(${R} --tile 1/3 --resume "${WORK_DIR}/tile.exr" --output "${WORK_DIR}/tile.exr")
 expect_bitwise("${WORK_DIR}/tile_full.exr" "${WORK_DIR}/tile.exr")
+# A terminate signal (what a farm sends to a preempted task; here the fault injection of
+# core/cancel.h, half-way through the render): the whole passes are written with their sums,
+# the exit status is 130, and --resume finishes the render bitwise.
+execute_process(COMMAND "${CMAKE_COMMAND}" -E env PATINA_TEST_SIGNAL_AT=compute
+                        ${R} --output "${WORK_DIR}/signalled.exr"
+                RESULT_VARIABLE rc ERROR_VARIABLE err)
+if(NOT rc EQUAL 130 OR NOT err MATCHES "continue with --resume")
+  message(FATAL_ERROR "a signalled --checkpoint render exited ${rc}:\n${err}")
+endif()
+expect_success(oiiotool --info -v "${WORK_DIR}/signalled.exr")
+string(REGEX MATCH "patina:spp: ([0-9]+)" _ "${LAST_STDOUT}")
+if(NOT CMAKE_MATCH_1 GREATER 0 OR NOT CMAKE_MATCH_1 LESS 16)
+  message(FATAL_ERROR "the signalled render kept ${CMAKE_MATCH_1} samples, not 1 to 15")
+endif()
+expect_success(${R} --resume "${WORK_DIR}/signalled.exr" --output "${WORK_DIR}/signalled.exr")
+expect_bitwise("${WORK_DIR}/full.exr" "${WORK_DIR}/signalled.exr")
+
 # The sums matter: 6 samples alone are not the render.
 execute_process(COMMAND oiiotool "${WORK_DIR}/full.exr" "${WORK_DIR}/six.exr" --diff --fail 0
                 RESULT_VARIABLE rc OUTPUT_QUIET ERROR_QUIET)
