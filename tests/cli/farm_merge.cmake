@@ -4,38 +4,10 @@
 # a gap or an overlap in the samples, two parts holding one pixel, a hole) are refused with
 # the files named, and nothing is written.
 include("${CMAKE_CURRENT_LIST_DIR}/lib/expect.cmake")
+include("${CMAKE_CURRENT_LIST_DIR}/lib/two_objects_scene.cmake")
 file(REMOVE_RECURSE "${WORK_DIR}")
 file(MAKE_DIRECTORY "${WORK_DIR}")
-file(WRITE "${WORK_DIR}/scene.toml" [=[
-[film]
-width = 40
-height = 23
-spp = 16
-seed = 3
-aovs = ["albedo", "depth"]
-[camera]
-from = [0, 1, 4]
-to = [0, 0.5, 0]
-[environment]
-color = [0.8, 0.9, 1.0]
-[[shader]]
-name = "clay"
-type = "lambert"
-reflectance = [0.7, 0.4, 0.3]
-[[shader]]
-name = "metal"
-type = "conductor"
-roughness = 0.3
-[[object]]
-shape = "plane"
-size = 20.0
-bsdf = "clay"
-[[object]]
-shape = "sphere"
-center = [0, 0.6, 0]
-radius = 0.6
-bsdf = "metal"
-]=])
+write_two_objects_scene("${WORK_DIR}/scene.toml" 16 [=["albedo", "depth"]=])
 set(R "${PATINA_RENDER}" "${WORK_DIR}/scene.toml" --quiet)
 expect_success(${R} --output "${WORK_DIR}/full.exr")
 foreach(i 0 1 2)

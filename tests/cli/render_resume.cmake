@@ -3,38 +3,10 @@
 # stopped, its sums included, whether continued once or twice; a tile too. A continuation of another scene,
 # seed or tile, of an EXR without sums, or to no more samples is refused.
 include("${CMAKE_CURRENT_LIST_DIR}/lib/expect.cmake")
+include("${CMAKE_CURRENT_LIST_DIR}/lib/two_objects_scene.cmake")
 file(REMOVE_RECURSE "${WORK_DIR}")
 file(MAKE_DIRECTORY "${WORK_DIR}")
-file(WRITE "${WORK_DIR}/scene.toml" [=[
-[film]
-width = 40
-height = 23
-spp = 16
-seed = 3
-aovs = ["albedo", "normal", "depth"]
-[camera]
-from = [0, 1, 4]
-to = [0, 0.5, 0]
-[environment]
-color = [0.8, 0.9, 1.0]
-[[shader]]
-name = "clay"
-type = "lambert"
-reflectance = [0.7, 0.4, 0.3]
-[[shader]]
-name = "metal"
-type = "conductor"
-roughness = 0.3
-[[object]]
-shape = "plane"
-size = 20.0
-bsdf = "clay"
-[[object]]
-shape = "sphere"
-center = [0, 0.6, 0]
-radius = 0.6
-bsdf = "metal"
-]=])
+write_two_objects_scene("${WORK_DIR}/scene.toml" 16 [=["albedo", "normal", "depth"]=])
 set(R "${PATINA_RENDER}" "${WORK_DIR}/scene.toml" --quiet --checkpoint)
 
 function(expect_bitwise a b)

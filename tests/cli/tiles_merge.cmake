@@ -1,38 +1,10 @@
 # Farm use: three tiles of a frame, merged with oiiotool, are bitwise the whole-frame render;
 # the whole frame with 1 and 2 threads is bitwise the same; AOV channels are present.
 include("${CMAKE_CURRENT_LIST_DIR}/lib/expect.cmake")
+include("${CMAKE_CURRENT_LIST_DIR}/lib/two_objects_scene.cmake")
 file(REMOVE_RECURSE "${WORK_DIR}")
 file(MAKE_DIRECTORY "${WORK_DIR}")
-file(WRITE "${WORK_DIR}/scene.toml" [=[
-[film]
-width = 40
-height = 23
-spp = 4
-seed = 3
-aovs = ["albedo", "normal", "depth"]
-[camera]
-from = [0, 1, 4]
-to = [0, 0.5, 0]
-[environment]
-color = [0.8, 0.9, 1.0]
-[[shader]]
-name = "clay"
-type = "lambert"
-reflectance = [0.7, 0.4, 0.3]
-[[shader]]
-name = "metal"
-type = "conductor"
-roughness = 0.3
-[[object]]
-shape = "plane"
-size = 20.0
-bsdf = "clay"
-[[object]]
-shape = "sphere"
-center = [0, 0.6, 0]
-radius = 0.6
-bsdf = "metal"
-]=])
+write_two_objects_scene("${WORK_DIR}/scene.toml" 4 [=["albedo", "normal", "depth"]=])
 set(R "${PATINA_RENDER}" "${WORK_DIR}/scene.toml" --quiet)
 expect_success(${R} --threads 1 --output "${WORK_DIR}/full1.exr")
 expect_success(${R} --threads 2 --output "${WORK_DIR}/full2.exr")

@@ -150,6 +150,25 @@ void check_export_options(ExportOptions& options, const fs::path& output)
 
 }
 
+std::vector<ExportStep> make_steps(size_t count,
+                                   const std::function<void(size_t, ExportStep&)>& make)
+{
+    std::vector<ExportStep> steps(count);
+    std::vector<std::exception_ptr> failures(count);
+    tbb::parallel_for(size_t(0), count, [&](size_t k) {
+        try {
+            throw_if_cancelled();
+            make(k, steps[k]);
+        } catch (...) {
+            failures[k] = std::current_exception();
+        }
+    });
+    for (const std::exception_ptr& failure : failures)
+        if (failure)
+            std::rethrow_exception(failure);
+    return steps;
+}
+
 void encode_step(ExportStep& step, const ExportOptions& options, const ColorManager& colors)
 {
     check_finite_maps(step.flat, step.manifest, "export");

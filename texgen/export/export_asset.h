@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -40,6 +41,12 @@ struct ExportGeometry {
 /// Fills in `options`' defaults (bits) and refuses an unknown preset, bits the preset does
 /// not take, or an output whose extension does not fit it, naming the option.
 void check_export_options(ExportOptions& options, const std::filesystem::path& output);
+
+/// Makes `count` steps in parallel, `make(k, step)` filling step k (and calling
+/// encode_step), after a check for cancellation. The first failure in step order is
+/// thrown, whatever the threads' order, so the message does not depend on the run.
+std::vector<ExportStep> make_steps(size_t count,
+                                   const std::function<void(size_t, ExportStep&)>& make);
 
 /// Checks `step`'s maps (finite, UDIM tiles up to 1099) and, for the gltf preset, encodes
 /// its PNGs and drops the maps. Thread-safe for distinct steps.

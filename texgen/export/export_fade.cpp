@@ -4,12 +4,10 @@
 #include "texgen/export/export_asset.h"
 #include "texgen/texels/mesh_merge.h"
 
-#include "core/cancel.h"
 #include "core/image_io.h"
 #include "core/spectrum.h"
 
 #include <fmt/format.h>
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
@@ -241,32 +239,21 @@ ExportResult export_fade(const std::vector<fs::path>& inputs, const fs::path& ou
     }
 
     const double oldest = steps.back().seconds;
-    std::vector<ExportStep> exported(steps.size());
-    std::vector<std::exception_ptr> failures(steps.size());
-    tbb::parallel_for(size_t(0), steps.size(), [&](size_t k) {
+    std::vector<ExportStep> exported = make_steps(steps.size(), [&](size_t k, ExportStep& out) {
         const FadeStep& step = steps[k];
-        ExportStep& out = exported[k];
-        try {
-            throw_if_cancelled();
-            out.label = step.folder.filename().string();
-            if (out.label.empty())
-                out.label = "fade";
-            out.variant = timed ? fade_age_name(step.seconds, std::max(oldest, 3600.0))
-                                : fmt::format("{:.3g} J/m2", step.description.mean_dose);
-            out.manifest = step.manifest;
-            out.extras = {{"fade", relative_to(step.manifest, output.parent_path())},
-                          {"mean_dose_j_per_m2", step.description.mean_dose}};
-            if (timed)
-                out.extras["time_s"] = step.seconds;
-            out.flat = fade_maps(step, width, height, colors);
-            encode_step(out, options, colors);
-        } catch (...) {
-            failures[k] = std::current_exception();
-        }
+        out.label = step.folder.filename().string();
+        if (out.label.empty())
+            out.label = "fade";
+        out.variant = timed ? fade_age_name(step.seconds, std::max(oldest, 3600.0))
+                            : fmt::format("{:.3g} J/m2", step.description.mean_dose);
+        out.manifest = step.manifest;
+        out.extras = {{"fade", relative_to(step.manifest, output.parent_path())},
+                      {"mean_dose_j_per_m2", step.description.mean_dose}};
+        if (timed)
+            out.extras["time_s"] = step.seconds;
+        out.flat = fade_maps(step, width, height, colors);
+        encode_step(out, options, colors);
     });
-    for (const std::exception_ptr& failure : failures)
-        if (failure)
-            std::rethrow_exception(failure);
     return write_export(exported, geometry, inputs.front(), output, options, colors);
 }
 

@@ -10,7 +10,6 @@
 #include "core/cancel.h"
 
 #include <fmt/format.h>
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <stdexcept>
@@ -104,30 +103,18 @@ ExportResult export_patina(const fs::path& input, const fs::path& output,
                 first_stack.strip_size_m, step.label, step.stack.domain,
                 step.stack.strip_size_m));
 
-    // Each step flattened (and, for glTF, encoded) in parallel with the others; the first
-    // failure in step order is reported, whatever the threads' order.
-    std::vector<ExportStep> exported(steps.size());
-    std::vector<std::exception_ptr> failures(steps.size());
-    tbb::parallel_for(size_t(0), steps.size(), [&](size_t k) {
+    // Each step flattened (and, for glTF, encoded) in parallel with the others.
+    std::vector<ExportStep> exported = make_steps(steps.size(), [&](size_t k, ExportStep& out) {
         const Step& step = steps[k];
-        ExportStep& out = exported[k];
-        try {
-            throw_if_cancelled();
-            out.label = step.label;
-            out.variant = age_name(step.time_years);
-            out.manifest = step.stack.manifest;
-            out.extras = {{"time_years", step.time_years},
-                          {"stack", relative_to(step.stack.manifest, output.parent_path())}};
-            out.flat = flatten_stack(
-                step.stack, resolve_stack_materials(step.stack, library, colors), flatten);
-            encode_step(out, options, colors);
-        } catch (...) {
-            failures[k] = std::current_exception();
-        }
+        out.label = step.label;
+        out.variant = age_name(step.time_years);
+        out.manifest = step.stack.manifest;
+        out.extras = {{"time_years", step.time_years},
+                      {"stack", relative_to(step.stack.manifest, output.parent_path())}};
+        out.flat = flatten_stack(step.stack,
+                                 resolve_stack_materials(step.stack, library, colors), flatten);
+        encode_step(out, options, colors);
     });
-    for (const std::exception_ptr& failure : failures)
-        if (failure)
-            std::rethrow_exception(failure);
 
     ExportGeometry geometry;
     geometry.mesh = std::move(mesh);
