@@ -7,6 +7,7 @@
 #include "core/image_io.h"
 #include "render/film_output.h"
 #include "render/plugin_setup.h"
+#include "render/renderer.h"
 #include "render/scene.h"
 
 #include "core/host.h"
@@ -204,9 +205,18 @@ bool valid_part(const RenderJob& job, const RenderTask& task, const fs::path& pa
         return false;
     try {
         const RenderPart p = read_render_part(part, false);
-        const bool samples = task.sample_end == 0 ||
-                             (p.sample_begin == task.sample_begin && p.sample_end == task.sample_end);
-        return samples && p.scene_hash == render::scene_hash(task.scene) &&
+        // Its samples: the task's range, or the job's spp from sample 0.
+        const bool samples =
+            task.sample_end > 0
+                ? p.sample_begin == task.sample_begin && p.sample_end == task.sample_end
+                : job.spp == 0 || (p.sample_begin == 0 && p.sample_end == job.spp);
+        // Its pixels: the task's band of the frame (a part of a job split otherwise is not).
+        const render::Region band =
+            job.tiles > 1 ? render::tile_region(task.tile, job.tiles, p.full_width, p.full_height)
+                          : render::Region{0, 0, p.full_width, p.full_height};
+        const bool pixels = p.x == band.x0 && p.y == band.y0 && p.width == band.width() &&
+                            p.height == band.height();
+        return samples && pixels && p.scene_hash == render::scene_hash(task.scene) &&
                (job.plugins.empty() || p.plugins == job.plugins);
     } catch (const std::exception&) {
         return false;

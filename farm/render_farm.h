@@ -35,7 +35,8 @@ Submitted submit_render_job(const RenderJob& job, const SubmitOptions& options);
 int run_render_task(const std::filesystem::path& folder, int index);
 
 /// True when `part` is a complete output of `task`: its header names the task's scene
-/// (hash), sample range and the job's plugins.
+/// (hash), sample range (or the job's spp) and the job's plugins, and it holds the task's
+/// band of the frame.
 bool valid_part(const RenderJob& job, const RenderTask& task, const std::filesystem::path& part);
 
 /// The plugin set (render/plugin_setup.h scene_plugin_set) `scene` renders with here: the

@@ -70,6 +70,21 @@ foreach(f bad1 bad2 bad3 bad4 bad5 bad6 bad7)
   endif()
 endforeach()
 
+# A job folder reused for another split: the parts of the 2-tile job are not taken for the
+# 4-tile job's (other bands), so the 4-tile job renders them and merges the frame bitwise.
+expect_success("${PATINA_FARM}" submit "${WORK_DIR}/scene.toml" --tiles 2 --job "${WORK_DIR}/reused"
+               --dry-run)
+expect_success(bash "${WORK_DIR}/reused/run_local.sh")
+expect_success("${PATINA_FARM}" submit "${WORK_DIR}/scene.toml" --tiles 4 --job "${WORK_DIR}/reused"
+               --dry-run)
+expect_success(bash "${WORK_DIR}/reused/run_local.sh")
+execute_process(COMMAND oiiotool "${WORK_DIR}/full.exr" "${WORK_DIR}/reused/frames/frame.0000.exr"
+                        --diff --fail 0 --failpercent 0 --warn 0
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 0 OR NOT out MATCHES "PASS")
+  message(FATAL_ERROR "the reused job's frame differs from the whole frame:\n${out}${err}")
+endif()
+
 # Plugins: a part rendered with another build of a plugin (here the bundled basic plugin
 # with a byte appended: another fingerprint) is refused by the merge; a job submitted with
 # one plugin set refuses, at its merge, parts rendered with another.
