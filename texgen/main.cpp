@@ -58,6 +58,9 @@ int main(int argc, char** argv)
         return 0;
     } catch (const CLI::ParseError& e) {
         return patina::report_parse_error(app, e, "patina-texgen", argc, argv);
+    } catch (const patina::CheckpointWritten& e) {
+        std::fprintf(stderr, "\npatina-texgen: %s\n", e.what());
+        return 130;
     } catch (const patina::Cancelled& e) {
         std::fprintf(stderr, "\npatina-texgen: %s; no output was written\n", e.what());
         return 130;

@@ -15,6 +15,13 @@ public:
     explicit Cancelled(const std::string& what) : std::runtime_error(what) {}
 };
 
+/// A signal stopped a run that keeps checkpoints after it wrote one (and the outputs it
+/// belongs to); the message names the file to --resume from. Exit status 130 too.
+class CheckpointWritten : public Cancelled {
+public:
+    using Cancelled::Cancelled;
+};
+
 /// Route SIGINT and SIGTERM to the cancellation flag. A second signal terminates at once,
 /// for a process stuck outside a polling loop; one within 0.25 s of the first is taken for
 /// the same signal delivered twice (timeout(1) signals the process, then its group).

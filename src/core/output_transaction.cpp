@@ -233,6 +233,20 @@ void OutputTransaction::commit()
     if (committed_)
         throw std::logic_error("OutputTransaction::commit twice");
     throw_if_cancelled();
+    move_staged_into_place();
+    committed_ = true;
+}
+
+void OutputTransaction::commit_so_far()
+{
+    const std::lock_guard lock(mutex_);
+    if (committed_)
+        throw std::logic_error("OutputTransaction::commit_so_far after commit");
+    move_staged_into_place();
+}
+
+void OutputTransaction::move_staged_into_place()
+{
     if (failure_)
         throw std::runtime_error(fmt::format("{}; no output was written", *failure_));
     for (const Entry& e : entries_) {
@@ -275,7 +289,7 @@ void OutputTransaction::commit()
             fail(e.target, fmt::format("{}; the earlier outputs were restored", error.what()));
         }
     }
-    committed_ = true;
+    entries_.clear();
     for (const auto& staging : stagings_) {
         std::error_code ec;
         fs::remove_all(staging->folder, ec);

@@ -67,6 +67,11 @@ public:
     /// undone (the old files are kept as hard links until the end) and the error is thrown.
     void commit();
 
+    /// The same for what is staged so far, and the transaction stays open for more: a long
+    /// run's checkpoint goes into place with the outputs it belongs to. Unlike commit() it
+    /// does not refuse after a signal (it is how a run keeps its work when stopped).
+    void commit_so_far();
+
     /// Files staged so far (deletions not counted).
     size_t staged_count() const;
 
@@ -77,6 +82,8 @@ private:
     /// The entry of `target`, made (as a write or a deletion) when there is none.
     Entry& entry_for(const std::filesystem::path& target, bool remove);
     Entry* find(const std::filesystem::path& key);
+    /// commit()'s work: the moves (undone on failure), then the staging folders removed.
+    void move_staged_into_place();
     const Entry* find(const std::filesystem::path& key) const;
 
     mutable std::mutex mutex_;

@@ -51,11 +51,8 @@ struct RenderOptions {
 };
 
 /// A signal stopped a render that keeps its sums (--checkpoint) after its whole passes were
-/// written as a checkpoint; the message names the file to --resume.
-class CheckpointWritten : public Cancelled {
-public:
-    using Cancelled::Cancelled;
-};
+/// written as a checkpoint (core/cancel.h).
+using patina::CheckpointWritten;
 
 /// Parse "A-B" for --samples: the half-open range [A, B) of sample indices, 0 <= A < B.
 /// Throws std::invalid_argument naming the option.

@@ -101,6 +101,31 @@ TEST(OutputTransaction, ARunThatEndsWithoutCommitLeavesEverythingAsItWas)
     EXPECT_EQ(names_in(dir), (std::set<std::string>{"a.txt", "stale.txt"}));
 }
 
+TEST(OutputTransaction, CommitSoFarKeepsWhatIsStagedAndStaysOpen)
+{
+    // A long run's checkpoint: what it staged so far goes into place even after a signal;
+    // what it stages later needs the final commit, and is dropped without it.
+    const fs::path dir = fresh_dir("commit_so_far");
+    try {
+        OutputTransaction outputs;
+        const CurrentOutputs current(outputs);
+        write_file_atomic(dir / "step1" / "a.txt", {"a"}, "test file");
+        request_cancel();
+        outputs.commit_so_far();
+        reset_cancel();
+        EXPECT_EQ(read_text(dir / "step1" / "a.txt"), "a");
+        EXPECT_EQ(outputs.staged_count(), 0u);
+        write_file_atomic(dir / "step2" / "b.txt", {"b"}, "test file");
+        write_file_atomic(dir / "step1" / "a.txt", {"a again"}, "test file");
+        EXPECT_EQ(read_text(output_to_read(dir / "step1" / "a.txt")), "a again");
+        throw std::runtime_error("the run fails after its checkpoint");
+    } catch (const std::runtime_error&) {
+    }
+    EXPECT_EQ(read_text(dir / "step1" / "a.txt"), "a");
+    EXPECT_EQ(names_in(dir), (std::set<std::string>{"step1"}));
+    EXPECT_EQ(names_in(dir / "step1"), (std::set<std::string>{"a.txt"}));
+}
+
 TEST(OutputTransaction, DeletionsWaitForTheCommit)
 {
     const fs::path dir = fresh_dir("delete");

@@ -166,6 +166,20 @@ void register_stone_command(CLI::App& app)
     cmd->add_option("--seed", j.quarry.seed, "quarry and erosion seed")->capture_default_str();
     cmd->add_option("--threads", o->threads, "worker threads (0: all cores)")
         ->capture_default_str();
+    cmd->add_option("--checkpoint", j.checkpoint,
+                    "write a checkpoint here when the run stops (at --until, at the end, or at a "
+                    "SIGTERM/SIGINT: then at the next cycle, exit status 130)");
+    cmd->add_option("--checkpoint-every", j.checkpoint_every,
+                    "also every N cycles, each with the snapshots before it")
+        ->check(patina::non_negative);
+    cmd->add_option("--resume", j.resume,
+                    "continue the run from a checkpoint (same inputs and parameters): bitwise "
+                    "the run that never stopped")
+        ->check(CLI::ExistingFile);
+    cmd->add_option("--until", j.until,
+                    "stop after this cycle (with --checkpoint: a segment of a run, as a farm "
+                    "runs it)")
+        ->check(patina::non_negative);
     cmd->add_flag("--quiet", j.quiet, "no progress on stderr");
     cmd->callback([o] { run_stone(*o); });
 }

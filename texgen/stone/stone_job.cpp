@@ -1,16 +1,19 @@
 #include "texgen/stone/stone_job.h"
 
 #include "core/cancel.h"
+#include "core/file_fingerprint.h"
 #include "core/mesh_export.h"
 #include "core/output_transaction.h"
 #include "core/progress.h"
 #include "texgen/stack/surface_map.h"
 #include "texgen/stone/eroded_mesh.h"
+#include "texgen/stone/stone_checkpoint.h"
 #include "texgen/stone/surface_maps.h"
 #include "texgen/stone/volume_export.h"
 #include "texgen/texels/mesh_merge.h"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <chrono>
@@ -46,7 +49,40 @@ namespace {
         };
     }
 
+    std::string fingerprint_or_empty(const fs::path& file)
+    {
+        return file.empty() ? std::string("-") : file_fingerprint(file);
+    }
+
 } // namespace
+
+std::string stone_setup_fingerprint(const StoneJobOptions& o)
+{
+    const StoneParameters& p = o.params;
+    const QuarryOptions& q = o.quarry;
+    auto v3 = [](const V3d& v) { return fmt::format("{},{},{}", v.x, v.y, v.z); };
+    const std::string rain = o.rain_direction ? v3(*o.rain_direction) : std::string("-");
+    // Every input of the states, as text (fmt writes doubles so they read back exactly).
+    const std::string text = fmt::format(
+        "mesh {} slab_mesh {} wetness {} {} rain {} deposit {} {}\n"
+        "quarry {} {} {} {} {}\n"
+        "shell {} {} {}\n"
+        "moisture {} {} {} {} {} {} {}\n"
+        "species {} {} {} {}\n"
+        "crusts {} {}\n"
+        "decay {} {} {} {} {}\n"
+        "cycle {} {} seed {}\n",
+        file_fingerprint(o.mesh), fingerprint_or_empty(o.slab_mesh),
+        fingerprint_or_empty(o.wetness_map), o.wetness_value, rain,
+        fingerprint_or_empty(o.deposit_map), o.deposit_value, stone_kind_name(q.kind), q.seed,
+        q.feature_size, v3(q.up), q.kozeny_carman_k0, o.depth, o.tangential_res, o.depth_res,
+        p.surface_pressure, p.pressure_diffusivity, p.viscosity, p.gravity, v3(p.up),
+        p.permeability_scale, p.evaporation_speed, fmt::join(p.solubility, ","),
+        fmt::join(p.saturation, ","), fmt::join(p.diffusivity, ","), p.crystallisation_rate,
+        p.black_crust_rate, p.salt_supply, p.decay_water, p.decay_dissolution, p.erosion_events,
+        p.erosion_radius, p.erosion_amount, p.wet_steps, p.dry_steps, p.seed);
+    return bytes_fingerprint(text);
+}
 
 void write_stone_outputs(const fs::path& dir, const StoneState& st, const TriangleMesh& mesh,
                          const StoneJobOptions& o)
@@ -67,11 +103,21 @@ void run_stone_job(const StoneJobOptions& o)
 {
     const auto start = std::chrono::steady_clock::now();
     reserve_output(o.out_dir / "volume.exr");  // a bad output folder fails before the run
+    if (!o.checkpoint.empty())
+        reserve_output(o.checkpoint);
     const TriangleMesh mesh = load_merged_mesh(o.mesh);
     const TriangleMesh base = o.slab_mesh.empty() ? mesh : load_merged_mesh(o.slab_mesh);
     check_world_volume_memory(mesh, o.grid_resolution, "--grid");
     if (o.cycles < 0 || o.snapshots < 0)
         throw std::runtime_error("stone: --cycles and --steps must be >= 0");
+    if (o.until > o.cycles)
+        throw std::runtime_error(fmt::format("stone: --until {} is past --cycles {}", o.until,
+                                             o.cycles));
+    if (o.checkpoint_every < 0)
+        throw std::runtime_error("stone: --checkpoint-every must be >= 0");
+    if (o.checkpoint_every > 0 && o.checkpoint.empty())
+        throw std::runtime_error("stone: --checkpoint-every needs --checkpoint FILE");
+    const int stop = o.until >= 0 ? o.until : o.cycles;
     if (o.map_resolution > 0 && !mesh.has_uvs() && !o.quiet)
         std::fprintf(stderr, "stone: '%s' has no uvs: no surface maps\n", o.mesh.string().c_str());
 
@@ -129,8 +175,22 @@ void run_stone_job(const StoneJobOptions& o)
     const Quarry quarry(o.quarry);
     StoneState st;
     initialise_state(st, lattice, mesh, quarry, o.params, std::move(wetness), std::move(deposit));
+    const std::string setup =
+        o.resume.empty() && o.checkpoint.empty() ? std::string() : stone_setup_fingerprint(o);
+    if (!o.resume.empty()) {
+        read_stone_checkpoint(o.resume, st, setup);
+        if (st.cycles_done > stop)
+            throw std::runtime_error(fmt::format(
+                "stone: --resume '{}' is at cycle {}, past the last cycle {} of this run",
+                o.resume.string(), st.cycles_done, stop));
+        if (!o.quiet)
+            std::fprintf(stderr, "stone: resumed at cycle %d from %s\n", st.cycles_done,
+                         o.resume.string().c_str());
+    }
+    const int first = st.cycles_done;
 
-    // Snapshots: the fresh stone, then evenly over the cycles; or only the end.
+    // Snapshots: the fresh stone, then evenly over the cycles; or only the end. A resumed
+    // run wrote the one at its first cycle before it stopped.
     std::vector<int> at;
     if (o.snapshots > 0)
         for (int k = 0; k <= o.snapshots; ++k)
@@ -138,18 +198,37 @@ void run_stone_job(const StoneJobOptions& o)
     else
         at.push_back(o.cycles);
     at.erase(std::unique(at.begin(), at.end()), at.end());
-    Progress progress(size_t(o.cycles), o.quiet, "stone");
-    size_t next = 0;
-    for (int c = 0; c <= o.cycles; ++c) {
-        if (next < at.size() && at[next] == c) {
+    // A checkpoint and the snapshots before it go into place together: a run stopped later
+    // loses only the cycles since.
+    auto checkpoint = [&] {
+        write_stone_checkpoint(o.checkpoint, st, setup);
+        if (OutputTransaction* outputs = current_output_transaction())
+            outputs->commit_so_far();
+    };
+    Progress progress(size_t(stop - first), o.quiet, "stone");
+    for (int c = first; c <= stop; ++c) {
+        if (std::find(at.begin(), at.end(), c) != at.end() && (c > first || o.resume.empty())) {
             const fs::path dir = o.snapshots > 0 ? o.out_dir / snapshot_folder(c, o.cycles)
                                                  : o.out_dir;
             write_stone_outputs(dir, st, mesh, o);
-            ++next;
         }
-        if (c == o.cycles)
+        if (c == stop) {
+            if (!o.checkpoint.empty())
+                write_stone_checkpoint(o.checkpoint, st, setup);  // committed with the run
             break;
+        }
+        if (!o.checkpoint.empty() && cancel_requested()) {
+            // A farm's preemption (SIGTERM): keep what is done, then stop as cancelled.
+            reset_cancel();
+            checkpoint();
+            throw CheckpointWritten(fmt::format(
+                "stopped at cycle {}: the snapshots so far and the checkpoint '{}' are written; "
+                "--resume it to continue", c, o.checkpoint.string()));
+        }
         throw_if_cancelled();
+        if (!o.checkpoint.empty() && o.checkpoint_every > 0 && c > first &&
+            (c - first) % o.checkpoint_every == 0)
+            checkpoint();
         run_cycle(st);
         progress.step();
     }
@@ -157,8 +236,8 @@ void run_stone_job(const StoneJobOptions& o)
     if (!o.quiet) {
         const double seconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        std::fprintf(stderr, "stone: %d cycles, moist depth %.4g m, %.1f s, written to %s\n",
-                     o.cycles, moist_depth(st), seconds, o.out_dir.string().c_str());
+        std::fprintf(stderr, "stone: cycles %d to %d, moist depth %.4g m, %.1f s, written to %s\n",
+                     first, stop, moist_depth(st), seconds, o.out_dir.string().c_str());
     }
 }
 

@@ -34,7 +34,18 @@ struct StoneJobOptions {
     int map_resolution = 512;           ///< surface maps (0: none; needs uvs)
     bool write_mesh = true;
     bool quiet = false;
+    // Checkpoints (stone_checkpoint.h): a run continued from one is bitwise the run that
+    // was never stopped.
+    std::filesystem::path checkpoint;   ///< where to write them (empty: none)
+    int checkpoint_every = 0;           ///< cycles between them (0: only at the stop)
+    std::filesystem::path resume;       ///< continue from this checkpoint
+    int until = -1;                     ///< stop after this cycle (< 0: --cycles)
 };
+
+/// The fingerprint of everything that decides a run's states (the meshes' and maps' bytes,
+/// the quarry, the lattice, the parameters; not the cycles, snapshots or outputs): a
+/// checkpoint resumes only a run with the same.
+std::string stone_setup_fingerprint(const StoneJobOptions& options);
 
 /// Run the job; progress on stderr unless quiet. Throws std::runtime_error naming the input
 /// or option at fault.
