@@ -1,6 +1,7 @@
 // patina-farm: Patina's renders, bakes and simulations on a render farm (docs/farm.md).
 #include "farm/frame_merge.h"
 #include "farm/render_farm.h"
+#include "farm/texgen_farm.h"
 
 #include "core/cancel.h"
 #include "core/cli_errors.h"
@@ -90,6 +91,42 @@ void register_submit(CLI::App& app)
     });
 }
 
+struct SubmitTexgenCommand {
+    fs::path folder;
+    std::vector<std::string> args;
+    patina::farm::SubmitOptions submit;
+};
+
+void register_submit_texgen(CLI::App& app)
+{
+    auto o = std::make_shared<SubmitTexgenCommand>();
+    CLI::App* cmd = app.add_subcommand(
+        "submit-texgen",
+        "submit a texgen series to Slurm: the steps of `patina-texgen patina --times` as a job "
+        "array, or the segments of `patina-texgen stone --steps` between its snapshots as a "
+        "chain of jobs each resuming the last one's checkpoint; then a finishing job");
+    cmd->add_option("--job", o->folder, "the job folder to write")->required();
+    cmd->add_option("--throttle", o->submit.throttle,
+                    "at most this many tasks at once (sbatch --array %N)");
+    cmd->add_option("--partition", o->submit.partition, "the Slurm partition");
+    cmd->add_flag("--dry-run", o->submit.dry_run, "write the job folder, submit nothing");
+    cmd->add_option("command", o->args,
+                    "after '--': the patina-texgen command line, e.g. -- patina urban.patina "
+                    "--times 0,6,12 -o urban")
+        ->required();
+    cmd->callback([o] {
+        const fs::path self = fs::read_symlink("/proc/self/exe");
+        const patina::farm::TexgenJob job = patina::farm::plan_texgen_job(
+            o->folder, o->args, self.parent_path() / "patina-texgen", self);
+        const patina::farm::Submitted s = patina::farm::submit_texgen_job(job, o->submit);
+        if (o->submit.dry_run)
+            std::printf("wrote %s (%zu tasks); not submitted\n", job.folder.string().c_str(),
+                        job.tasks.size());
+        else
+            std::printf("%s %s\n", s.array_job.c_str(), s.merge_job.c_str());
+    });
+}
+
 void register_task(CLI::App& app)
 {
     auto folder = std::make_shared<fs::path>();
@@ -100,19 +137,29 @@ void register_task(CLI::App& app)
     cmd->add_option("job", *folder, "the job folder")->required()->check(CLI::ExistingDirectory);
     cmd->add_option("index", *index, "the task (SLURM_ARRAY_TASK_ID)")->required();
     cmd->callback([folder, index] {
-        const int status = patina::farm::run_render_task(*folder, *index);
+        const bool render = patina::farm::job_kind(*folder) == "render";
+        const int status = render ? patina::farm::run_render_task(*folder, *index)
+                                  : patina::farm::run_texgen_task(*folder, *index);
         if (status != 0)
-            throw std::runtime_error(fmt::format("task {}: patina-render failed (exit status {})",
-                                                 *index, status));
+            throw std::runtime_error(fmt::format("task {}: {} failed (exit status {})", *index,
+                                                 render ? "patina-render" : "patina-texgen",
+                                                 status));
     });
 }
 
 void register_finish(CLI::App& app)
 {
     auto folder = std::make_shared<fs::path>();
-    CLI::App* cmd = app.add_subcommand("finish", "merge every frame of a job from its parts");
+    CLI::App* cmd = app.add_subcommand(
+        "finish", "merge every frame of a render job from its parts; write a texgen series' "
+                  "manifest once every step is done");
     cmd->add_option("job", *folder, "the job folder")->required()->check(CLI::ExistingDirectory);
-    cmd->callback([folder] { patina::farm::finish_render_job(*folder); });
+    cmd->callback([folder] {
+        if (patina::farm::job_kind(*folder) == "render")
+            patina::farm::finish_render_job(*folder);
+        else
+            patina::farm::finish_texgen_job(*folder);
+    });
 }
 
 void register_status(CLI::App& app)
@@ -123,22 +170,35 @@ void register_status(CLI::App& app)
                   "last line of its log), and the frames merged");
     cmd->add_option("job", *folder, "the job folder")->required()->check(CLI::ExistingDirectory);
     cmd->callback([folder] {
-        const patina::farm::RenderJob job = patina::farm::read_render_job(*folder);
-        const patina::farm::JobStatus st = patina::farm::render_job_status(*folder);
-        for (size_t i = 0; i < st.tasks.size(); ++i) {
-            const patina::farm::RenderTask& t = job.tasks[i];
-            std::printf("task %zu (frame %d, tile %d%s): %s%s%s\n", i, t.frame, t.tile,
-                        t.sample_end > 0
-                            ? fmt::format(", samples {}-{}", t.sample_begin, t.sample_end).c_str()
-                            : "",
-                        st.tasks[i].c_str(), st.failures[i].empty() ? "" : ": ",
-                        st.failures[i].c_str());
+        // Each task's description, and what the finishing job writes.
+        std::vector<std::string> labels;
+        patina::farm::JobStatus st;
+        std::string finished;
+        if (patina::farm::job_kind(*folder) == "render") {
+            for (const patina::farm::RenderTask& t : patina::farm::read_render_job(*folder).tasks)
+                labels.push_back(fmt::format("frame {}, tile {}{}", t.frame, t.tile,
+                                             t.sample_end > 0 ? fmt::format(", samples {}-{}",
+                                                                            t.sample_begin,
+                                                                            t.sample_end)
+                                                              : ""));
+            st = patina::farm::render_job_status(*folder);
+            finished = fmt::format("{} of {} frame(s) merged",
+                                   std::count(st.merged.begin(), st.merged.end(), true),
+                                   st.merged.size());
+        } else {
+            for (const patina::farm::TexgenTask& t : patina::farm::read_texgen_job(*folder).tasks)
+                labels.push_back(t.label);
+            st = patina::farm::texgen_job_status(*folder);
+            finished = st.merged.empty() ? "nothing to finish"
+                       : st.merged.front() ? "the series manifest written"
+                                           : "the series manifest not written";
         }
-        const size_t merged = static_cast<size_t>(std::count(st.merged.begin(), st.merged.end(), true));
-        std::printf("%zu task(s): %zu done, %zu running, %zu pending, %zu missing; %zu of %zu "
-                    "frame(s) merged%s%s\n",
+        for (size_t i = 0; i < st.tasks.size(); ++i)
+            std::printf("task %zu (%s): %s%s%s\n", i, labels[i].c_str(), st.tasks[i].c_str(),
+                        st.failures[i].empty() ? "" : ": ", st.failures[i].c_str());
+        std::printf("%zu task(s): %zu done, %zu running, %zu pending, %zu missing; %s%s%s\n",
                     st.tasks.size(), st.count("done"), st.count("running"), st.count("pending"),
-                    st.count("missing"), merged, st.merged.size(),
+                    st.count("missing"), finished.c_str(),
                     st.merge_queued ? "; the merge is queued" : "",
                     st.queue_known ? "" : " (Slurm's queue could not be asked)");
     });
@@ -155,7 +215,10 @@ void register_resubmit(CLI::App& app)
     cmd->add_option("--throttle", options->throttle, "at most this many tasks at once");
     cmd->add_option("--partition", options->partition, "the Slurm partition");
     cmd->callback([folder, options] {
-        const patina::farm::Submitted s = patina::farm::resubmit_render_job(*folder, *options);
+        const patina::farm::Submitted s =
+            patina::farm::job_kind(*folder) == "render"
+                ? patina::farm::resubmit_render_job(*folder, *options)
+                : patina::farm::resubmit_texgen_job(*folder, *options);
         if (s.merge_job.empty())
             std::printf("nothing to resubmit: every task is done and every frame merged\n");
         else
@@ -172,6 +235,7 @@ int main(int argc, char** argv)
     app.set_version_flag("--version", std::string("patina-farm ") + PATINA_VERSION_STRING);
     app.require_subcommand(1);
     register_submit(app);
+    register_submit_texgen(app);
     register_task(app);
     register_finish(app);
     register_status(app);

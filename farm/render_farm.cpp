@@ -1,6 +1,7 @@
 #include "farm/render_farm.h"
 
 #include "farm/frame_merge.h"
+#include "farm/job_folder.h"
 #include "farm/processes.h"
 #include "farm/render_part.h"
 
@@ -28,174 +29,27 @@ namespace patina::farm {
 
 namespace fs = std::filesystem;
 
-namespace {
 
-    /// `text` in single quotes for a shell script.
-    std::string quoted(const std::string& text)
-    {
-        std::string out = "'";
-        for (char c : text)
-            out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-        return out + "'";
-    }
-
-    std::string trimmed(std::string s)
-    {
-        while (!s.empty() && (s.back() == '\n' || s.back() == '\r' || s.back() == ' '))
-            s.pop_back();
-        // sbatch --parsable prints "id" or "id;cluster".
-        return s.substr(0, s.find(';'));
-    }
-
-    /// "0-7" or "1,4,5": the --array index list of `tasks` (the array task id is the
-    /// task's index in job.toml, whichever submission runs it).
-    std::string index_list(const std::vector<size_t>& tasks)
-    {
-        const bool contiguous = tasks.back() - tasks.front() + 1 == tasks.size();
-        return contiguous ? fmt::format("{}-{}", tasks.front(), tasks.back())
-                          : fmt::format("{}", fmt::join(tasks, ","));
-    }
-
-    /// The job ids of the submissions so far (submitted.toml), oldest first.
-    void read_submitted(const fs::path& dir, std::vector<std::string>& arrays,
-                        std::vector<std::string>& merges)
-    {
-        const fs::path file = dir / "submitted.toml";
-        std::error_code ec;
-        if (!fs::exists(file, ec))
-            return;
-        try {
-            const toml::table t = toml::parse_file(file.string());
-            for (auto [key, out] : {std::pair{"array_jobs", &arrays}, std::pair{"merge_jobs", &merges}})
-                if (const toml::array* a = t[key].as_array())
-                    for (const toml::node& id : *a)
-                        out->push_back(id.value_or(std::string()));
-        } catch (const toml::parse_error& e) {
-            throw std::runtime_error(fmt::format("{}:{}: {}", file.string(), e.source().begin.line,
-                                                 e.description()));
-        }
-    }
-
-    /// Submits `tasks` of the job (none: the merge alone) as an array, then the merge after
-    /// it (afterok), and appends their ids to submitted.toml.
-    Submitted sbatch_tasks_and_merge(const RenderJob& job, const std::vector<size_t>& tasks,
-                                     const SubmitOptions& options, Submitted out)
-    {
-        const fs::path& dir = job.folder;
-        auto base = [&](const std::string& name, const fs::path& log) {
-            std::vector<std::string> a = {"sbatch", "--parsable", "--job-name", name,
-                                          "--output", log.string(), "--chdir", dir.string()};
-            if (!options.partition.empty())
-                a.insert(a.end(), {"--partition", options.partition});
-            return a;
-        };
-        const std::string name = "patina-" + dir.filename().string();
-        if (!tasks.empty()) {
-            std::vector<std::string> array = base(name, dir / "logs" / "task_%a.log");
-            array.push_back("--array=" + index_list(tasks) +
-                            (options.throttle > 0 ? fmt::format("%{}", options.throttle) : ""));
-            array.push_back((dir / "slurm_task.sh").string());
-            out.array_job = trimmed(run_and_capture(array));
-        }
-        std::vector<std::string> merge = base(name + "-merge", dir / "logs" / "merge.log");
-        if (!out.array_job.empty())
-            merge.insert(merge.end(), {"--dependency=afterok:" + out.array_job,
-                                       "--kill-on-invalid-dep=yes"});
-        merge.push_back((dir / "slurm_merge.sh").string());
-        out.merge_job = trimmed(run_and_capture(merge));
-
-        std::vector<std::string> arrays, merges;
-        read_submitted(dir, arrays, merges);
-        if (!out.array_job.empty())
-            arrays.push_back(out.array_job);
-        merges.push_back(out.merge_job);
-        toml::array a, m;
-        for (const std::string& id : arrays)
-            a.push_back(id);
-        for (const std::string& id : merges)
-            m.push_back(id);
-        std::ostringstream text;
-        text << "# Slurm job ids of this job, oldest first (patina-farm submit, resubmit).\n"
-             << toml::table{{"array_jobs", a}, {"merge_jobs", m}} << "\n";
-        write_file_atomic(dir / "submitted.toml", {text.str()}, "job file");
-        return out;
-    }
-
-}  // namespace
+JobShape render_job_shape(const RenderJob& job)
+{
+    return {job.folder, job.farm, "render " + job.scene.stem().string(), job.tasks.size(), false};
+}
 
 Submitted submit_render_job(const RenderJob& job, const SubmitOptions& options)
 {
-    const fs::path& dir = job.folder;
-    std::error_code ec;
-    for (const char* sub : {"parts", "frames", "logs"})
-        if (!fs::create_directories(dir / sub, ec) && ec)
-            throw std::runtime_error(fmt::format("submit: cannot make '{}': {}",
-                                                 (dir / sub).string(), ec.message()));
-    const std::string farm = quoted(job.farm.string()), folder = quoted(dir.string());
-    const size_t n = job.tasks.size();
+    const JobShape shape = render_job_shape(job);
     Submitted out;
-    // Each file in place at once (its own transaction): the jobs may start as soon as
-    // sbatch has them.
-    auto write = [&](const char* name, const std::string& text) {
-        const fs::path file = dir / name;
-        write_file_atomic(file, {text}, "job file");
-        out.files.push_back(file);
-    };
-    write("job.toml", render_job_text(job));
-    write("slurm_task.sh",
-          fmt::format("#!/bin/bash\n# Written by patina-farm submit: task $SLURM_ARRAY_TASK_ID "
-                      "of the job array (job.toml lists them).\nexec {} task {} "
-                      "\"$SLURM_ARRAY_TASK_ID\"\n",
-                      farm, folder));
-    write("slurm_merge.sh",
-          fmt::format("#!/bin/bash\n# Written by patina-farm submit: the merge, after every task "
-                      "succeeded.\nexec {} finish {}\n",
-                      farm, folder));
-    write("run_local.sh",
-          fmt::format("#!/bin/bash\n# Written by patina-farm submit: the job without a "
-                      "scheduler, one task after the other.\nset -e\nfor i in $(seq 0 {}); do\n"
-                      "  {} task {} \"$i\"\ndone\nexec {} finish {}\n",
-                      n - 1, farm, folder, farm, folder));
-    // OpenJD (Open Job Description, the job template AWS Deadline Cloud runs): a step of
-    // n tasks and a merge step that depends on it.
-    write("job.openjd.yaml",
-          fmt::format("specificationVersion: 'jobtemplate-2023-09'\n"
-                      "name: 'patina render {}'\n"
-                      "steps:\n"
-                      "- name: Render\n"
-                      "  parameterSpace:\n"
-                      "    taskParameterDefinitions:\n"
-                      "    - name: Task\n"
-                      "      type: INT\n"
-                      "      range: '0-{}'\n"
-                      "  script:\n"
-                      "    actions:\n"
-                      "      onRun:\n"
-                      "        command: {}\n"
-                      "        args: ['task', {}, '{{{{Task.Param.Task}}}}']\n"
-                      "- name: Merge\n"
-                      "  dependencies:\n"
-                      "  - dependsOn: Render\n"
-                      "  script:\n"
-                      "    actions:\n"
-                      "      onRun:\n"
-                      "        command: {}\n"
-                      "        args: ['finish', {}]\n",
-                      dir.filename().string(), n - 1, farm, folder, farm, folder));
-    // Scripts are made executable once they are in place.
-    for (const char* name : {"slurm_task.sh", "slurm_merge.sh", "run_local.sh"})
-        fs::permissions(dir / name, fs::perms::owner_exec | fs::perms::group_exec,
-                        fs::perm_options::add, ec);
+    out.files = write_job_scripts(shape, {"parts", "frames"});
+    write_file_atomic(job.folder / "job.toml", {render_job_text(job)}, "job file");
+    out.files.push_back(job.folder / "job.toml");
     if (options.dry_run)
         return out;
-
-    const std::vector<size_t> all = [&] {
-        std::vector<size_t> v(n);
-        for (size_t i = 0; i < n; ++i)
-            v[i] = i;
-        return v;
-    }();
-    return sbatch_tasks_and_merge(job, all, options, out);
+    std::vector<size_t> all(job.tasks.size());
+    for (size_t i = 0; i < all.size(); ++i)
+        all[i] = i;
+    Submitted s = submit_job(shape, all, options);
+    s.files = std::move(out.files);
+    return s;
 }
 
 bool valid_part(const RenderJob& job, const RenderTask& task, const fs::path& part)
@@ -277,91 +131,24 @@ void finish_render_job(const fs::path& folder)
     }
 }
 
-size_t JobStatus::count(const std::string& state) const
-{
-    return static_cast<size_t>(std::count(tasks.begin(), tasks.end(), state));
-}
-
 JobStatus render_job_status(const fs::path& folder)
 {
     const RenderJob job = read_render_job(folder);
-    JobStatus st;
-    st.tasks.assign(job.tasks.size(), "missing");
-    st.failures.assign(job.tasks.size(), "");
-    std::vector<std::string> arrays, merges;
-    read_submitted(job.folder, arrays, merges);
-    std::vector<std::string> queued(job.tasks.size());
-    if (!arrays.empty() || !merges.empty()) {
-        std::vector<std::string> ids = arrays;
-        ids.insert(ids.end(), merges.begin(), merges.end());
-        try {
-            // One line per job or array task: its array job id, task id (N/A for a plain
-            // job) and state; -r lists pending array tasks one by one.
-            const std::string out = run_and_capture(
-                {"squeue", "-h", "-r", "-j", fmt::format("{}", fmt::join(ids, ",")), "-o",
-                 "%F %K %t"});
-            std::istringstream lines(out);
-            std::string array, task, state;
-            while (lines >> array >> task >> state) {
-                if (std::find(merges.begin(), merges.end(), array) != merges.end()) {
-                    st.merge_queued = true;
-                    continue;
-                }
-                size_t index = 0;
-                if (std::from_chars(task.data(), task.data() + task.size(), index).ec == std::errc() &&
-                    index < queued.size())
-                    queued[index] = state == "PD" ? "pending" : "running";
-            }
-        } catch (const std::exception&) {
-            st.queue_known = false;  // squeue failed: the files alone tell
-        }
-    }
-    for (size_t i = 0; i < job.tasks.size(); ++i) {
-        if (!queued[i].empty())
-            st.tasks[i] = queued[i];
-        else if (valid_part(job, job.tasks[i], job.folder / job.tasks[i].output))
-            st.tasks[i] = "done";
-        else {
-            // Its log says why: the first error line (the renderer's, before the task's
-            // own), else the last line.
-            std::ifstream log(job.folder / "logs" / fmt::format("task_{}.log", i));
-            std::string line, last, error;
-            while (std::getline(log, line)) {
-                if (!line.empty())
-                    last = line;
-                if (error.empty() && line.find("error:") != std::string::npos)
-                    error = line;
-            }
-            st.failures[i] = error.empty() ? last : error;
-        }
-    }
+    std::vector<bool> merged;
     for (const FrameMerge& m : job.merges) {
         std::error_code ec;
-        st.merged.push_back(fs::is_regular_file(job.folder / m.output, ec));
+        merged.push_back(fs::is_regular_file(job.folder / m.output, ec));
     }
-    return st;
+    return job_status(
+        render_job_shape(job),
+        [&](size_t i) { return valid_part(job, job.tasks[i], job.folder / job.tasks[i].output); },
+        std::move(merged));
 }
 
 Submitted resubmit_render_job(const fs::path& folder, const SubmitOptions& options)
 {
     const RenderJob job = read_render_job(folder);
-    const JobStatus st = render_job_status(folder);
-    if (!st.queue_known)
-        throw std::runtime_error(fmt::format("resubmit of '{}': squeue could not be asked, so "
-                                             "the queued tasks are not known",
-                                             folder.string()));
-    if (st.merge_queued || st.count("running") + st.count("pending") > 0)
-        throw std::runtime_error(fmt::format(
-            "resubmit of '{}': {} task(s) and {} merge still in Slurm's queue; wait for them "
-            "or scancel them first", folder.string(), st.count("running") + st.count("pending"),
-            st.merge_queued ? "a" : "no"));
-    std::vector<size_t> missing;
-    for (size_t i = 0; i < st.tasks.size(); ++i)
-        if (st.tasks[i] == "missing")
-            missing.push_back(i);
-    if (missing.empty() && std::all_of(st.merged.begin(), st.merged.end(), [](bool b) { return b; }))
-        return {};
-    return sbatch_tasks_and_merge(job, missing, options, {});
+    return resubmit_job(render_job_shape(job), render_job_status(folder), options);
 }
 
 std::string plugin_set_of(const fs::path& scene)

@@ -3,6 +3,7 @@
 // `patina-farm task` on the nodes, and its frames merged by `patina-farm finish`.
 #pragma once
 
+#include "farm/job_folder.h"
 #include "farm/render_job.h"
 
 #include <filesystem>
@@ -11,23 +12,14 @@
 
 namespace patina::farm {
 
-struct SubmitOptions {
-    int throttle = 0;        ///< at most this many tasks at once (sbatch --array %N); 0: no cap
-    std::string partition;   ///< sbatch --partition, or the default
-    bool dry_run = false;    ///< write the folder, submit nothing
-};
-
-/// What `submit` wrote and, unless a dry run, the Slurm job ids.
-struct Submitted {
-    std::vector<std::filesystem::path> files;
-    std::string array_job, merge_job;
-};
-
 /// Writes `job`'s folder (job.toml, slurm_task.sh, slurm_merge.sh, run_local.sh,
 /// job.openjd.yaml, parts/, frames/, logs/) and submits it: the tasks as one job array,
 /// the merge as a job that runs after all of them succeeded (afterok). Throws
 /// std::runtime_error naming the folder or sbatch's failure.
 Submitted submit_render_job(const RenderJob& job, const SubmitOptions& options);
+
+/// The job's shape for the scripts and Slurm: an array of its tasks.
+JobShape render_job_shape(const RenderJob& job);
 
 /// Task `index` of the job in `folder`: nothing when its output is already a valid part of
 /// the task (a requeued or repeated task is idempotent), else patina-render with the task's
@@ -47,19 +39,6 @@ std::string plugin_set_of(const std::filesystem::path& scene);
 /// Merges every frame of the job in `folder` from its parts, after checking that each was
 /// rendered with the job's plugins (naming the part and both sets otherwise).
 void finish_render_job(const std::filesystem::path& folder);
-
-/// Where a job stands: per task "done" (its part is valid), "running" or "pending" (in
-/// Slurm's queue), or "missing" (neither: failed, cancelled or never run, with the first
-/// error line of its log, or its last line); per frame whether it is merged, and whether a
-/// merge job is queued.
-struct JobStatus {
-    std::vector<std::string> tasks;     ///< per task: done, running, pending, missing
-    std::vector<std::string> failures;  ///< per task: what its log says when missing
-    std::vector<bool> merged;           ///< per frame
-    bool merge_queued = false;
-    bool queue_known = true;            ///< false when squeue could not be asked
-    size_t count(const std::string& state) const;
-};
 
 /// The status of the job in `folder`, from its parts, its frames and (when it was
 /// submitted) Slurm's queue.

@@ -1,10 +1,19 @@
 #include "formats/stone_volume.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
 
 namespace patina::formats {
+
+std::string stone_snapshot_folder(int cycle, int last)
+{
+    const int digits = std::max(4, static_cast<int>(std::to_string(last).size()));
+    char name[64];
+    std::snprintf(name, sizeof name, "cycle_%0*d", digits, cycle);
+    return name;
+}
 
 namespace {
 

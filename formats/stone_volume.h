@@ -37,6 +37,10 @@ inline constexpr int kCrustChannel = 0, kDensityChannel = 1, kIronChannel = 2, k
 /// The most voxels a volume may hold (nx·ny·nz): what a renderer loads, 2.5 GiB of floats.
 inline constexpr double kMaxVolumeVoxels = 512.0 * 512.0 * 512.0;
 
+/// The folder of the snapshot at `cycle` of a stone series that ends at `last`
+/// ("cycle_0050"): `patina-texgen stone --steps` writes one per snapshot.
+std::string stone_snapshot_folder(int cycle, int last);
+
 /// Where the voxels sit: the part "bounds".
 struct VolumeGrid {
     std::array<double, 3> min{}, max{};

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <sstream>
 #include <stdexcept>
 #include <tuple>
@@ -408,6 +409,17 @@ StackSeries read_stack_series(const fs::path& path)
         out.steps.push_back(std::move(step));
     }
     return out;
+}
+
+std::string series_step_folder(double time_years, double last_years)
+{
+    const int digits = static_cast<int>(std::to_string(static_cast<long long>(last_years)).size());
+    char name[64];
+    if (time_years == std::floor(time_years))
+        std::snprintf(name, sizeof name, "t%0*lld", digits, static_cast<long long>(time_years));
+    else
+        std::snprintf(name, sizeof name, "t%0*.3f", digits + 4, time_years);
+    return name;
 }
 
 std::string stack_series_text(const StackSeries& series)

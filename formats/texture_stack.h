@@ -119,6 +119,10 @@ struct StackSeries {
 /// malformed file, no steps, times that do not ascend or a step folder that does not exist.
 StackSeries read_stack_series(const std::filesystem::path& path);
 
+/// The folder of the step at `time_years` in a series that reaches `last_years`: "t06" for
+/// 6 of 30, the times padded to one width, decimals only when a time has them ("t06.500").
+std::string series_step_folder(double time_years, double last_years);
+
 /// series.toml's text for `series` (its `manifest` is not used).
 std::string stack_series_text(const StackSeries& series);
 

@@ -5,17 +5,10 @@
 # dry run writes the job folder (with its OpenJD template and shell loop) and submits
 # nothing.
 include("${CMAKE_CURRENT_LIST_DIR}/lib/expect.cmake")
+include("${CMAKE_CURRENT_LIST_DIR}/lib/slurm.cmake")
 file(REMOVE_RECURSE "${WORK_DIR}")
 file(MAKE_DIRECTORY "${WORK_DIR}")
-if(NOT EXISTS "${SLURM_DIR}/env")
-  message(FATAL_ERROR "no Slurm cluster in ${SLURM_DIR}: the farm.slurm_start fixture failed "
-                      "(see its output; Debian 12's slurm-wlm and munge, scripts/bootstrap.sh)")
-endif()
-file(STRINGS "${SLURM_DIR}/env" slurm_env)
-foreach(line IN LISTS slurm_env)
-  string(REGEX MATCH "^([A-Z_]+)=(.*)$" _ "${line}")
-  set(ENV{${CMAKE_MATCH_1}} "${CMAKE_MATCH_2}")
-endforeach()
+use_slurm_cluster()
 
 foreach(frame 1 2)
   math(EXPR z "2 + ${frame}")
@@ -48,20 +41,6 @@ bsdf = \"clay\"
 endforeach()
 expect_success("${PATINA_RENDER}" "${WORK_DIR}/shot.0001.toml" --quiet --spp 16
                --output "${WORK_DIR}/one_process_16spp.exr")
-
-# Wait (at most 180 s) until the jobs `ids` have left the queue.
-function(wait_for_jobs)
-  foreach(i RANGE 360)
-    execute_process(COMMAND squeue -h -j "${ARGV0}" -o %i RESULT_VARIABLE rc
-                    OUTPUT_VARIABLE out ERROR_QUIET)
-    string(STRIP "${out}" out)
-    if(out STREQUAL "")
-      return()
-    endif()
-    execute_process(COMMAND sleep 0.5)
-  endforeach()
-  message(FATAL_ERROR "jobs ${ARGV0} still queued after 180 s:\n${out}")
-endfunction()
 
 function(expect_identical a b tolerance)
   execute_process(COMMAND oiiotool "${a}" "${b}" --diff --fail ${tolerance} --failpercent 0

@@ -51,16 +51,6 @@ struct PatinaOptions {
     bool quiet = false;
 };
 
-/// "t06" for 6 of a series that reaches 30: times padded to the same width, decimals kept
-/// only when a time has them.
-std::string step_folder(double t, double last)
-{
-    const int digits = static_cast<int>(std::to_string(static_cast<long long>(last)).size());
-    if (t == std::floor(t))
-        return fmt::format("t{:0{}}", static_cast<long long>(t), digits);
-    return fmt::format("t{:0{}.3f}", t, digits + 4);
-}
-
 /// `mesh` as a path relative to the folder `dir` (both made absolute), or absolute when
 /// they share no root: recorded in the stack so that export finds the mesh again when the
 /// stack and the mesh move together.
@@ -140,7 +130,8 @@ void run_patina(const PatinaOptions& o)
     for (size_t k = 0; k < steps.size(); ++k) {
         throw_if_cancelled();
         const fs::path dir =
-            series ? o.out_dir / step_folder(steps[k].time_years, steps.back().time_years)
+            series ? o.out_dir / formats::series_step_folder(steps[k].time_years,
+                                                         steps.back().time_years)
                    : o.out_dir;
         PatinaOutputOptions step_out = out;
         if (!o.mesh.empty())  // where export finds the mesh: relative to the step's folder

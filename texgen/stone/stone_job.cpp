@@ -5,6 +5,7 @@
 #include "core/mesh_export.h"
 #include "core/output_transaction.h"
 #include "core/progress.h"
+#include "formats/stone_volume.h"
 #include "texgen/stack/surface_map.h"
 #include "texgen/stone/eroded_mesh.h"
 #include "texgen/stone/stone_checkpoint.h"
@@ -26,8 +27,7 @@ using Imath::V3d;
 
 std::string snapshot_folder(int cycle, int last)
 {
-    const int digits = std::max(4, int(std::to_string(last).size()));
-    return fmt::format("cycle_{:0{}}", cycle, digits);
+    return formats::stone_snapshot_folder(cycle, last);
 }
 
 namespace {

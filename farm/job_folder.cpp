@@ -1,0 +1,326 @@
+#include "farm/job_folder.h"
+
+#include "farm/processes.h"
+
+#include "core/image_io.h"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+#include <toml++/toml.h>
+
+#include <algorithm>
+#include <charconv>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+namespace patina::farm {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+    /// `text` in single quotes for a shell script.
+    std::string quoted(const std::string& text)
+    {
+        std::string out = "'";
+        for (char c : text)
+            out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+        return out + "'";
+    }
+
+    std::string trimmed(std::string s)
+    {
+        while (!s.empty() && (s.back() == '\n' || s.back() == '\r' || s.back() == ' '))
+            s.pop_back();
+        // sbatch --parsable prints "id" or "id;cluster".
+        return s.substr(0, s.find(';'));
+    }
+
+    /// "0-7" or "1,4,5": the --array index list of `tasks` (the array task id is the
+    /// task's index in job.toml, whichever submission runs it).
+    std::string index_list(const std::vector<size_t>& tasks)
+    {
+        const bool contiguous = tasks.back() - tasks.front() + 1 == tasks.size();
+        return contiguous ? fmt::format("{}-{}", tasks.front(), tasks.back())
+                          : fmt::format("{}", fmt::join(tasks, ","));
+    }
+
+    /// The job ids of the submissions so far (submitted.toml), oldest first: arrays,
+    /// finishing jobs, and the jobs of chains with their tasks.
+    struct SubmittedIds {
+        std::vector<std::string> arrays, merges, chain_jobs;
+        std::vector<int64_t> chain_tasks;
+    };
+
+    SubmittedIds read_submitted(const fs::path& dir)
+    {
+        SubmittedIds ids;
+        const fs::path file = dir / "submitted.toml";
+        std::error_code ec;
+        if (!fs::exists(file, ec))
+            return ids;
+        try {
+            const toml::table t = toml::parse_file(file.string());
+            for (auto [key, out] : {std::pair{"array_jobs", &ids.arrays},
+                                    std::pair{"merge_jobs", &ids.merges},
+                                    std::pair{"chain_jobs", &ids.chain_jobs}})
+                if (const toml::array* a = t[key].as_array())
+                    for (const toml::node& id : *a)
+                        out->push_back(id.value_or(std::string()));
+            if (const toml::array* a = t["chain_tasks"].as_array())
+                for (const toml::node& i : *a)
+                    ids.chain_tasks.push_back(i.value_or(int64_t(-1)));
+        } catch (const toml::parse_error& e) {
+            throw std::runtime_error(fmt::format("{}:{}: {}", file.string(), e.source().begin.line,
+                                                 e.description()));
+        }
+        if (ids.chain_tasks.size() != ids.chain_jobs.size())
+            throw std::runtime_error(fmt::format("{}: chain_jobs and chain_tasks differ in length",
+                                                 file.string()));
+        return ids;
+    }
+
+    void write_submitted(const fs::path& dir, const SubmittedIds& ids)
+    {
+        auto strings = [](const std::vector<std::string>& v) {
+            toml::array a;
+            for (const std::string& s : v)
+                a.push_back(s);
+            return a;
+        };
+        toml::table t{{"array_jobs", strings(ids.arrays)}, {"merge_jobs", strings(ids.merges)}};
+        if (!ids.chain_jobs.empty()) {
+            toml::array tasks;
+            for (int64_t i : ids.chain_tasks)
+                tasks.push_back(i);
+            t.insert_or_assign("chain_jobs", strings(ids.chain_jobs));
+            t.insert_or_assign("chain_tasks", std::move(tasks));
+        }
+        std::ostringstream text;
+        text << "# Slurm job ids of this job, oldest first (patina-farm submit, resubmit).\n"
+             << t << "\n";
+        write_file_atomic(dir / "submitted.toml", {text.str()}, "job file");
+    }
+
+    /// The OpenJD template: the tasks as one step with an INT parameter (an array), or one
+    /// step per task each depending on the one before (a chain); then the Merge step.
+    std::string openjd_template(const JobShape& job)
+    {
+        const std::string farm = quoted(job.farm.string()), folder = quoted(job.folder.string());
+        auto run = [&](const std::string& args) {
+            return fmt::format("  script:\n    actions:\n      onRun:\n        command: {}\n"
+                               "        args: [{}]\n",
+                               farm, args);
+        };
+        std::string text = fmt::format("specificationVersion: 'jobtemplate-2023-09'\n"
+                                       "name: 'patina {}'\nsteps:\n",
+                                       job.title);
+        std::string last;
+        if (job.chained) {
+            for (size_t i = 0; i < job.tasks; ++i) {
+                const std::string name = fmt::format("Task{}", i);
+                text += fmt::format("- name: {}\n", name);
+                if (!last.empty())
+                    text += fmt::format("  dependencies:\n  - dependsOn: {}\n", last);
+                text += run(fmt::format("'task', {}, '{}'", folder, i));
+                last = name;
+            }
+        } else {
+            text += fmt::format("- name: Tasks\n  parameterSpace:\n    taskParameterDefinitions:\n"
+                                "    - name: Task\n      type: INT\n      range: '0-{}'\n",
+                                job.tasks - 1);
+            text += run(fmt::format("'task', {}, '{{{{Task.Param.Task}}}}'", folder));
+            last = "Tasks";
+        }
+        text += fmt::format("- name: Merge\n  dependencies:\n  - dependsOn: {}\n", last);
+        text += run(fmt::format("'finish', {}", folder));
+        return text;
+    }
+
+}  // namespace
+
+std::vector<fs::path> write_job_scripts(const JobShape& job, const std::vector<std::string>& subfolders)
+{
+    const fs::path& dir = job.folder;
+    std::error_code ec;
+    std::vector<std::string> folders = subfolders;
+    folders.emplace_back("logs");
+    for (const std::string& sub : folders)
+        if (!fs::create_directories(dir / sub, ec) && ec)
+            throw std::runtime_error(fmt::format("submit: cannot make '{}': {}",
+                                                 (dir / sub).string(), ec.message()));
+    const std::string farm = quoted(job.farm.string()), folder = quoted(dir.string());
+    std::vector<fs::path> files;
+    auto write = [&](const char* name, const std::string& text) {
+        const fs::path file = dir / name;
+        write_file_atomic(file, {text}, "job file");
+        files.push_back(file);
+    };
+    // An array task's index is SLURM_ARRAY_TASK_ID; a chain's job passes it as $1.
+    write("slurm_task.sh",
+          fmt::format("#!/bin/bash\n# Written by patina-farm submit: one task of the job "
+                      "(job.toml lists them), $1 or SLURM_ARRAY_TASK_ID.\nexec {} task {} "
+                      "\"${{1:-$SLURM_ARRAY_TASK_ID}}\"\n",
+                      farm, folder));
+    write("slurm_merge.sh",
+          fmt::format("#!/bin/bash\n# Written by patina-farm submit: the finishing job, after "
+                      "every task succeeded.\nexec {} finish {}\n",
+                      farm, folder));
+    write("run_local.sh",
+          fmt::format("#!/bin/bash\n# Written by patina-farm submit: the job without a "
+                      "scheduler, one task after the other.\nset -e\nfor i in $(seq 0 {}); do\n"
+                      "  {} task {} \"$i\"\ndone\nexec {} finish {}\n",
+                      job.tasks - 1, farm, folder, farm, folder));
+    write("job.openjd.yaml", openjd_template(job));
+    for (const char* name : {"slurm_task.sh", "slurm_merge.sh", "run_local.sh"})
+        fs::permissions(dir / name, fs::perms::owner_exec | fs::perms::group_exec,
+                        fs::perm_options::add, ec);
+    return files;
+}
+
+Submitted submit_job(const JobShape& job, const std::vector<size_t>& tasks,
+                     const SubmitOptions& options)
+{
+    const fs::path& dir = job.folder;
+    auto base = [&](const std::string& name, const fs::path& log) {
+        std::vector<std::string> a = {"sbatch", "--parsable", "--job-name", name,
+                                      "--output", log.string(), "--chdir", dir.string()};
+        if (!options.partition.empty())
+            a.insert(a.end(), {"--partition", options.partition});
+        return a;
+    };
+    auto after = [](std::vector<std::string>& a, const std::string& id) {
+        a.insert(a.end(), {"--dependency=afterok:" + id, "--kill-on-invalid-dep=yes"});
+    };
+    const std::string name = "patina-" + dir.filename().string();
+    SubmittedIds ids = read_submitted(dir);
+    Submitted out;
+    std::string last;  // the job the finishing job waits for
+    if (!tasks.empty() && job.chained) {
+        std::vector<std::string> chain;
+        for (size_t i : tasks) {
+            std::vector<std::string> a =
+                base(fmt::format("{}-{}", name, i), dir / "logs" / fmt::format("task_{}.log", i));
+            if (!last.empty())
+                after(a, last);
+            a.push_back((dir / "slurm_task.sh").string());
+            a.push_back(std::to_string(i));
+            last = trimmed(run_and_capture(a));
+            chain.push_back(last);
+            ids.chain_jobs.push_back(last);
+            ids.chain_tasks.push_back(static_cast<int64_t>(i));
+        }
+        out.array_job = fmt::format("{}", fmt::join(chain, ","));
+    } else if (!tasks.empty()) {
+        std::vector<std::string> a = base(name, dir / "logs" / "task_%a.log");
+        a.push_back("--array=" + index_list(tasks) +
+                    (options.throttle > 0 ? fmt::format("%{}", options.throttle) : ""));
+        a.push_back((dir / "slurm_task.sh").string());
+        last = out.array_job = trimmed(run_and_capture(a));
+        ids.arrays.push_back(last);
+    }
+    std::vector<std::string> merge = base(name + "-merge", dir / "logs" / "merge.log");
+    if (!last.empty())
+        after(merge, last);
+    merge.push_back((dir / "slurm_merge.sh").string());
+    out.merge_job = trimmed(run_and_capture(merge));
+    ids.merges.push_back(out.merge_job);
+    write_submitted(dir, ids);
+    return out;
+}
+
+size_t JobStatus::count(const std::string& state) const
+{
+    return static_cast<size_t>(std::count(tasks.begin(), tasks.end(), state));
+}
+
+JobStatus job_status(const JobShape& job, const std::function<bool(size_t)>& done,
+                     std::vector<bool> merged)
+{
+    JobStatus st;
+    st.tasks.assign(job.tasks, "missing");
+    st.failures.assign(job.tasks, "");
+    st.merged = std::move(merged);
+    const SubmittedIds ids = read_submitted(job.folder);
+    std::vector<std::string> queued(job.tasks);
+    std::vector<std::string> all = ids.arrays;
+    all.insert(all.end(), ids.merges.begin(), ids.merges.end());
+    all.insert(all.end(), ids.chain_jobs.begin(), ids.chain_jobs.end());
+    if (!all.empty()) {
+        try {
+            // One line per job or array task: its job id (the array's for an array task),
+            // array task id (N/A for a plain job) and state; -r lists pending array tasks
+            // one by one.
+            const std::string out = run_and_capture(
+                {"squeue", "-h", "-r", "-j", fmt::format("{}", fmt::join(all, ",")), "-o",
+                 "%F %K %t"});
+            std::istringstream lines(out);
+            std::string id, task, state;
+            while (lines >> id >> task >> state) {
+                const std::string s = state == "PD" ? "pending" : "running";
+                if (std::find(ids.merges.begin(), ids.merges.end(), id) != ids.merges.end()) {
+                    st.merge_queued = true;
+                    continue;
+                }
+                if (auto c = std::find(ids.chain_jobs.begin(), ids.chain_jobs.end(), id);
+                    c != ids.chain_jobs.end()) {
+                    const int64_t index = ids.chain_tasks[size_t(c - ids.chain_jobs.begin())];
+                    if (index >= 0 && size_t(index) < queued.size())
+                        queued[size_t(index)] = s;
+                    continue;
+                }
+                size_t index = 0;
+                if (std::from_chars(task.data(), task.data() + task.size(), index).ec ==
+                        std::errc() &&
+                    index < queued.size())
+                    queued[index] = s;
+            }
+        } catch (const std::exception&) {
+            st.queue_known = false;  // squeue failed: the files alone tell
+        }
+    }
+    for (size_t i = 0; i < job.tasks; ++i) {
+        if (!queued[i].empty())
+            st.tasks[i] = queued[i];
+        else if (done(i))
+            st.tasks[i] = "done";
+        else {
+            // Its log says why: the first error line (the program's, before the task's
+            // own), else the last line.
+            std::ifstream log(job.folder / "logs" / fmt::format("task_{}.log", i));
+            std::string line, last, error;
+            while (std::getline(log, line)) {
+                if (!line.empty())
+                    last = line;
+                if (error.empty() && line.find("error:") != std::string::npos)
+                    error = line;
+            }
+            st.failures[i] = error.empty() ? last : error;
+        }
+    }
+    return st;
+}
+
+Submitted resubmit_job(const JobShape& job, const JobStatus& st, const SubmitOptions& options)
+{
+    const std::string folder = job.folder.string();
+    if (!st.queue_known)
+        throw std::runtime_error(fmt::format("resubmit of '{}': squeue could not be asked, so "
+                                             "the queued tasks are not known",
+                                             folder));
+    if (st.merge_queued || st.count("running") + st.count("pending") > 0)
+        throw std::runtime_error(fmt::format(
+            "resubmit of '{}': {} task(s) and {} merge still in Slurm's queue; wait for them "
+            "or scancel them first", folder, st.count("running") + st.count("pending"),
+            st.merge_queued ? "a" : "no"));
+    std::vector<size_t> missing;
+    for (size_t i = 0; i < st.tasks.size(); ++i)
+        if (st.tasks[i] == "missing")
+            missing.push_back(i);
+    if (missing.empty() && std::all_of(st.merged.begin(), st.merged.end(), [](bool b) { return b; }))
+        return {};
+    return submit_job(job, missing, options);
+}
+
+}  // namespace patina::farm

@@ -1,0 +1,200 @@
+#include "farm/texgen_farm.h"
+
+#include "farm/processes.h"
+
+#include "core/file_fingerprint.h"
+#include "core/image_io.h"
+#include "formats/texture_stack.h"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+#include <toml++/toml.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <sstream>
+#include <stdexcept>
+
+namespace patina::farm {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+    fs::path record_of(const TexgenJob& job, size_t index)
+    {
+        return job.folder / "done" / fmt::format("task_{}.toml", index);
+    }
+
+    /// The task's command and the fingerprints of the files its arguments name (from the
+    /// job's cwd), its outputs left out: what decides what it writes.
+    std::string command_fingerprint(const TexgenJob& job, const TexgenTask& task)
+    {
+        std::string text = job.texgen.string();
+        for (const std::string& arg : task.args) {
+            text += '\n' + arg;
+            // "--opt=FILE" names a file too.
+            const size_t eq = arg.starts_with("-") ? arg.find('=') : std::string::npos;
+            const fs::path file = job.cwd / (eq == std::string::npos ? arg : arg.substr(eq + 1));
+            std::error_code ec;
+            const bool output = std::find(task.outputs.begin(), task.outputs.end(),
+                                          file.lexically_normal()) != task.outputs.end();
+            if (!output && !arg.empty() && fs::is_regular_file(file, ec))
+                text += ' ' + file_fingerprint(file);
+        }
+        return bytes_fingerprint(text);
+    }
+
+    /// Every file of the task's outputs (a folder's files recursively), sorted, with its
+    /// fingerprint: "path fingerprint" lines. Throws when an output is missing.
+    std::string outputs_fingerprint(const TexgenTask& task)
+    {
+        std::vector<fs::path> files;
+        for (const fs::path& out : task.outputs) {
+            std::error_code ec;
+            if (fs::is_directory(out, ec)) {
+                for (const auto& e : fs::recursive_directory_iterator(out))
+                    if (e.is_regular_file())
+                        files.push_back(e.path());
+            } else if (fs::is_regular_file(out, ec)) {
+                files.push_back(out);
+            } else {
+                throw std::runtime_error(fmt::format("'{}' was not written", out.string()));
+            }
+        }
+        std::sort(files.begin(), files.end());
+        std::string text;
+        for (const fs::path& f : files)
+            text += fmt::format("{} {}\n", f.string(), file_fingerprint(f));
+        return text;
+    }
+
+    void write_record(const TexgenJob& job, size_t index)
+    {
+        const TexgenTask& task = job.tasks[index];
+        const toml::table t{{"label", task.label},
+                            {"command", command_fingerprint(job, task)},
+                            {"outputs", outputs_fingerprint(task)}};
+        std::ostringstream text;
+        text << "# Written by patina-farm task when the task succeeded: its command (with the\n"
+                "# fingerprints of its input files) and the fingerprints of what it wrote.\n"
+             << t << "\n";
+        write_file_atomic(record_of(job, index), {text.str()}, "task record");
+    }
+
+    std::vector<bool> series_written(const TexgenJob& job)
+    {
+        if (job.command != "patina" || job.tasks.size() < 2)
+            return {};
+        std::error_code ec;
+        return {fs::is_regular_file(job.output / formats::kSeriesManifest, ec)};
+    }
+
+}  // namespace
+
+bool texgen_task_done(const TexgenJob& job, size_t index)
+{
+    std::error_code ec;
+    const fs::path record = record_of(job, index);
+    if (!fs::is_regular_file(record, ec))
+        return false;
+    try {
+        const toml::table t = toml::parse_file(record.string());
+        const TexgenTask& task = job.tasks[index];
+        return t["command"].value_or(std::string()) == command_fingerprint(job, task) &&
+               t["outputs"].value_or(std::string()) == outputs_fingerprint(task);
+    } catch (const std::exception&) {
+        return false;  // a damaged record, an output gone or changed: not done
+    }
+}
+
+Submitted submit_texgen_job(const TexgenJob& job, const SubmitOptions& options)
+{
+    const JobShape shape = texgen_job_shape(job);
+    Submitted out;
+    out.files = write_job_scripts(shape, {"done", "checkpoints"});
+    write_file_atomic(job.folder / "job.toml", {texgen_job_text(job)}, "job file");
+    out.files.push_back(job.folder / "job.toml");
+    if (options.dry_run)
+        return out;
+    std::vector<size_t> all(job.tasks.size());
+    for (size_t i = 0; i < all.size(); ++i)
+        all[i] = i;
+    Submitted s = submit_job(shape, all, options);
+    s.files = std::move(out.files);
+    return s;
+}
+
+int run_texgen_task(const fs::path& folder, int index)
+{
+    const TexgenJob job = read_texgen_job(folder);
+    if (index < 0 || static_cast<size_t>(index) >= job.tasks.size())
+        throw std::runtime_error(fmt::format("task {}: the job in '{}' has tasks 0 to {}", index,
+                                             folder.string(), job.tasks.size() - 1));
+    const size_t i = static_cast<size_t>(index);
+    const TexgenTask& task = job.tasks[i];
+    if (texgen_task_done(job, i)) {
+        std::fprintf(stderr, "task %d (%s): already done\n", index, task.label.c_str());
+        return 0;
+    }
+    if (job.chained && i > 0 && !texgen_task_done(job, i - 1))
+        throw std::runtime_error(fmt::format("task {} ({}) resumes task {}, which is not done",
+                                             index, task.label, index - 1));
+    std::fprintf(stderr, "task %d: patina-texgen %s (%s)\n", index, job.command.c_str(),
+                 task.label.c_str());
+    std::vector<std::string> argv = {job.texgen.string()};
+    argv.insert(argv.end(), task.args.begin(), task.args.end());
+    // The command's relative paths are from where it was submitted.
+    fs::current_path(job.cwd);
+    const int status = run_program(argv);
+    if (status == 0)
+        write_record(job, i);
+    return status;
+}
+
+void finish_texgen_job(const fs::path& folder)
+{
+    const TexgenJob job = read_texgen_job(folder);
+    std::vector<std::string> missing;
+    for (size_t i = 0; i < job.tasks.size(); ++i)
+        if (!texgen_task_done(job, i))
+            missing.push_back(fmt::format("{} ({})", i, job.tasks[i].label));
+    if (!missing.empty())
+        throw std::runtime_error(fmt::format("finish: task(s) {} of '{}' are not done",
+                                             fmt::join(missing, ", "), folder.string()));
+    if (job.command == "patina" && job.tasks.size() > 1) {
+        // series.toml as `patina-texgen patina --times` writes it: the script's name and each
+        // step's time and folder, from the stacks the tasks wrote.
+        formats::StackSeries series;
+        for (const TexgenTask& t : job.tasks) {
+            const formats::TextureStack stack = formats::read_texture_stack(job.output / t.folder);
+            const formats::PatinaTable& patina = formats::patina_of(stack);
+            if (patina.time_years != t.time_years)
+                throw std::runtime_error(fmt::format("finish: '{}' is the step at {} years, the "
+                                                     "task's is {}",
+                                                     stack.manifest.string(), patina.time_years,
+                                                     t.time_years));
+            series.script = patina.script;
+            series.steps.push_back({t.time_years, t.folder});
+        }
+        write_file_atomic(job.output / formats::kSeriesManifest,
+                          {formats::stack_series_text(series)}, "series manifest");
+    }
+    std::fprintf(stderr, "finish: %zu task(s) of %s done -> %s\n", job.tasks.size(),
+                 job.command.c_str(), job.output.string().c_str());
+}
+
+JobStatus texgen_job_status(const fs::path& folder)
+{
+    const TexgenJob job = read_texgen_job(folder);
+    return job_status(texgen_job_shape(job), [&](size_t i) { return texgen_task_done(job, i); },
+                      series_written(job));
+}
+
+Submitted resubmit_texgen_job(const fs::path& folder, const SubmitOptions& options)
+{
+    const TexgenJob job = read_texgen_job(folder);
+    return resubmit_job(texgen_job_shape(job), texgen_job_status(folder), options);
+}
+
+}  // namespace patina::farm
