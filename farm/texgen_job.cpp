@@ -7,6 +7,7 @@
 #include <toml++/toml.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <optional>
 #include <sstream>
@@ -167,6 +168,49 @@ namespace {
         return job;
     }
 
+    /// A fade series: one stack per value of a list given to --duration or --dose.
+    TexgenJob plan_fade(TexgenJob job, const std::vector<std::string>& args)
+    {
+        std::string option;
+        for (const char* name : {"--duration", "--dose"})
+            if (const auto v = option_value(args, {name}); v && v->find(',') != std::string::npos) {
+                if (!option.empty())
+                    throw std::invalid_argument("a fade series on a farm takes one list: "
+                                                "--duration or --dose, not both");
+                option = name;
+            }
+        if (option.empty())
+            throw std::invalid_argument("a fade series on a farm needs a list, --duration "
+                                        "D1,D2,... or --dose J1,J2,... (a stack each)");
+        const std::optional<std::string> out = option_value(args, {"-o", "--out"});
+        if (!out)
+            throw std::invalid_argument("a fade series on a farm needs -o OUT (its stacks go "
+                                        "into folders in it)");
+        job.output = fs::absolute(*out).lexically_normal();
+        std::stringstream in(*option_value(args, {option}));
+        std::string value;
+        std::vector<std::string> folders;
+        while (std::getline(in, value, ',')) {
+            // The value names the folder ("7d", "1e+06"), other characters as '_'.
+            std::string folder = value;
+            for (char& c : folder)
+                if (!std::isalnum(static_cast<unsigned char>(c)) && c != '.' && c != '+' && c != '-')
+                    c = '_';
+            if (folder.empty() || std::find(folders.begin(), folders.end(), folder) != folders.end())
+                throw std::invalid_argument(fmt::format("{} '{}': an empty or repeated value",
+                                                        option, *option_value(args, {option})));
+            folders.push_back(folder);
+            TexgenTask task;
+            task.label = fmt::format("{} {}", option, value);
+            task.folder = folder;
+            task.args = with_option(with_option(args, {option}, value), {"-o", "--out"},
+                                    (job.output / folder).string());
+            task.outputs = {job.output / folder};
+            job.tasks.push_back(std::move(task));
+        }
+        return job;
+    }
+
 }  // namespace
 
 TexgenJob plan_texgen_job(const fs::path& folder, const std::vector<std::string>& args,
@@ -184,8 +228,11 @@ TexgenJob plan_texgen_job(const fs::path& folder, const std::vector<std::string>
         return plan_patina(std::move(job), args);
     if (job.command == "stone")
         return plan_stone(std::move(job), args);
+    if (job.command == "fade")
+        return plan_fade(std::move(job), args);
     throw std::invalid_argument(fmt::format(
-        "patina-texgen {}: a farm runs the series of 'patina' (--times) and 'stone' (--steps)",
+        "patina-texgen {}: a farm runs the series of 'patina' (--times), 'fade' (a list of "
+        "--duration or --dose) and 'stone' (--steps)",
         job.command));
 }
 
@@ -213,10 +260,10 @@ std::string texgen_job_text(const TexgenJob& job)
         for (const fs::path& o : t.outputs)
             outputs.push_back(o.string());
         toml::table task{{"label", t.label}, {"args", std::move(args)}, {"outputs", std::move(outputs)}};
-        if (job.command == "patina") {
+        if (job.command == "patina")
             task.insert_or_assign("time_years", t.time_years);
+        if (!t.folder.empty())
             task.insert_or_assign("folder", t.folder);
-        }
         tasks.push_back(std::move(task));
     }
     root.insert_or_assign("task", std::move(tasks));

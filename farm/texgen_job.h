@@ -1,5 +1,6 @@
 // A texgen series as a farm job: the steps of `patina-texgen patina --times` (one task per
-// time, all at once: a job array) or the segments of a `patina-texgen stone --steps` run
+// time, all at once: a job array), the stacks of `patina-texgen fade` for a list of
+// durations or doses (a job array too), or the segments of a `patina-texgen stone --steps` run
 // between its snapshots (one task per segment, each resuming the last one's checkpoint: a
 // chain). Written to and read from the job folder's job.toml, kind "texgen" (docs/farm.md
 // "Texgen series"), the one reader and writer of that kind.
@@ -18,12 +19,12 @@ struct TexgenTask {
     std::vector<std::string> args;              ///< patina-texgen's arguments
     std::vector<std::filesystem::path> outputs; ///< the folders and files it writes (absolute)
     double time_years = 0.0;                    ///< a patina step's time
-    std::string folder;                         ///< a patina step's folder in the series
+    std::string folder;                         ///< a patina or fade step's folder in the series
 };
 
 struct TexgenJob {
     std::filesystem::path folder;          ///< the job folder (absolute)
-    std::string command;                   ///< "patina" or "stone"
+    std::string command;                   ///< "patina", "fade" or "stone"
     std::filesystem::path texgen, farm;    ///< the programs' absolute paths, as submitted
     std::filesystem::path cwd;             ///< where relative paths of `args` are from
     std::filesystem::path output;          ///< the series' folder (absolute)
@@ -32,9 +33,10 @@ struct TexgenJob {
 };
 
 /// Plans the tasks of `args` (a patina-texgen command line without the program: "patina
-/// SCRIPT --times ..." or "stone --mesh ... --steps N"). Throws std::invalid_argument
-/// naming what is missing or not allowed (a patina run without --times, a stone run without
-/// --steps or with the options the farm sets: --until, --resume, --checkpoint).
+/// SCRIPT --times ...", "fade ... --duration 0h,1d,7d -o OUT" or "stone --mesh ... --steps
+/// N"). Throws std::invalid_argument naming what is missing or not allowed (a patina run
+/// without --times, a fade run without a list, a stone run without --steps or with the
+/// options the farm sets: --until, --resume, --checkpoint).
 TexgenJob plan_texgen_job(const std::filesystem::path& folder, const std::vector<std::string>& args,
                           const std::filesystem::path& texgen, const std::filesystem::path& farm);
 

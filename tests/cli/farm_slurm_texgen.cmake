@@ -1,5 +1,5 @@
 # patina-farm submit-texgen on a real one-node Slurm (the slurm fixture): a patina time series
-# as a job array (a task per time) and a stone run as a chain of segments (each resuming the
+# and a fade series as job arrays (a task per time, per dose) and a stone run as a chain of segments (each resuming the
 # last one's checkpoint), each with its finishing job. Both are bitwise the one-process runs
 # (every map's pixels; series.toml byte for byte). A cancelled segment takes the rest of the
 # chain with it; `resubmit` runs the chain on from it, to the same bits. A task run again
@@ -43,6 +43,21 @@ expect_success("${PATINA_FARM}" status "${WORK_DIR}/patina_job")
 expect_in("${LAST_STDOUT}" "6 task(s): 6 done, 0 running, 0 pending, 0 missing; the series manifest written")
 expect_success("${PATINA_FARM}" task "${WORK_DIR}/patina_job" 2)
 expect_in("${LAST_STDERR}" "task 2 (t = 12 y): already done")
+
+# ---- A fade series: the newsprint swatch at three doses, a stack each.
+expect_success("${PATINA_FARM}" submit-texgen --job "${WORK_DIR}/fade_job" --
+               fade --dose 0,1e6,2.5e7 --material newsprint --entries 16 --quiet
+               -o "${WORK_DIR}/fade_farm")
+string(STRIP "${LAST_STDOUT}" ids)
+string(REPLACE " " "," ids "${ids}")
+wait_for_jobs("${ids}")
+foreach(dose 0 1e6 2.5e7)
+  expect_success("${PATINA_TEXGEN}" fade --dose ${dose} --material newsprint --entries 16 --quiet
+                 -o "${WORK_DIR}/fade_one/${dose}")
+  expect_same_maps("${WORK_DIR}/fade_one/${dose}" "${WORK_DIR}/fade_farm/${dose}")
+endforeach()
+expect_success("${PATINA_FARM}" status "${WORK_DIR}/fade_job")
+expect_in("${LAST_STDOUT}" "task 1 (--dose 1e6): done")
 
 # ---- A stone run: 12 cycles, snapshots every 4, three chained segments.
 write_uv_cube_obj("${WORK_DIR}/cube.obj")
@@ -93,6 +108,8 @@ expect_failure("needs --times" "${PATINA_FARM}" submit-texgen --job "${WORK_DIR}
                -- patina "${script}")
 expect_failure("give --cycles N and --steps K" "${PATINA_FARM}" submit-texgen
                --job "${WORK_DIR}/bad" --dry-run -- stone --mesh "${WORK_DIR}/cube.obj")
+expect_failure("needs a list, --duration" "${PATINA_FARM}" submit-texgen
+               --job "${WORK_DIR}/bad" --dry-run -- fade --dose 1 --material newsprint -o x)
 expect_failure("--resume: the farm cuts a stone run" "${PATINA_FARM}" submit-texgen
                --job "${WORK_DIR}/bad" --dry-run -- ${stone} --resume x.stone)
 if(EXISTS "${WORK_DIR}/bad")
