@@ -22,7 +22,7 @@ now() { date +%s.%N; }
 t0=$(now)
 "$build/bin/patina-render" "$scene" --spp "$spp" --quiet --output "$tmp/one_process.exr"
 t1=$(now)
-read -r array merge < <("$build/bin/patina-farm" submit "$scene" --spp "$spp" --tiles 4 \
+read -r array merge < <("$build/bin/patina-farm" submit "$scene" --spp "$spp" --tiles 4 ${FARM_OPTIONS:-} \
                         --job "$tmp/job")
 while [[ -n "$(squeue -h -j "$array,$merge" -o %i 2>/dev/null)" ]]; do sleep 0.1; done
 t2=$(now)

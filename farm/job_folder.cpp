@@ -190,6 +190,10 @@ Submitted submit_job(const JobShape& job, const std::vector<size_t>& tasks,
             a.insert(a.end(), {"--partition", options.partition});
         return a;
     };
+    auto cpus = [&](std::vector<std::string>& a) {
+        if (options.cpus_per_task > 0)
+            a.push_back(fmt::format("--cpus-per-task={}", options.cpus_per_task));
+    };
     auto after = [](std::vector<std::string>& a, const std::string& id) {
         a.insert(a.end(), {"--dependency=afterok:" + id, "--kill-on-invalid-dep=yes"});
     };
@@ -204,6 +208,7 @@ Submitted submit_job(const JobShape& job, const std::vector<size_t>& tasks,
                 base(fmt::format("{}-{}", name, i), dir / "logs" / fmt::format("task_{}.log", i));
             if (!last.empty())
                 after(a, last);
+            cpus(a);
             a.push_back((dir / "slurm_task.sh").string());
             a.push_back(std::to_string(i));
             last = trimmed(run_and_capture(a));
@@ -216,6 +221,7 @@ Submitted submit_job(const JobShape& job, const std::vector<size_t>& tasks,
         std::vector<std::string> a = base(name, dir / "logs" / "task_%a.log");
         a.push_back("--array=" + index_list(tasks) +
                     (options.throttle > 0 ? fmt::format("%{}", options.throttle) : ""));
+        cpus(a);
         a.push_back((dir / "slurm_task.sh").string());
         last = out.array_job = trimmed(run_and_capture(a));
         ids.arrays.push_back(last);

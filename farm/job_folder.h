@@ -26,6 +26,7 @@ struct JobShape {
 struct SubmitOptions {
     int throttle = 0;        ///< at most this many tasks at once (sbatch --array %N); 0: no cap
     std::string partition;   ///< sbatch --partition, or the default
+    int cpus_per_task = 0;   ///< sbatch --cpus-per-task for the tasks; 0: the cluster's default
     bool dry_run = false;    ///< write the folder, submit nothing
 };
 

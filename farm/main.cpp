@@ -75,6 +75,9 @@ void register_submit(CLI::App& app)
     cmd->add_option("--throttle", o->submit.throttle,
                     "at most this many tasks at once (sbatch --array %N)");
     cmd->add_option("--partition", o->submit.partition, "the Slurm partition");
+    cmd->add_option("--cpus-per-task", o->submit.cpus_per_task,
+                    "CPUs per task (sbatch --cpus-per-task); a task runs that many threads")
+        ->check(CLI::PositiveNumber);
     cmd->add_flag("--dry-run", o->submit.dry_run, "write the job folder, submit nothing");
     cmd->callback([o] {
         // The programs the nodes run: this one and patina-render beside it.
@@ -109,6 +112,9 @@ void register_submit_texgen(CLI::App& app)
     cmd->add_option("--throttle", o->submit.throttle,
                     "at most this many tasks at once (sbatch --array %N)");
     cmd->add_option("--partition", o->submit.partition, "the Slurm partition");
+    cmd->add_option("--cpus-per-task", o->submit.cpus_per_task,
+                    "CPUs per task (sbatch --cpus-per-task); a task runs that many threads")
+        ->check(CLI::PositiveNumber);
     cmd->add_flag("--dry-run", o->submit.dry_run, "write the job folder, submit nothing");
     cmd->add_option("command", o->args,
                     "after '--': the patina-texgen command line, e.g. -- patina urban.patina "
@@ -214,6 +220,8 @@ void register_resubmit(CLI::App& app)
     cmd->add_option("job", *folder, "the job folder")->required()->check(CLI::ExistingDirectory);
     cmd->add_option("--throttle", options->throttle, "at most this many tasks at once");
     cmd->add_option("--partition", options->partition, "the Slurm partition");
+    cmd->add_option("--cpus-per-task", options->cpus_per_task, "CPUs per task")
+        ->check(CLI::PositiveNumber);
     cmd->callback([folder, options] {
         const patina::farm::Submitted s =
             patina::farm::job_kind(*folder) == "render"

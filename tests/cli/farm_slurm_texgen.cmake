@@ -44,13 +44,18 @@ expect_in("${LAST_STDOUT}" "6 task(s): 6 done, 0 running, 0 pending, 0 missing; 
 expect_success("${PATINA_FARM}" task "${WORK_DIR}/patina_job" 2)
 expect_in("${LAST_STDERR}" "task 2 (t = 12 y): already done")
 
-# ---- A fade series: the newsprint swatch at three doses, a stack each.
-expect_success("${PATINA_FARM}" submit-texgen --job "${WORK_DIR}/fade_job" --
-               fade --dose 0,1e6,2.5e7 --material newsprint --entries 16 --quiet
+# ---- A fade series: the newsprint swatch at three doses, a stack each, each task given
+# both CPUs (--cpus-per-task).
+expect_success("${PATINA_FARM}" submit-texgen --job "${WORK_DIR}/fade_job" --cpus-per-task 2
+               -- fade --dose 0,1e6,2.5e7 --material newsprint --entries 16 --quiet
                -o "${WORK_DIR}/fade_farm")
 string(STRIP "${LAST_STDOUT}" ids)
+string(REPLACE " " ";" id_list "${ids}")
+list(GET id_list 0 fade_array)
 string(REPLACE " " "," ids "${ids}")
 wait_for_jobs("${ids}")
+expect_success(scontrol show job "${fade_array}")
+expect_in("${LAST_STDOUT}" "NumCPUs=2")
 foreach(dose 0 1e6 2.5e7)
   expect_success("${PATINA_TEXGEN}" fade --dose ${dose} --material newsprint --entries 16 --quiet
                  -o "${WORK_DIR}/fade_one/${dose}")
