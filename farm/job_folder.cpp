@@ -179,6 +179,35 @@ std::vector<fs::path> write_job_scripts(const JobShape& job, const std::vector<s
     return files;
 }
 
+Submitted write_and_submit_job(const JobShape& job, const std::vector<std::string>& subfolders,
+                               const std::string& job_toml, const SubmitOptions& options)
+{
+    std::vector<fs::path> files = write_job_scripts(job, subfolders);
+    write_file_atomic(job.folder / "job.toml", {job_toml}, "job file");
+    files.push_back(job.folder / "job.toml");
+    Submitted out;
+    if (!options.dry_run) {
+        std::vector<size_t> all(job.tasks);
+        for (size_t i = 0; i < all.size(); ++i)
+            all[i] = i;
+        out = submit_job(job, all, options);
+    }
+    out.files = std::move(files);
+    return out;
+}
+
+toml::table parse_job_file(const fs::path& folder)
+{
+    const fs::path file = folder / "job.toml";
+    try {
+        return toml::parse_file(file.string());
+    } catch (const toml::parse_error& e) {
+        throw std::runtime_error(fmt::format("{}:{}:{}: {}", file.string(),
+                                             e.source().begin.line, e.source().begin.column,
+                                             e.description()));
+    }
+}
+
 Submitted submit_job(const JobShape& job, const std::vector<size_t>& tasks,
                      const SubmitOptions& options)
 {

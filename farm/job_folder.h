@@ -5,6 +5,8 @@
 // docs/farm.md "The job folder".
 #pragma once
 
+#include <toml++/toml.h>
+
 #include <filesystem>
 #include <functional>
 #include <string>
@@ -42,6 +44,14 @@ struct Submitted {
 /// as soon as sbatch has them). Returns the files written.
 std::vector<std::filesystem::path> write_job_scripts(const JobShape& job,
                                                      const std::vector<std::string>& subfolders);
+
+/// Writes the scripts and `subfolders` (write_job_scripts), then job.toml (`job_toml`),
+/// then, unless a dry run, submits every task and the finishing job (submit_job).
+Submitted write_and_submit_job(const JobShape& job, const std::vector<std::string>& subfolders,
+                               const std::string& job_toml, const SubmitOptions& options);
+
+/// `folder`/job.toml parsed; throws std::runtime_error "file:line:column: what".
+toml::table parse_job_file(const std::filesystem::path& folder);
 
 /// Submits `tasks` (indices; none: the finishing job alone) as an array or a chain, then the
 /// finishing job after them (afterok, --kill-on-invalid-dep), and appends the ids to

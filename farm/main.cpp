@@ -49,6 +49,17 @@ void register_merge(CLI::App& app)
     });
 }
 
+/// The options of Slurm's side of a submission (submit, submit-texgen, resubmit).
+void add_submit_options(CLI::App* cmd, patina::farm::SubmitOptions& o, bool dry_run)
+{
+    cmd->add_option("--throttle", o.throttle, "at most this many tasks at once (sbatch --array %N)");
+    cmd->add_option("--partition", o.partition, "the Slurm partition");
+    cmd->add_option("--cpus-per-task", o.cpus_per_task, "CPUs per task (sbatch --cpus-per-task)")
+        ->check(CLI::PositiveNumber);
+    if (dry_run)
+        cmd->add_flag("--dry-run", o.dry_run, "write the job folder, submit nothing");
+}
+
 struct SubmitCommand {
     patina::farm::RenderJobOptions job;
     patina::farm::SubmitOptions submit;
@@ -72,13 +83,7 @@ void register_submit(CLI::App& app)
                     "sample ranges per pixel, a task each (needs --spp)")
         ->capture_default_str();
     cmd->add_option("--spp", o->job.spp, "samples per pixel (default: the scene's)");
-    cmd->add_option("--throttle", o->submit.throttle,
-                    "at most this many tasks at once (sbatch --array %N)");
-    cmd->add_option("--partition", o->submit.partition, "the Slurm partition");
-    cmd->add_option("--cpus-per-task", o->submit.cpus_per_task,
-                    "CPUs per task (sbatch --cpus-per-task); a task runs that many threads")
-        ->check(CLI::PositiveNumber);
-    cmd->add_flag("--dry-run", o->submit.dry_run, "write the job folder, submit nothing");
+    add_submit_options(cmd, o->submit, true);
     cmd->callback([o] {
         // The programs the nodes run: this one and patina-render beside it.
         const fs::path self = fs::read_symlink("/proc/self/exe");
@@ -109,13 +114,7 @@ void register_submit_texgen(CLI::App& app)
         "array, or the segments of `patina-texgen stone --steps` between its snapshots as a "
         "chain of jobs each resuming the last one's checkpoint; then a finishing job");
     cmd->add_option("--job", o->folder, "the job folder to write")->required();
-    cmd->add_option("--throttle", o->submit.throttle,
-                    "at most this many tasks at once (sbatch --array %N)");
-    cmd->add_option("--partition", o->submit.partition, "the Slurm partition");
-    cmd->add_option("--cpus-per-task", o->submit.cpus_per_task,
-                    "CPUs per task (sbatch --cpus-per-task); a task runs that many threads")
-        ->check(CLI::PositiveNumber);
-    cmd->add_flag("--dry-run", o->submit.dry_run, "write the job folder, submit nothing");
+    add_submit_options(cmd, o->submit, true);
     cmd->add_option("command", o->args,
                     "after '--': the patina-texgen command line, e.g. -- patina urban.patina "
                     "--times 0,6,12 -o urban")
@@ -218,10 +217,7 @@ void register_resubmit(CLI::App& app)
         "resubmit", "submit again the tasks of a job whose outputs are missing or invalid, and "
                     "its merge");
     cmd->add_option("job", *folder, "the job folder")->required()->check(CLI::ExistingDirectory);
-    cmd->add_option("--throttle", options->throttle, "at most this many tasks at once");
-    cmd->add_option("--partition", options->partition, "the Slurm partition");
-    cmd->add_option("--cpus-per-task", options->cpus_per_task, "CPUs per task")
-        ->check(CLI::PositiveNumber);
+    add_submit_options(cmd, *options, false);
     cmd->callback([folder, options] {
         const patina::farm::Submitted s =
             patina::farm::job_kind(*folder) == "render"

@@ -37,19 +37,8 @@ JobShape render_job_shape(const RenderJob& job)
 
 Submitted submit_render_job(const RenderJob& job, const SubmitOptions& options)
 {
-    const JobShape shape = render_job_shape(job);
-    Submitted out;
-    out.files = write_job_scripts(shape, {"parts", "frames"});
-    write_file_atomic(job.folder / "job.toml", {render_job_text(job)}, "job file");
-    out.files.push_back(job.folder / "job.toml");
-    if (options.dry_run)
-        return out;
-    std::vector<size_t> all(job.tasks.size());
-    for (size_t i = 0; i < all.size(); ++i)
-        all[i] = i;
-    Submitted s = submit_job(shape, all, options);
-    s.files = std::move(out.files);
-    return s;
+    return write_and_submit_job(render_job_shape(job), {"parts", "frames"}, render_job_text(job),
+                                options);
 }
 
 bool valid_part(const RenderJob& job, const RenderTask& task, const fs::path& part)

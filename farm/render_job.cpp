@@ -1,5 +1,7 @@
 #include "farm/render_job.h"
 
+#include "farm/job_folder.h"
+
 #include "render/renderer.h"
 
 #include <fmt/format.h>
@@ -108,13 +110,7 @@ std::string render_job_text(const RenderJob& job)
 RenderJob read_render_job(const fs::path& folder)
 {
     const fs::path file = folder / "job.toml";
-    toml::table root;
-    try {
-        root = toml::parse_file(file.string());
-    } catch (const toml::parse_error& e) {
-        throw std::runtime_error(fmt::format("{}:{}:{}: {}", file.string(), e.source().begin.line,
-                                             e.source().begin.column, e.description()));
-    }
+    const toml::table root = parse_job_file(folder);
     auto fail = [&](const std::string& what) {
         return std::runtime_error(fmt::format("{}: {}", file.string(), what));
     };

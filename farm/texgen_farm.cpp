@@ -110,19 +110,8 @@ bool texgen_task_done(const TexgenJob& job, size_t index)
 
 Submitted submit_texgen_job(const TexgenJob& job, const SubmitOptions& options)
 {
-    const JobShape shape = texgen_job_shape(job);
-    Submitted out;
-    out.files = write_job_scripts(shape, {"done", "checkpoints"});
-    write_file_atomic(job.folder / "job.toml", {texgen_job_text(job)}, "job file");
-    out.files.push_back(job.folder / "job.toml");
-    if (options.dry_run)
-        return out;
-    std::vector<size_t> all(job.tasks.size());
-    for (size_t i = 0; i < all.size(); ++i)
-        all[i] = i;
-    Submitted s = submit_job(shape, all, options);
-    s.files = std::move(out.files);
-    return s;
+    return write_and_submit_job(texgen_job_shape(job), {"done", "checkpoints"},
+                                texgen_job_text(job), options);
 }
 
 int run_texgen_task(const fs::path& folder, int index)

@@ -275,25 +275,9 @@ std::string texgen_job_text(const TexgenJob& job)
     return text.str();
 }
 
-namespace {
-
-    toml::table parse_job_toml(const fs::path& folder)
-    {
-        const fs::path file = folder / "job.toml";
-        try {
-            return toml::parse_file(file.string());
-        } catch (const toml::parse_error& e) {
-            throw std::runtime_error(fmt::format("{}:{}:{}: {}", file.string(),
-                                                 e.source().begin.line, e.source().begin.column,
-                                                 e.description()));
-        }
-    }
-
-}  // namespace
-
 std::string job_kind(const fs::path& folder)
 {
-    const toml::table root = parse_job_toml(folder);
+    const toml::table root = parse_job_file(folder);
     const std::string kind = root["job"]["kind"].value_or(std::string());
     if (kind.empty())
         throw std::runtime_error(
@@ -304,7 +288,7 @@ std::string job_kind(const fs::path& folder)
 
 TexgenJob read_texgen_job(const fs::path& folder)
 {
-    const toml::table root = parse_job_toml(folder);
+    const toml::table root = parse_job_file(folder);
     const fs::path file = folder / "job.toml";
     auto fail = [&](const std::string& what) {
         return std::runtime_error(fmt::format("{}: {}", file.string(), what));
