@@ -11,11 +11,18 @@
  *                                         accessibility or wetness shown on a surface.
  *  map_gain      float   1                Multiplies the map value before the clamp (e.g.
  *                                         1 / max for an exposure map in J/m^2).
+ *  reflectance_spectrum
+ *                spectrum -1              A measured reflectance over wavelength in nm, in
+ *                                         [0, 1], used instead of `reflectance` (e.g. a
+ *                                         ColorChecker patch: { file = "chart.csv", column =
+ *                                         "dark skin" }); -1: use `reflectance`.
  *
  * An ideal diffuse (Lambertian) reflector: light is scattered equally into every direction
  * of the hemisphere it arrived from, f(wo, wi) = R(λ) / π, so the directional albedo is
  * R(λ) for every viewing direction. R is the host's smooth uplift of the RGB reflectance
- * (abi.h, PatinaRgbSpectrum); a grey stays exactly constant over wavelength.
+ * (abi.h, PatinaRgbSpectrum); a grey stays exactly constant over wavelength. A
+ * `reflectance_spectrum` is used as it is, linear between its samples and held at its end
+ * values outside them.
  *
  * Both sides of the surface reflect alike (wo and wi in the same hemisphere); nothing is
  * transmitted. Directions are sampled with the cosine-weighted density cos θi / π, which
@@ -30,6 +37,9 @@
 #include <patina/shading/sampling.h>
 #include <patina/shading/spectral.h>
 
+#include <new>
+#include <vector>
+
 namespace patina::basic {
 namespace {
 
@@ -39,6 +49,9 @@ namespace {
 
     struct Lambert {
         PatinaRgbSpectrum reflectance;
+        // A measured reflectance (its own copy of the samples), used instead when not empty.
+        std::vector<float> measured_nm{}, measured{};
+        PatinaTabulatedSpectrum measured_spectrum{0, nullptr, nullptr};
         const PatinaHost* host = nullptr;
         const PatinaTexture* scale_map = nullptr;  // may be null
         float map_gain = 1.0f;
@@ -59,6 +72,11 @@ namespace {
         {"map_gain", PATINA_PARAM_FLOAT, {1.0f, 0.0f, 0.0f}, nullptr, nullptr, 0.0f, 1e30f,
          "", "Multiplies the reflectance_scale_map value before the clamp to [0, 1] (e.g. "
          "1 / max for an exposure map in J/m^2)."},
+        {"reflectance_spectrum", PATINA_PARAM_SPECTRUM, {-1.0f, 0.0f, 0.0f}, nullptr, nullptr,
+         -1.0f, 1.0f, "",
+         "Measured reflectance R(lambda) in [0, 1] over wavelength in nm, used instead of "
+         "reflectance (e.g. { file = \"chart.csv\", column = \"dark skin\" }); -1: use "
+         "reflectance."},
     };
     // clang-format on
 
@@ -68,8 +86,17 @@ namespace {
         const PatinaParamValue& r = p.value("reflectance", PATINA_PARAM_COLOR);
         const PatinaTexture* scale_map = p.texture("reflectance_scale_map");
         const float map_gain = p.number("map_gain");
+        const PatinaParamValue& measured = p.value("reflectance_spectrum", PATINA_PARAM_SPECTRUM);
         if (!p.ok())
             return nullptr;
+        const PatinaTabulatedSpectrum& m = measured.spectrum;
+        const bool use_measured = !(m.count == 1 && m.value[0] == -1.0f);
+        for (int i = 0; use_measured && i < m.count; ++i)
+            if (!(m.value[i] >= 0.0f && m.value[i] <= 1.0f)) {
+                report_error(host, kName, "reflectance_spectrum: %g at %g nm must lie in [0, 1]",
+                             m.value[i], m.lambda_nm[i]);
+                return nullptr;
+            }
         if (r.type != PATINA_PARAM_COLOR) {
             report_error(host, kName, "reflectance: expected a colour value");
             return nullptr;
@@ -102,9 +129,26 @@ namespace {
                          lo, hi);
             return nullptr;
         }
-        Lambert* lambert =
-            make_instance<Lambert>(host, kName, s, host, scale_map, map_gain);
-        if (lambert && !lambert->scale_map && s.c0 == 0.0f && s.c1 == 0.0f) {
+        Lambert* lambert = make_instance<Lambert>(host, kName, s);
+        if (!lambert)
+            return nullptr;
+        lambert->host = host;
+        lambert->scale_map = scale_map;
+        lambert->map_gain = map_gain;
+        if (use_measured) {
+            try {  // no exception may cross the C ABI
+                lambert->measured_nm.assign(m.lambda_nm, m.lambda_nm + m.count);
+                lambert->measured.assign(m.value, m.value + m.count);
+            } catch (const std::bad_alloc&) {
+                report_error(host, kName, "out of memory");
+                delete lambert;
+                return nullptr;
+            }
+            lambert->measured_spectrum = {m.count, lambert->measured_nm.data(),
+                                          lambert->measured.data()};
+            return lambert;
+        }
+        if (!lambert->scale_map && s.c0 == 0.0f && s.c1 == 0.0f) {
             lambert->constant = true;
             // eval's value for a grey: eval_rgb (the constant c2 path) times (1 * 1/π).
             lambert->constant_f = patina_rgb_spectrum_eval(&s, 0.0f) * (1.0f * kInvPi);
@@ -130,6 +174,13 @@ namespace {
         return value >= 0.0f ? (value <= 1.0f ? value : 1.0f) : 0.0f;  // NaN -> 0
     }
 
+    // R at the path's wavelengths: the measured spectrum, else the uplifted colour.
+    SpectralArray reflectance(const Lambert& lambert, const PatinaWavelengths& wl)
+    {
+        return lambert.measured.empty() ? eval_rgb(lambert.reflectance, wl)
+                                        : eval_tabulated(lambert.measured_spectrum, wl);
+    }
+
     void eval(const void* instance, const PatinaShadingContext* ctx, PatinaVec3 wo, PatinaVec3 wi,
               const PatinaWavelengths* wl, float* f)
     {
@@ -146,8 +197,7 @@ namespace {
             return;
         }
         // Lambertian BRDF f = R / π: pbrt-v4 §9.2
-        store(eval_rgb(lambert->reflectance, *wl) * (reflectance_scale(*lambert, ctx) * kInvPi),
-              *wl, f);
+        store(reflectance(*lambert, *wl) * (reflectance_scale(*lambert, ctx) * kInvPi), *wl, f);
     }
 
     float pdf(const void*, const PatinaShadingContext*, PatinaVec3 wo, PatinaVec3 wi,
@@ -183,7 +233,7 @@ namespace {
                 const PatinaWavelengths* wl, float* a)
     {
         const auto* lambert = static_cast<const Lambert*>(instance);
-        store(eval_rgb(lambert->reflectance, *wl) * reflectance_scale(*lambert, ctx), *wl, a);
+        store(reflectance(*lambert, *wl) * reflectance_scale(*lambert, ctx), *wl, a);
     }
 
     const PatinaBsdfFuncs kFuncs = {eval, pdf, sample, albedo};

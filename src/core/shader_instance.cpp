@@ -6,6 +6,7 @@
 
 #include "core/color_management.h"
 #include "core/host.h"
+#include "core/spectrum_csv.h"
 
 #include <fmt/format.h>
 
@@ -155,10 +156,37 @@ namespace {
     void bind_spectrum(const Context& ctx, const toml::node& node, const PatinaParamDecl& d,
                        Scratch& scratch, PatinaParamValue& out)
     {
-        // A spectrum is a constant number, [[lambda_nm, value], ...], or
-        // { lambda_nm = [...], value = [...] }.
+        // A spectrum is a constant number, [[lambda_nm, value], ...],
+        // { lambda_nm = [...], value = [...] } or { file = "x.csv", column = "name" }.
         std::vector<float> lambda, value;
-        if (auto c = as_number(node)) {
+        const toml::table* table = node.as_table();
+        if (table && table->contains("file")) {
+            for (auto&& [k, v] : *table)
+                if (k.str() != "file" && k.str() != "column")
+                    ctx.fail(&v, d.name, fmt::format("unknown key '{}' in a spectrum from a file "
+                                                     "(expected 'file' and 'column')", k.str()));
+            const auto file = table->get_as<std::string>("file");
+            const auto column = table->get_as<std::string>("column");
+            if (!file || !column)
+                ctx.fail(&node, d.name, "a spectrum from a file needs 'file = \"x.csv\"' and "
+                                        "'column = \"name\"'");
+            std::filesystem::path path(**file);
+            if (path.is_relative() && !ctx.source.base_dir.empty())
+                path = ctx.source.base_dir / path;
+            try {
+                const SpectrumCsv csv = read_spectrum_csv(path);
+                const std::vector<double>& v = csv.values[csv.column(**column)];
+                for (size_t i = 0; i < v.size(); ++i) {
+                    check_range(ctx, &node, d, v[i]);
+                    lambda.push_back(static_cast<float>(csv.lambda_nm[i]));
+                    value.push_back(static_cast<float>(v[i]));
+                }
+            } catch (const ParamError&) {
+                throw;
+            } catch (const std::exception& e) {
+                ctx.fail(&node, d.name, e.what());
+            }
+        } else if (auto c = as_number(node)) {
             check_range(ctx, &node, d, *c);
             lambda = {560.0f};
             value = {static_cast<float>(*c)};
@@ -176,7 +204,7 @@ namespace {
                 lambda.push_back(static_cast<float>(*l));
                 value.push_back(static_cast<float>(*v));
             }
-        } else if (const toml::table* t = node.as_table()) {
+        } else if (const toml::table* t = table) {
             const toml::array* la = t->get_as<toml::array>("lambda_nm");
             const toml::array* va = t->get_as<toml::array>("value");
             if (!la || !va || la->size() != va->size())
