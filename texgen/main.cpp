@@ -26,6 +26,7 @@ int main(int argc, char** argv)
     pt::register_ao_command(app);
     pt::register_accessibility_command(app);
     pt::register_sun_command(app);
+    pt::register_sky_command(app);
     pt::register_exposure_command(app);
     pt::register_wetness_command(app);
     pt::register_deposit_command(app);
@@ -40,7 +41,7 @@ int main(int argc, char** argv)
     for (const auto& [command, page] :
          {std::pair{"mesh", "texgen.md"}, std::pair{"uv-check", "texgen.md"},
           std::pair{"ao", "texgen-ao.md"}, std::pair{"accessibility", "texgen-ao.md"},
-          std::pair{"sun", "texgen-exposure.md"}, std::pair{"exposure", "texgen-exposure.md"},
+          std::pair{"sun", "texgen-exposure.md"}, std::pair{"sky", "lookdev.md"}, std::pair{"exposure", "texgen-exposure.md"},
           std::pair{"wetness", "texgen-wetness.md"}, std::pair{"deposit", "texgen-wetness.md"},
           std::pair{"patina", "patina-script.md"}, std::pair{"stone", "stone.md"},
           std::pair{"flatten", "flatten.md"}, std::pair{"fade", "fading.md"},

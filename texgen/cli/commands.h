@@ -11,6 +11,7 @@ void register_uv_check_command(CLI::App& app);
 void register_ao_command(CLI::App& app);
 void register_accessibility_command(CLI::App& app);
 void register_sun_command(CLI::App& app);
+void register_sky_command(CLI::App& app);
 void register_exposure_command(CLI::App& app);
 void register_wetness_command(CLI::App& app);
 void register_deposit_command(CLI::App& app);
