@@ -2,7 +2,7 @@
 # Installs what is missing, builds, renders samples/basic into out/, then bakes the texgen
 # maps of the project's statue (samples/bake) and renders them, and runs the three copper
 # strip scripts of Dorsey & Hanrahan 1996 §5.1 (samples/copper_strips), the fading samples
-# of Kimmel et al. 2013 (samples/fading) and the weathered stone of Dorsey et al. 1999
+# of Kimmel et al. 2013 (samples/fading), the lookdev scene (samples/lookdev) and the weathered stone of Dorsey et al. 1999
 # (samples/stone, the slowest; here at 32 samples per pixel, about 10 minutes on 2 cores:
 # samples/stone/stone.sh alone renders it at 128, with less noise than weathering).
 set -euo pipefail
@@ -20,5 +20,7 @@ samples/copper_strips/strips.sh "$build"
 echo "wrote out/copper_strips/ (patina stacks of the three §5.1 strips, 0-30 years), out/copper_strips.png (rendered with layered_km, laid out as figure 8) and out/export/*_strip.glb (each series as glTF, a variant per age)"
 samples/fading/fading.sh "$build"
 echo "wrote out/fading/ (fade stacks, reflectance plots like figures 9-13), out/fading/{newspaper,board,cmy}.png and out/export/newspaper.glb (0, 1 and 2 days as glTF variants)"
+samples/lookdev/lookdev.sh "$build"
+echo "wrote out/lookdev/ (the measured ColorChecker, the lookdev scene under a clear sky, and copper.mp4: the copper ball from 0 to 30 years)"
 SPP="${STONE_SPP:-32}" samples/stone/stone.sh "$build"
 echo "wrote out/stone/ (weathered sandstone column and marble statue, 0-60 cycles), out/stone/{column,marble}_strip.png and out/export/column.NNNN.vdb (the column's steps as OpenVDB)"
