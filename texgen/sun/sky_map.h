@@ -32,6 +32,25 @@ struct SkyMap {
     ClearSkyIrradiance physical;          ///< W/m^2 before the normalisation
 };
 
+/// The sky of `options` as a function of direction: the radiance of any direction on the
+/// scale of make_sky_map, and the sun that goes with it.
+class SkyModel {
+public:
+    /// Throws as make_sky_map does.
+    explicit SkyModel(const SkyMapOptions& options);
+    double radiance(const Imath::V3d& direction) const;
+    const Imath::V3d& sun_direction() const { return sun_direction_; }
+    double sun_irradiance() const { return sun_irradiance_; }
+    double sky_horizontal() const { return sky_horizontal_; }
+    const ClearSkyIrradiance& physical() const { return physical_; }
+
+private:
+    CieSky sky_;
+    Imath::V3d sun_direction_;
+    double sun_irradiance_ = 0.0, sky_horizontal_ = 0.0, zenith_radiance_ = 0.0, ground_ = 0.0;
+    ClearSkyIrradiance physical_;
+};
+
 /// The map and its sun. The overcast sky has no direct sun (all of the horizontal
 /// irradiance is the sky's). Throws std::runtime_error for a sun at or below the horizon
 /// of a sky with a sun, a width below 8 or an albedo outside [0, 1].
