@@ -37,15 +37,18 @@ for p in "${packages[@]}"; do
   fi
 done
 
-# The npm packages of the test clients, as their committed lockfile pins them.
+# The npm packages of the test clients and of the viewer, as their committed lockfiles pin
+# them.
 install_clients() {
-  local clients
-  clients="$(cd "$(dirname "$0")/.." && pwd)/tests/clients"
-  if [ ! -f "$clients/node_modules/.package-lock.json" ] ||
-     [ "$clients/package-lock.json" -nt "$clients/node_modules/.package-lock.json" ]; then
-    echo "bootstrap: npm ci in tests/clients" >&2
-    npm ci --prefix "$clients" --no-audit --no-fund --loglevel=error >&2
-  fi
+  local root dir
+  root="$(cd "$(dirname "$0")/.." && pwd)"
+  for dir in "$root/tests/clients" "$root/viewer"; do
+    if [ ! -f "$dir/node_modules/.package-lock.json" ] ||
+       [ "$dir/package-lock.json" -nt "$dir/node_modules/.package-lock.json" ]; then
+      echo "bootstrap: npm ci in ${dir#"$root"/}" >&2
+      npm ci --prefix "$dir" --no-audit --no-fund --loglevel=error >&2
+    fi
+  done
 }
 
 if [ ${#missing[@]} -eq 0 ]; then

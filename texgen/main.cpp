@@ -35,6 +35,7 @@ int main(int argc, char** argv)
     pt::register_flatten_command(app);
     pt::register_fade_command(app);
     pt::register_export_command(app);
+    pt::register_view_command(app);
 
     // Each command's --help ends with its page of the manual.
     app.footer(patina::manual_footer("texgen.md"));
@@ -45,7 +46,7 @@ int main(int argc, char** argv)
           std::pair{"wetness", "texgen-wetness.md"}, std::pair{"deposit", "texgen-wetness.md"},
           std::pair{"patina", "patina-script.md"}, std::pair{"stone", "stone.md"},
           std::pair{"flatten", "flatten.md"}, std::pair{"fade", "fading.md"},
-          std::pair{"export", "export.md"}})
+          std::pair{"export", "export.md"}, std::pair{"view", "viewer.md"}})
         app.get_subcommand(command)->footer(patina::manual_footer(page));
 
     patina::install_cancel_handler();

@@ -20,5 +20,6 @@ void register_stone_command(CLI::App& app);
 void register_flatten_command(CLI::App& app);
 void register_fade_command(CLI::App& app);
 void register_export_command(CLI::App& app);
+void register_view_command(CLI::App& app);
 
 }  // namespace patina::texgen

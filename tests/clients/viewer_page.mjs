@@ -1,0 +1,84 @@
+// Drives Patina's viewer (patina-texgen view) in Debian's chromium through Playwright, for
+// the tests and the benchmark: opens DIR/index.html from the folder (file://), waits for the
+// first frame and runs the ACTION, printing one JSON object on stdout.
+//   node viewer_page.mjs DIR screenshot OUT.png [AGE]      the canvas at an age
+//   node viewer_page.mjs DIR probe AGE X Y W H VIEW        mean canvas colour of a rectangle
+//                                                          (fractions of the canvas)
+//   node viewer_page.mjs DIR frames N                       frame times of N frames
+// Fails (exit 1) on a console error, a page error or a viewer that reports a failure.
+import { chromium } from 'playwright-core';
+import path from 'node:path';
+import { pathToFileURL } from 'node:url';
+
+const [dir, action, ...args] = process.argv.slice(2);
+const executablePath = process.env.PATINA_CHROMIUM || '/usr/bin/chromium';
+const errors = [];
+let browser;
+try {
+  browser = await chromium.launch({
+    executablePath,
+    // WebGL through SwiftShader: no GPU on a build machine.
+    args: ['--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--ignore-gpu-blocklist'],
+  });
+} catch (e) {
+  console.error(`cannot start ${executablePath}: install Debian's chromium (scripts/bootstrap.sh): ${e.message}`);
+  process.exit(1);
+}
+const page = await browser.newPage({ viewport: { width: 1280, height: 720 } });
+page.on('console', (m) => { if (m.type() === 'error') errors.push(`console: ${m.text()}`); });
+page.on('pageerror', (e) => errors.push(`page error: ${e.message}`));
+const opened = Date.now();
+await page.goto(pathToFileURL(path.resolve(dir, 'index.html')).href);
+await page.waitForFunction(() => window.patinaViewer && (window.patinaViewer.ready || window.patinaViewer.failed),
+                           null, { timeout: 120000 });
+const failed = await page.evaluate(() => window.patinaViewer.failed);
+const out = { firstFrameMs: await page.evaluate(() => window.patinaViewer.firstFrameMs),
+              openToFirstFrameMs: Date.now() - opened };
+
+/// Waits until `n` more frames are drawn.
+async function frames(n) {
+  const start = await page.evaluate(() => window.patinaViewer.frames);
+  await page.waitForFunction((s) => window.patinaViewer.frames >= s, start + n, { timeout: 120000 });
+}
+
+if (!failed) {
+  if (action === 'screenshot') {
+    if (args[1] !== undefined) await page.evaluate((a) => window.patinaViewer.setAge(a), Number(args[1]));
+    await frames(3);
+    await page.locator('#view').screenshot({ path: args[0] });
+    out.screenshot = args[0];
+  } else if (action === 'probe') {
+    const [age, x, y, w, h, view] = args;
+    await page.evaluate(([a, v]) => { window.patinaViewer.setAge(a); if (v) window.patinaViewer.setView(v); },
+                        [Number(age), view]);
+    await frames(3);
+    const png = await page.locator('#view').screenshot();
+    out.mean = await page.evaluate(async ([b64, fx, fy, fw, fh]) => {
+      const img = new Image();
+      img.src = `data:image/png;base64,${b64}`;
+      await img.decode();
+      const c = new OffscreenCanvas(img.width, img.height);
+      const g = c.getContext('2d');
+      g.drawImage(img, 0, 0);
+      const x0 = Math.round(fx * img.width), y0 = Math.round(fy * img.height);
+      const d = g.getImageData(x0, y0, Math.max(1, Math.round(fw * img.width)), Math.max(1, Math.round(fh * img.height))).data;
+      const m = [0, 0, 0];
+      for (let i = 0; i < d.length; i += 4) for (let k = 0; k < 3; ++k) m[k] += d[i + k];
+      return m.map((v) => v / (d.length / 4));
+    }, [png.toString('base64'), Number(x), Number(y), Number(w), Number(h)]);
+  } else if (action === 'frames') {
+    await frames(5);
+    await page.evaluate(() => { window.patinaViewer.frameTimes.length = 0; });
+    await frames(Number(args[0]));
+    out.frameTimes = await page.evaluate(() => window.patinaViewer.frameTimes.slice());
+  } else {
+    errors.push(`unknown action '${action}'`);
+  }
+}
+await browser.close();
+if (failed) errors.push(`viewer: ${failed}`);
+console.log(JSON.stringify(out));
+if (errors.length) {
+  console.error(errors.join('\n'));
+  process.exit(1);
+}
