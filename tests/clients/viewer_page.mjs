@@ -11,6 +11,21 @@ import path from 'node:path';
 import { pathToFileURL } from 'node:url';
 
 const [dir, action, ...args] = process.argv.slice(2);
+
+/// CIELAB (D65 white) of an 8-bit sRGB colour: IEC 61966-2-1 decoding, the sRGB matrix to
+/// XYZ, CIE 15 Lab.
+function srgbToLab(rgb) {
+  const lin = rgb.map((c) => { const e = c / 255; return e <= 0.04045 ? e / 12.92 : ((e + 0.055) / 1.055) ** 2.4; });
+  const xyz = [
+    0.4124 * lin[0] + 0.3576 * lin[1] + 0.1805 * lin[2],
+    0.2126 * lin[0] + 0.7152 * lin[1] + 0.0722 * lin[2],
+    0.0193 * lin[0] + 0.1192 * lin[1] + 0.9505 * lin[2],
+  ];
+  const white = [0.95047, 1.0, 1.08883];
+  const f = (t) => (t > (6 / 29) ** 3 ? Math.cbrt(t) : t / (3 * (6 / 29) ** 2) + 4 / 29);
+  const [fx, fy, fz] = xyz.map((v, i) => f(v / white[i]));
+  return [116 * fy - 16, 500 * (fx - fy), 200 * (fy - fz)];
+}
 const executablePath = process.env.PATINA_CHROMIUM || '/usr/bin/chromium';
 const errors = [];
 let browser;
@@ -18,7 +33,9 @@ try {
   browser = await chromium.launch({
     executablePath,
     // WebGL through SwiftShader: no GPU on a build machine.
-    args: ['--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--ignore-gpu-blocklist'],
+    // PATINA_NO_WEBGL=1: a browser without WebGL, to see the page say so.
+    args: ['--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--ignore-gpu-blocklist',
+           ...(process.env.PATINA_NO_WEBGL ? ['--disable-3d-apis'] : [])],
   });
 } catch (e) {
   console.error(`cannot start ${executablePath}: install Debian's chromium (scripts/bootstrap.sh): ${e.message}`);
@@ -66,6 +83,8 @@ if (!failed) {
       for (let i = 0; i < d.length; i += 4) for (let k = 0; k < 3; ++k) m[k] += d[i + k];
       return m.map((v) => v / (d.length / 4));
     }, [png.toString('base64'), Number(x), Number(y), Number(w), Number(h)]);
+    out.lab = srgbToLab(out.mean);
+    out.hue_deg = (Math.atan2(out.lab[2], out.lab[1]) * 180 / Math.PI + 360) % 360;
   } else if (action === 'frames') {
     await frames(5);
     await page.evaluate(() => { window.patinaViewer.frameTimes.length = 0; });
@@ -75,8 +94,12 @@ if (!failed) {
     errors.push(`unknown action '${action}'`);
   }
 }
+if (failed) {
+  out.failed = failed;
+  out.message = await page.locator('#message').textContent();
+  errors.push(`viewer: ${failed}`);
+}
 await browser.close();
-if (failed) errors.push(`viewer: ${failed}`);
 console.log(JSON.stringify(out));
 if (errors.length) {
   console.error(errors.join('\n'));

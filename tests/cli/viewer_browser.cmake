@@ -1,0 +1,72 @@
+# patina-texgen view in a real browser: Debian's chromium driven by Playwright
+# (tests/clients/viewer_page.mjs; WebGL through SwiftShader), on the rural strip of D&H 1996
+# §5.1 at 0, 15 and 30 years. The page loads from its folder (file://) with no console
+# error, its canvas is not blank, and moving the age slider from 0 to 30 years turns the
+# strip from copper to green (CIELAB hue angle). Without data.js or without WebGL the page
+# says so. The screenshots at 0, 15 and 30 years also go to out/viewer/.
+include(${CMAKE_CURRENT_LIST_DIR}/lib/expect.cmake)
+file(REMOVE_RECURSE "${WORK_DIR}")
+file(MAKE_DIRECTORY "${WORK_DIR}")
+set(page "${SOURCE_DIR}/tests/clients/viewer_page.mjs")
+
+expect_success("${PATINA_TEXGEN}" patina "${SOURCE_DIR}/samples/copper_strips/rural.patina"
+               --times 0,15,30 --resolution 64 -q -o "${WORK_DIR}/rural")
+expect_success("${PATINA_TEXGEN}" export "${WORK_DIR}/rural" -o "${WORK_DIR}/rural.glb" --quiet)
+expect_success("${PATINA_TEXGEN}" view "${WORK_DIR}/rural.glb" -o "${WORK_DIR}/viewer")
+expect_in("${LAST_STDERR}" "view: 3 ages (0 y, 15 y, 30 y), views ACES 1.0 - SDR Video, Un-tone-mapped, Raw")
+foreach(f index.html viewer.js data.js)
+  if(NOT EXISTS "${WORK_DIR}/viewer/${f}")
+    message(FATAL_ERROR "view wrote no ${f}")
+  endif()
+endforeach()
+
+# The page at three ages; not blank (the strip against the sky).
+file(MAKE_DIRECTORY "${SOURCE_DIR}/out/viewer")
+foreach(age 0 15 30)
+  set(shot "${WORK_DIR}/viewer_${age}y.png")
+  expect_success(node "${page}" "${WORK_DIR}/viewer" screenshot "${shot}" ${age})
+  expect_success(oiiotool "${shot}" --printstats)
+  string(REGEX MATCH "Stats StdDev: ([0-9.]+)" _ "${LAST_STDOUT}")
+  if(NOT CMAKE_MATCH_1 OR CMAKE_MATCH_1 LESS 0.02)
+    message(FATAL_ERROR "the viewer's canvas at ${age} years is blank (standard deviation "
+                        "${CMAKE_MATCH_1}):\n${LAST_STDOUT}")
+  endif()
+  file(COPY "${shot}" DESTINATION "${SOURCE_DIR}/out/viewer")
+endforeach()
+
+# The age slider: the strip's middle, un-tone-mapped, from copper towards green.
+foreach(age 0 30)
+  expect_success(node "${page}" "${WORK_DIR}/viewer" probe ${age} 0.4 0.3 0.2 0.3 "Un-tone-mapped")
+  string(JSON hue_${age} GET "${LAST_STDOUT}" hue_deg)
+endforeach()
+message(STATUS "hue angle of the strip: ${hue_0} degrees at 0 years, ${hue_30} at 30")
+# Copper is orange (h about 45 degrees), the rural patina green (h about 165).
+if(hue_0 GREATER 90 OR hue_30 LESS 120 OR hue_30 GREATER 200)
+  message(FATAL_ERROR "the slider from 0 to 30 years should turn the strip from copper "
+                      "(hue ${hue_0}) to green (hue ${hue_30})")
+endif()
+
+# Without data.js, and without WebGL, the page says what is wrong (and nothing else fails).
+file(COPY "${WORK_DIR}/viewer/" DESTINATION "${WORK_DIR}/no_data")
+file(REMOVE "${WORK_DIR}/no_data/data.js")
+execute_process(COMMAND node "${page}" "${WORK_DIR}/no_data" screenshot "${WORK_DIR}/x.png"
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(rc EQUAL 0 OR NOT out MATCHES "data.js is missing")
+  message(FATAL_ERROR "a folder without data.js should say so:\n${out}${err}")
+endif()
+execute_process(COMMAND "${CMAKE_COMMAND}" -E env PATINA_NO_WEBGL=1
+                        node "${page}" "${WORK_DIR}/viewer" screenshot "${WORK_DIR}/x.png"
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(rc EQUAL 0 OR NOT out MATCHES "needs WebGL2")
+  message(FATAL_ERROR "a browser without WebGL should be told the viewer needs WebGL2:\n${out}${err}")
+endif()
+
+# Bad input: a .glb without variants, one message, nothing written.
+expect_success("${PATINA_TEXGEN}" patina "${SOURCE_DIR}/samples/copper_strips/rural.patina"
+               --times 30 --resolution 16 -q -o "${WORK_DIR}/one")
+expect_success("${PATINA_TEXGEN}" export "${WORK_DIR}/one" -o "${WORK_DIR}/one.glb" --quiet)
+expect_failure("has no material variants" "${PATINA_TEXGEN}" view "${WORK_DIR}/one.glb"
+               -o "${WORK_DIR}/bad")
+if(EXISTS "${WORK_DIR}/bad")
+  message(FATAL_ERROR "a refused view wrote ${WORK_DIR}/bad")
+endif()
