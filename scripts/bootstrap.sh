@@ -16,7 +16,7 @@ packages=(
   colord-data fonts-dejavu-core
   blender python3-numpy
   slurm-wlm munge python3
-  argyll-ref ffmpeg
+  argyll-ref ffmpeg chromium
 )
 # Tools of one script only (scripts/fuzz.sh: clang and libFuzzer), named by that script.
 if [ -n "${PATINA_BOOTSTRAP_EXTRA:-}" ]; then
