@@ -4,7 +4,7 @@
 //   node viewer_page.mjs DIR screenshot OUT.png [AGE]      the canvas at an age
 //   node viewer_page.mjs DIR probe AGE X Y W H VIEW        mean canvas colour of a rectangle
 //                                                          (fractions of the canvas)
-//   node viewer_page.mjs DIR frames N                       frame times of N frames
+//   node viewer_page.mjs DIR frames N [VIEW]                frame times of N frames
 // Fails (exit 1) on a console error, a page error or a viewer that reports a failure.
 import { chromium } from 'playwright-core';
 import path from 'node:path';
@@ -86,6 +86,7 @@ if (!failed) {
     out.lab = srgbToLab(out.mean);
     out.hue_deg = (Math.atan2(out.lab[2], out.lab[1]) * 180 / Math.PI + 360) % 360;
   } else if (action === 'frames') {
+    if (args[1]) await page.evaluate((v) => window.patinaViewer.setView(v), args[1]);
     await frames(5);
     await page.evaluate(() => { window.patinaViewer.frameTimes.length = 0; });
     await frames(Number(args[0]));

@@ -36,7 +36,8 @@ function environmentTexture(env) {
 async function start(data) {
   const started = performance.now();
   const canvas = $('view');
-  const gl = canvas.getContext('webgl2', { antialias: true });
+  // The scene is antialiased in its own target (samples: 4); the display pass needs none.
+  const gl = canvas.getContext('webgl2', { antialias: false });
   if (!gl) {
     fail('This viewer needs WebGL2, which this browser does not offer: turn on hardware ' +
          'acceleration, or open the page in a current Firefox, Chrome or Safari.');
