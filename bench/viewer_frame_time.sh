@@ -25,7 +25,8 @@ NODE_PATH="$root/viewer/node_modules" "$root/viewer/node_modules/esbuild/bin/esb
     --format=iife --minify --target=es2020 --log-level=warning --outfile="$tmp/bare/bare.js"
 
 page="$root/tests/clients/viewer_page.mjs"
-node "$page" "$tmp/viewer" frames "$frames" > "$tmp/viewer.json"
+# The viewer in its default view at 3 years: between two steps, so every material mixes two.
+node "$page" "$tmp/viewer" frames "$frames" "ACES 1.0 - SDR Video" 3 > "$tmp/viewer.json"
 node "$page" "$tmp/bare" frames "$frames" > "$tmp/bare.json"
 node - "$tmp/viewer.json" "$tmp/bare.json" "$size" "$(stat -c %s "$tmp/urban.glb")" <<'JS'
 const fs = require('fs');

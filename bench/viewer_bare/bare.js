@@ -8,7 +8,7 @@ async function start() {
 const started = performance.now();
 const data = window.PATINA_VIEWER;
 const canvas = document.getElementById('view');
-const renderer = new THREE.WebGLRenderer({ canvas, antialias: true });
+const renderer = new THREE.WebGLRenderer({ canvas });  // three's defaults, no MSAA, as the viewer
 renderer.setPixelRatio(1);
 const scene = new THREE.Scene();
 const camera = new THREE.PerspectiveCamera(35, 1, 0.01, 100);

@@ -4,13 +4,44 @@
 //   node viewer_page.mjs DIR screenshot OUT.png [AGE]      the canvas at an age
 //   node viewer_page.mjs DIR probe AGE X Y W H VIEW        mean canvas colour of a rectangle
 //                                                          (fractions of the canvas)
-//   node viewer_page.mjs DIR frames N [VIEW]                frame times of N frames
+//   node viewer_page.mjs DIR frames N [VIEW [AGE]]          frame times of N frames
+//   node viewer_page.mjs DIR compare AGE VIEW REF.png X Y W H FX FY FZ TX TY TZ FOV
+//        the camera at F looking at T (vertical field of view FOV degrees), the canvas and
+//        REF.png (a patina-render display PNG of the same view) measured in the same
+//        rectangle: their CIELAB and CIEDE2000
 // Fails (exit 1) on a console error, a page error or a viewer that reports a failure.
 import { chromium } from 'playwright-core';
 import path from 'node:path';
 import { pathToFileURL } from 'node:url';
+import { readFileSync } from 'node:fs';
 
 const [dir, action, ...args] = process.argv.slice(2);
+
+/// CIEDE2000 (Sharma, Wu & Dalal 2005, Eq. 1-22).
+function deltaE2000([L1, a1, b1], [L2, a2, b2]) {
+  const rad = Math.PI / 180, deg = 180 / Math.PI;
+  const C1 = Math.hypot(a1, b1), C2 = Math.hypot(a2, b2), Cm = (C1 + C2) / 2;
+  const G = 0.5 * (1 - Math.sqrt(Cm ** 7 / (Cm ** 7 + 25 ** 7)));
+  const ap1 = (1 + G) * a1, ap2 = (1 + G) * a2;
+  const Cp1 = Math.hypot(ap1, b1), Cp2 = Math.hypot(ap2, b2);
+  const h = (b, a) => (a === 0 && b === 0 ? 0 : (Math.atan2(b, a) * deg + 360) % 360);
+  const hp1 = h(b1, ap1), hp2 = h(b2, ap2);
+  const dL = L2 - L1, dC = Cp2 - Cp1;
+  let dh = 0;
+  if (Cp1 * Cp2 !== 0) dh = Math.abs(hp2 - hp1) <= 180 ? hp2 - hp1 : (hp2 <= hp1 ? hp2 - hp1 + 360 : hp2 - hp1 - 360);
+  const dH = 2 * Math.sqrt(Cp1 * Cp2) * Math.sin(dh / 2 * rad);
+  const Lm = (L1 + L2) / 2, Cpm = (Cp1 + Cp2) / 2;
+  let hm = hp1 + hp2;
+  if (Cp1 * Cp2 !== 0) hm = Math.abs(hp1 - hp2) <= 180 ? hm / 2 : (hm < 360 ? (hm + 360) / 2 : (hm - 360) / 2);
+  const T = 1 - 0.17 * Math.cos((hm - 30) * rad) + 0.24 * Math.cos(2 * hm * rad) +
+            0.32 * Math.cos((3 * hm + 6) * rad) - 0.2 * Math.cos((4 * hm - 63) * rad);
+  const dTheta = 30 * Math.exp(-(((hm - 275) / 25) ** 2));
+  const RC = 2 * Math.sqrt(Cpm ** 7 / (Cpm ** 7 + 25 ** 7));
+  const SL = 1 + 0.015 * (Lm - 50) ** 2 / Math.sqrt(20 + (Lm - 50) ** 2);
+  const SC = 1 + 0.045 * Cpm, SH = 1 + 0.015 * Cpm * T;
+  const RT = -Math.sin(2 * dTheta * rad) * RC;
+  return Math.sqrt((dL / SL) ** 2 + (dC / SC) ** 2 + (dH / SH) ** 2 + RT * (dC / SC) * (dH / SH));
+}
 
 /// CIELAB (D65 white) of an 8-bit sRGB colour: IEC 61966-2-1 decoding, the sRGB matrix to
 /// XYZ, CIE 15 Lab.
@@ -52,6 +83,24 @@ const failed = await page.evaluate(() => window.patinaViewer.failed);
 const out = { firstFrameMs: await page.evaluate(() => window.patinaViewer.firstFrameMs),
               openToFirstFrameMs: Date.now() - opened };
 
+/// The mean 8-bit sRGB colour of a PNG (bytes) in a rectangle given in fractions of it,
+/// decoded by the page's own image decoder.
+async function regionMean(png, x, y, w, h) {
+  return page.evaluate(async ([b64, fx, fy, fw, fh]) => {
+    const img = new Image();
+    img.src = `data:image/png;base64,${b64}`;
+    await img.decode();
+    const c = new OffscreenCanvas(img.width, img.height);
+    const g = c.getContext('2d');
+    g.drawImage(img, 0, 0);
+    const x0 = Math.round(fx * img.width), y0 = Math.round(fy * img.height);
+    const d = g.getImageData(x0, y0, Math.max(1, Math.round(fw * img.width)), Math.max(1, Math.round(fh * img.height))).data;
+    const m = [0, 0, 0];
+    for (let i = 0; i < d.length; i += 4) for (let k = 0; k < 3; ++k) m[k] += d[i + k];
+    return m.map((v) => v / (d.length / 4));
+  }, [Buffer.from(png).toString('base64'), Number(x), Number(y), Number(w), Number(h)]);
+}
+
 /// Waits until `n` more frames are drawn.
 async function frames(n) {
   const start = await page.evaluate(() => window.patinaViewer.frames);
@@ -70,23 +119,30 @@ if (!failed) {
                         [Number(age), view]);
     await frames(3);
     const png = await page.locator('#view').screenshot();
-    out.mean = await page.evaluate(async ([b64, fx, fy, fw, fh]) => {
-      const img = new Image();
-      img.src = `data:image/png;base64,${b64}`;
-      await img.decode();
-      const c = new OffscreenCanvas(img.width, img.height);
-      const g = c.getContext('2d');
-      g.drawImage(img, 0, 0);
-      const x0 = Math.round(fx * img.width), y0 = Math.round(fy * img.height);
-      const d = g.getImageData(x0, y0, Math.max(1, Math.round(fw * img.width)), Math.max(1, Math.round(fh * img.height))).data;
-      const m = [0, 0, 0];
-      for (let i = 0; i < d.length; i += 4) for (let k = 0; k < 3; ++k) m[k] += d[i + k];
-      return m.map((v) => v / (d.length / 4));
-    }, [png.toString('base64'), Number(x), Number(y), Number(w), Number(h)]);
+    out.mean = await regionMean(png, x, y, w, h);
     out.lab = srgbToLab(out.mean);
     out.hue_deg = (Math.atan2(out.lab[2], out.lab[1]) * 180 / Math.PI + 360) % 360;
+  } else if (action === 'compare') {
+    const [age, view, ref, x, y, w, h, ...cam] = args;
+    const [fx, fy, fz, tx, ty, tz, fov] = cam.map(Number);
+    await page.evaluate(([a, v, c]) => {
+      window.patinaViewer.setAge(a);
+      window.patinaViewer.setView(v);
+      window.patinaViewer.setCamera(c.slice(0, 3), c.slice(3, 6), c[6]);
+    }, [Number(age), view, [fx, fy, fz, tx, ty, tz, fov]]);
+    await frames(3);
+    const png = await page.locator('#view').screenshot();
+    out.viewer = srgbToLab(await regionMean(png, x, y, w, h));
+    out.render = srgbToLab(await regionMean(readFileSync(ref), x, y, w, h));
+    out.de2000 = deltaE2000(out.viewer, out.render);
+    out.hue_viewer = (Math.atan2(out.viewer[2], out.viewer[1]) * 180 / Math.PI + 360) % 360;
+    out.hue_render = (Math.atan2(out.render[2], out.render[1]) * 180 / Math.PI + 360) % 360;
   } else if (action === 'frames') {
-    if (args[1]) await page.evaluate((v) => window.patinaViewer.setView(v), args[1]);
+    // A view and an age for the viewer (the bare page of the benchmark has neither).
+    await page.evaluate(([v, a]) => {
+      if (v && window.patinaViewer.setView) window.patinaViewer.setView(v);
+      if (a !== undefined && window.patinaViewer.setAge) window.patinaViewer.setAge(a);
+    }, [args[1], args[2] === undefined ? undefined : Number(args[2])]);
     await frames(5);
     await page.evaluate(() => { window.patinaViewer.frameTimes.length = 0; });
     await frames(Number(args[0]));

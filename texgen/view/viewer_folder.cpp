@@ -4,6 +4,7 @@
 #include "core/image_io.h"
 #include "texgen/sun/sky_map.h"
 
+#include <Imath/half.h>
 #include <OpenColorIO/OpenColorIO.h>
 #include <OpenImageIO/strutil.h>
 #include <fmt/format.h>
@@ -60,6 +61,46 @@ namespace {
         throw std::runtime_error(fmt::format(
             "view: the OCIO config '{}' has no linear Rec.709 colour space (lin_rec709), the "
             "space the page renders in", path.string()));
+    }
+
+    /// Views whose OCIO shader is longer than this (the ACES output transform: thousands of
+    /// operations a pixel, a quarter of a frame in a software WebGL) are baked instead.
+    constexpr size_t kLongShader = 4096;
+    /// The baked views: a lut_size^3 table over a log2 shaper from 0 to kLutMax (OCIO's CPU
+    /// processor at every grid point), looked up trilinearly in the page.
+    constexpr int kLutSize = 65;
+    constexpr double kLutEpsilon = 1.0 / 1024.0, kLutMax = 64.0;
+
+    /// The view baked by OCIO into a 3D LUT: the table (RGBA half floats, base64) and the
+    /// GLSL that looks it up, with the shaper x = log2(1 + c / eps) / log2(1 + max / eps).
+    json baked_view(const OCIO::ConstProcessorRcPtr& processor)
+    {
+        const OCIO::ConstCPUProcessorRcPtr cpu = processor->getDefaultCPUProcessor();
+        const double range = std::log2(1.0 + kLutMax / kLutEpsilon);
+        std::vector<Imath::half> table(static_cast<size_t>(kLutSize) * kLutSize * kLutSize * 4);
+        auto scene_value = [&](int i) {
+            return static_cast<float>(kLutEpsilon * (std::exp2(range * i / (kLutSize - 1)) - 1.0));
+        };
+        size_t at = 0;
+        for (int b = 0; b < kLutSize; ++b)  // WebGL's 3D texture: x (red) fastest
+            for (int g = 0; g < kLutSize; ++g)
+                for (int r = 0; r < kLutSize; ++r) {
+                    float rgb[3] = {scene_value(r), scene_value(g), scene_value(b)};
+                    cpu->applyRGB(rgb);
+                    table[at++] = rgb[0];
+                    table[at++] = rgb[1];
+                    table[at++] = rgb[2];
+                    table[at++] = 1.0f;
+                }
+        const std::string bytes(reinterpret_cast<const char*>(table.data()), table.size() * 2);
+        const std::string glsl = fmt::format(
+            "uniform highp sampler3D patina_lut;\n"
+            "vec4 patina_display(vec4 c)\n{{\n"
+            "  vec3 x = log2(1.0 + max(c.rgb, vec3(0.0)) / {0:.9g}) / {1:.9g};\n"
+            "  x = clamp(x, 0.0, 1.0) * {2:.9g} + {3:.9g};\n"
+            "  return vec4(texture(patina_lut, x).rgb, c.a);\n}}\n",
+            kLutEpsilon, range, (kLutSize - 1.0) / kLutSize, 0.5 / kLutSize);
+        return {{"glsl", glsl}, {"lut", {{"size", kLutSize}, {"rgba_f16", OIIO::Strutil::base64_encode(bytes)}}}};
     }
 
     /// The sky of `options` in three.js's equirectangular layout (its equirectUv: u from
@@ -142,12 +183,15 @@ ViewerSummary write_viewer(const ViewerOptions& o, const ColorManager& colors)
         OCIO::GpuShaderDescRcPtr desc = OCIO::GpuShaderDesc::CreateShaderDesc();
         desc->setLanguage(OCIO::GPU_LANGUAGE_GLSL_ES_3_0);
         desc->setFunctionName("patina_display");
-        config->getProcessor(t)->getDefaultGPUProcessor()->extractGpuShaderInfo(desc);
-        if (desc->getNumTextures() > 0 || desc->getNum3DTextures() > 0 || desc->getNumUniforms() > 0)
-            throw std::runtime_error(fmt::format(
-                "view: OCIO's shader of the view '{}' needs lookup textures or uniforms, which "
-                "the page does not load", view));
-        views.push_back({{"name", view}, {"glsl", desc->getShaderText()}});
+        const OCIO::ConstProcessorRcPtr processor = config->getProcessor(t);
+        processor->getDefaultGPUProcessor()->extractGpuShaderInfo(desc);
+        const bool analytic = desc->getNumTextures() == 0 && desc->getNum3DTextures() == 0 &&
+                              desc->getNumUniforms() == 0;
+        json entry = analytic && std::strlen(desc->getShaderText()) <= kLongShader
+                         ? json{{"glsl", desc->getShaderText()}}
+                         : baked_view(processor);
+        entry["name"] = view;
+        views.push_back(entry);
         summary.views.push_back(view);
     }
 

@@ -1,6 +1,7 @@
 // The OCIO display transform as the last pass: the scene, rendered in linear Rec.709 into a
-// half-float target, times the exposure, through the GLSL that OCIO generated for the view
-// (data.js), written to the canvas as it is.
+// half-float target, times the exposure, through the view's GLSL (data.js): OCIO's own
+// shader, or for a long one (the ACES output transform) a 3D LUT that OCIO baked and its
+// lookup. Written to the canvas as it is.
 import * as THREE from 'three';
 
 export class DisplayPass {
@@ -8,7 +9,8 @@ export class DisplayPass {
     this.views = views;
     this.scene = new THREE.Scene();
     this.camera = new THREE.OrthographicCamera(-1, 1, 1, -1, 0, 1);
-    this.uniforms = { scene: { value: null }, exposure: { value: 1.0 } };
+    this.uniforms = { scene: { value: null }, exposure: { value: 1.0 }, patina_lut: { value: null } };
+    this.luts = new Map();
     this.mesh = new THREE.Mesh(new THREE.PlaneGeometry(2, 2), null);
     this.scene.add(this.mesh);
   }
@@ -17,6 +19,7 @@ export class DisplayPass {
     const view = this.views.find((v) => v.name === name);
     if (!view) throw new Error(`no view '${name}'`);
     if (this.mesh.material) this.mesh.material.dispose();
+    this.uniforms.patina_lut.value = view.lut ? this.lut(view) : null;
     this.mesh.material = new THREE.RawShaderMaterial({
       glslVersion: THREE.GLSL3,
       uniforms: this.uniforms,
@@ -40,6 +43,25 @@ export class DisplayPass {
         }`,
     });
     this.view = name;
+  }
+
+  /// The view's baked table as a 3D texture (half floats, trilinear), made once.
+  lut(view) {
+    if (!this.luts.has(view.name)) {
+      const bin = atob(view.lut.rgba_f16);
+      const bytes = new Uint8Array(bin.length);
+      for (let i = 0; i < bin.length; ++i) bytes[i] = bin.charCodeAt(i);
+      const n = view.lut.size;
+      const texture = new THREE.Data3DTexture(new Uint16Array(bytes.buffer), n, n, n);
+      texture.format = THREE.RGBAFormat;
+      texture.type = THREE.HalfFloatType;
+      texture.minFilter = texture.magFilter = THREE.LinearFilter;
+      texture.wrapS = texture.wrapT = texture.wrapR = THREE.ClampToEdgeWrapping;
+      texture.unpackAlignment = 1;
+      texture.needsUpdate = true;
+      this.luts.set(view.name, texture);
+    }
+    return this.luts.get(view.name);
   }
 
   render(renderer, target, exposure) {

@@ -36,7 +36,8 @@ function environmentTexture(env) {
 async function start(data) {
   const started = performance.now();
   const canvas = $('view');
-  // The scene is antialiased in its own target (samples: 4); the display pass needs none.
+  // No multisampling: resolving a multisampled half-float target doubled the frame time in a
+  // software WebGL (bench/README.md).
   const gl = canvas.getContext('webgl2', { antialias: false });
   if (!gl) {
     fail('This viewer needs WebGL2, which this browser does not offer: turn on hardware ' +
@@ -46,7 +47,7 @@ async function start(data) {
   const renderer = new THREE.WebGLRenderer({ canvas, context: gl });
   renderer.setPixelRatio(1);
   renderer.toneMapping = THREE.NoToneMapping;
-  const target = new THREE.WebGLRenderTarget(1, 1, { type: THREE.HalfFloatType, samples: 4 });
+  const target = new THREE.WebGLRenderTarget(1, 1, { type: THREE.HalfFloatType });
   const scene = new THREE.Scene();
   const camera = new THREE.PerspectiveCamera(35, 1, 0.01, 100);
   const controls = new OrbitControls(camera, canvas);
@@ -176,6 +177,13 @@ async function start(data) {
     setView(name) { display.setView(name); $('display-view').value = name; },
     setExposure(ev) { state.exposure = 2 ** ev; syncLabels(); },
     setEnvironment,
+    setCamera(from, to, fovDeg) {
+      camera.position.set(...from);
+      controls.target.set(...to);
+      camera.fov = fovDeg;
+      camera.updateProjectionMatrix();
+      controls.update();
+    },
   });
   window.patinaViewer = api;
   requestAnimationFrame(frame);
