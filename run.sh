@@ -21,6 +21,6 @@ echo "wrote out/copper_strips/ (patina stacks of the three §5.1 strips, 0-30 ye
 samples/fading/fading.sh "$build"
 echo "wrote out/fading/ (fade stacks, reflectance plots like figures 9-13), out/fading/{newspaper,board,cmy}.png and out/export/newspaper.glb (0, 1 and 2 days as glTF variants)"
 samples/lookdev/lookdev.sh "$build"
-echo "wrote out/lookdev/ (the measured ColorChecker, the lookdev scene under a clear sky, and copper.mp4: the copper ball from 0 to 30 years)"
+echo "wrote out/lookdev/ (the measured ColorChecker, the lookdev scene under a clear sky, and copper.mp4: the copper ball from 0 to 30 years) and out/viewer/copper/index.html (the series in the browser)"
 SPP="${STONE_SPP:-32}" samples/stone/stone.sh "$build"
 echo "wrote out/stone/ (weathered sandstone column and marble statue, 0-60 cycles), out/stone/{column,marble}_strip.png and out/export/column.NNNN.vdb (the column's steps as OpenVDB)"

@@ -10,6 +10,8 @@
 #                     and "Raw" are the config's others)
 #   copper.mp4        the shader ball's copper from 0 to 30 years, a frame per step, through
 #                     the same view (ffmpeg, H.264)
+# and out/viewer/copper/index.html: the copper series in the browser viewer
+# (patina-texgen view; open it from the folder).
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 root="$(cd "$here/../.." && pwd)"
@@ -159,4 +161,9 @@ if [[ "$frames" != "$frame" ]]; then
   exit 1
 fi
 mv "$out/copper.tmp.mp4" "$out/copper.mp4"
+
+# The series in the browser: exported as glTF variants, then the viewer's folder.
+mkdir -p "$root/out/viewer"
+"$texgen" export "$out/copper" -o "$out/copper.glb" --quiet
+"$texgen" view "$out/copper.glb" -o "$root/out/viewer/copper" --title "urban copper, 0-30 years" -q
 echo "lookdev: $frame-frame time-lapse in $((SECONDS - start)) s" >&2
