@@ -153,23 +153,9 @@ fs::path viewer_bundle_dir()
         where));
 }
 
-ViewerSummary write_viewer(const ViewerOptions& o, const ColorManager& colors)
+std::string display_views_json(const ColorManager& colors)
 {
-    const fs::path bundle = viewer_bundle_dir();
-    const std::string glb = read_bytes(o.model);
-    const json gltf = glb_json(glb, o.model);
-    ViewerSummary summary;
-    const json* variants = nullptr;
-    if (gltf.contains("extensions") && gltf["extensions"].contains("KHR_materials_variants"))
-        variants = &gltf["extensions"]["KHR_materials_variants"]["variants"];
-    if (!variants || variants->empty())
-        throw std::runtime_error(fmt::format(
-            "view: '{}' has no material variants (KHR_materials_variants): export a time "
-            "series with `patina-texgen export`", o.model.string()));
-    for (const json& v : *variants)
-        summary.ages.push_back(v.value("name", std::string()));
-
-    // The display's views as OCIO's own GLSL (ES 3.0), from the page's working space.
+    // The display's views from the page's working space: OCIO's own GLSL (ES 3.0), or baked.
     const OCIO::ConstConfigRcPtr config = OCIO::Config::CreateFromFile(colors.config_path().c_str());
     const std::string source = linear_rec709(config, colors.config_path());
     const std::string display = config->getDefaultDisplay();
@@ -192,9 +178,31 @@ ViewerSummary write_viewer(const ViewerOptions& o, const ColorManager& colors)
                          : baked_view(processor);
         entry["name"] = view;
         views.push_back(entry);
-        summary.views.push_back(view);
     }
+    return views.dump();
+}
 
+ViewerSummary write_viewer(const ViewerOptions& o, const ColorManager& colors)
+{
+    const fs::path bundle = viewer_bundle_dir();
+    const std::string glb = read_bytes(o.model);
+    const json gltf = glb_json(glb, o.model);
+    ViewerSummary summary;
+    const json* variants = nullptr;
+    if (gltf.contains("extensions") && gltf["extensions"].contains("KHR_materials_variants"))
+        variants = &gltf["extensions"]["KHR_materials_variants"]["variants"];
+    if (!variants || variants->empty())
+        throw std::runtime_error(fmt::format(
+            "view: '{}' has no material variants (KHR_materials_variants): export a time "
+            "series with `patina-texgen export`", o.model.string()));
+    for (const json& v : *variants)
+        summary.ages.push_back(v.value("name", std::string()));
+
+    const OCIO::ConstConfigRcPtr config = OCIO::Config::CreateFromFile(colors.config_path().c_str());
+    const std::string display = config->getDefaultDisplay();
+    const json views = json::parse(display_views_json(colors));
+    for (const json& v : views)
+        summary.views.push_back(v["name"]);
     SkyMapOptions clear;  // the lookdev sky: CIE clear, the sun 35 degrees up in the SSE
     SkyMapOptions overcast;
     overcast.sky = cie_traditional_overcast();
@@ -203,7 +211,6 @@ ViewerSummary write_viewer(const ViewerOptions& o, const ColorManager& colors)
         {"model", OIIO::Strutil::base64_encode(glb)},
         {"ages", summary.ages},
         {"display", display},
-        {"source", source},
         {"default_view", config->getDefaultView(display.c_str())},
         {"views", views},
         {"environments", {environment("lookdev sky (clear)", clear, o.environment_width),

@@ -32,6 +32,11 @@ struct ViewerSummary {
 /// <exe>/../share/patina/viewer. Throws naming the places it looked.
 std::filesystem::path viewer_bundle_dir();
 
+/// The default display's views as data.js holds them (a JSON array): per view its name and
+/// either OCIO's GLSL or a 3D LUT baked by OCIO with the GLSL that looks it up
+/// (docs/viewer.md "Colour"). Throws for a config without linear Rec.709.
+std::string display_views_json(const ColorManager& colors);
+
 /// Writes the folder. Throws std::runtime_error naming the file for a model that is not a
 /// .glb with at least one material variant (an exported series), and for a config with no
 /// linear Rec.709 colour space (the page's working space).
