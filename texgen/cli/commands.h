@@ -19,6 +19,7 @@ void register_patina_command(CLI::App& app);
 void register_stone_command(CLI::App& app);
 void register_flatten_command(CLI::App& app);
 void register_fade_command(CLI::App& app);
+void register_forecast_command(CLI::App& app);
 void register_export_command(CLI::App& app);
 void register_view_command(CLI::App& app);
 

@@ -2,6 +2,7 @@
 // stack (fade.toml, fade_table.exr, dose.exr) for the spectral_km shader, and optionally a
 // plot of the material's reflectance over time like the paper's figures 9-13.
 #include "texgen/cli/commands.h"
+#include "texgen/cli/fade_options.h"
 
 #include "core/cancel.h"
 #include "core/limits.h"
@@ -53,44 +54,6 @@ struct FadeOptions {
     int threads = 0;
     bool quiet = false;
 };
-
-/// "7d", "6h", "30y", "90min", "3600s" or a bare number of seconds.
-double parse_duration(const std::string& text)
-{
-    if (text.empty())
-        return 0.0;
-    size_t used = 0;
-    double value = 0.0;
-    try {
-        value = std::stod(text, &used);
-    } catch (const std::exception&) {
-        used = 0;
-    }
-    const std::string unit = text.substr(used);
-    const std::pair<const char*, double> units[] = {
-        {"", 1.0}, {"s", 1.0}, {"min", 60.0}, {"h", 3600.0}, {"d", 86400.0},
-        {"y", 365.0 * 86400.0}};
-    if (used > 0 && value >= 0.0 && std::isfinite(value))
-        for (const auto& [name, seconds] : units)
-            if (unit == name)
-                return value * seconds;
-    throw std::runtime_error("--duration '" + text +
-                             "': expected a number with an optional unit s, min, h, d or y "
-                             "(e.g. 7d, 30y)");
-}
-
-fade::WavelengthGrid parse_grid(const std::string& text)
-{
-    double first = 0, last = 0, step = 0;
-    char c1 = 0, c2 = 0;
-    if (std::sscanf(text.c_str(), "%lf%c%lf%c%lf", &first, &c1, &last, &c2, &step) != 5 ||
-        c1 != ':' || c2 != ':' || !(step > 0.0) || !(last > first))
-        throw std::runtime_error("--wavelengths '" + text +
-                                 "': expected FIRST:LAST:STEP in nm, e.g. 300:830:5");
-    check_limit("--wavelengths '" + text + "'", std::floor((last - first) / step + 1e-9) + 1,
-                fade::WavelengthGrid::kMaxWavelengths, "wavelengths");
-    return fade::WavelengthGrid::uniform(first, last, step);
-}
 
 fade::Illuminant choose_illuminant(const FadeOptions& o, const fade::ExposureMap& map)
 {
@@ -189,19 +152,7 @@ void run_fade(const FadeOptions& o)
         throw std::runtime_error("no fading materials: none found under $PATINA_SHADER_PATH or "
                                  "<exe>/../share/patina/shaders/fade; pass --materials FILE");
     const fade::FadeLibrary library = fade::FadeLibrary::load_files(files);
-    fade::FadeMaterial material = library.material(o.material);
-    if (!o.rates.empty()) {
-        // The rates of the colorants this material holds (a set names all of a family)
-        fade::RateSet rates;
-        for (const auto& [colorant, beta] : library.rate_set(o.rates))
-            for (const fade::Colorant& c : material.colorants)
-                if (c.name == colorant)
-                    rates[colorant] = beta;
-        if (rates.empty())
-            throw std::runtime_error("--rates " + o.rates + ": the set names none of " +
-                                     material.name + "'s colorants");
-        material = fade::with_rates(material, rates);
-    }
+    const fade::FadeMaterial material = library.material_with_rates(o.material, o.rates);
     // Output locations, before any work.
     reserve_output(o.out_dir / fade::kFadeToml);
     if (!o.plot.empty())

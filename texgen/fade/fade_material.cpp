@@ -63,6 +63,14 @@ void FadeMaterial::validate() const
             colorant_index(c.breakdown->product);
         }
     }
+    // Eqs. (12)-(14) mix the colorants by volume: together they cannot fill more than the
+    // layer (the rest is a clear binder or air).
+    double total = 0.0;
+    for (double f : initial_fractions)
+        total += f;
+    if (total > 1.0 + 1e-9)
+        fail(fmt::format("the colorants' volume fractions sum to {:.6g}, more than the layer "
+                         "holds (1)", total));
     check_spectrum(substrate_reflectance, "substrate");
     for (double v : substrate_reflectance.value)
         if (v > 1.0)
@@ -346,6 +354,24 @@ std::vector<std::string> FadeLibrary::material_names() const
     for (const auto& [n, m] : materials_)
         names.push_back(n);
     return names;
+}
+
+FadeMaterial FadeLibrary::material_with_rates(const std::string& name,
+                                              const std::string& rates) const
+{
+    FadeMaterial m = material(name);
+    if (rates.empty())
+        return m;
+    // The rates of the colorants this material holds (a set may name all of a family)
+    RateSet held;
+    for (const auto& [colorant, beta] : rate_set(rates))
+        for (const Colorant& c : m.colorants)
+            if (c.name == colorant)
+                held[colorant] = beta;
+    if (held.empty())
+        throw std::runtime_error("rate set " + rates + " names none of " + m.name +
+                                 "'s colorants");
+    return with_rates(std::move(m), held);
 }
 
 std::vector<fs::path> FadeLibrary::default_files()

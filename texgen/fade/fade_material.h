@@ -47,6 +47,9 @@ public:
     const FadeMaterial* find(const std::string& name) const;
     /// As find; throws std::runtime_error listing the known materials if absent.
     const FadeMaterial& material(const std::string& name) const;
+    /// `name` with the rates of set `rates` applied to the colorants it holds ("" = none).
+    /// Throws std::runtime_error when the set names none of them.
+    FadeMaterial material_with_rates(const std::string& name, const std::string& rates) const;
     const Colorant& colorant(const std::string& name) const;
     const RateSet& rate_set(const std::string& name) const;
     std::vector<std::string> material_names() const;

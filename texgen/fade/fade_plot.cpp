@@ -150,7 +150,7 @@ void write_reflectance_plot(const std::filesystem::path& path,
 
     // Layout: plot area inside margins for the tick labels, axis labels and the title
     const int w = options.width, h = options.height;
-    const int left = 90, right = w - 150, top = 50, bottom = h - 70;
+    const int left = 90, right = w - options.legend_width, top = 50, bottom = h - 70;
     auto px = [&](double x) { return left + (x - x_min) / (x_max - x_min) * (right - left); };
     auto py = [&](double y) { return bottom - (y - y_min) / (y_max - y_min) * (bottom - top); };
 

@@ -27,6 +27,7 @@ struct PlotOptions {
     std::string y_label = "reflectance";
     double x_min = 0.0, x_max = 0.0;  ///< x range; equal: the curves' range
     double y_min = 0.0, y_max = 1.0;  ///< y range; y_max <= y_min: from the curves
+    int legend_width = 150;           ///< pixels right of the plot for the legend
 };
 
 /// A colour per curve from dark red-brown (first) to light yellow (last), after the

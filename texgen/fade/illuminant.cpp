@@ -1,6 +1,8 @@
 #include "texgen/fade/illuminant.h"
 
+#include "core/data_files.h"
 #include "core/spectrum.h"
+#include "core/spectrum_csv.h"
 
 #include <fmt/format.h>
 
@@ -13,9 +15,9 @@ namespace patina::texgen::fade {
 
 namespace {
 
-// Relative spectral power distributions of CIE 15:2004 (tables 1 and 10), as shipped by
-// Debian's colord-data (/usr/share/colord/illuminant/CIE-*.sp), scaled to the CIE tables'
-// convention (D65: 100 at 560 nm).
+// CIE D65 (CIE 15:2004 table 1), as shipped by Debian's colord-data
+// (/usr/share/colord/illuminant/CIE-D65.sp), scaled to the CIE table's convention (100 at
+// 560 nm). The F and LED lamps are read from data/lamps/ (their sources are in the files).
 // CIE D65, 300-830 nm every 5 nm (107 values).
 constexpr double kD65[] = {
     0.0341, 1.6643, 3.2945, 11.7652, 20.236, 28.6447, 37.0535, 38.5011, 39.9488, 42.4302,
@@ -30,23 +32,15 @@ constexpr double kD65[] = {
     55.0054, 46.4182, 56.6118, 66.8054, 65.0941, 63.3828, 63.8434, 64.304, 61.8779, 59.4519,
     55.7054, 51.959, 54.6998, 57.4406, 58.8765, 60.3125
 };
-// CIE F2, 380-780 nm every 5 nm (81 values).
-constexpr double kF2[] = {
-    1.18, 1.48, 1.84, 2.15, 3.44, 15.69, 3.85, 3.74, 4.19, 4.62, 5.06, 34.98, 11.81, 6.27, 6.63,
-    6.93, 7.19, 7.4, 7.54, 7.62, 7.65, 7.62, 7.62, 7.45, 7.28, 7.15, 7.05, 7.04, 7.16, 7.47,
-    8.04, 8.88, 10.01, 24.88, 16.64, 14.59, 16.16, 17.56, 18.62, 21.47, 22.79, 19.29, 18.66,
-    17.73, 16.54, 15.21, 13.8, 12.36, 10.95, 9.65, 8.4, 7.32, 6.31, 5.43, 4.68, 4.02, 3.45, 2.96,
-    2.55, 2.19, 1.89, 1.64, 1.53, 1.27, 1.1, 0.99, 0.88, 0.76, 0.68, 0.61, 0.56, 0.54, 0.51,
-    0.47, 0.47, 0.43, 0.46, 0.47, 0.4, 0.33, 0.27
+
+// The lamp tables of data/lamps/ (share/patina/data/lamps/ beside the tools).
+struct LampFile {
+    const char* file;
+    const char* source;
 };
-// CIE F11, 380-780 nm every 5 nm (81 values).
-constexpr double kF11[] = {
-    0.91, 0.63, 0.46, 0.37, 1.29, 12.68, 1.59, 1.79, 2.46, 3.33, 4.49, 33.94, 12.13, 6.95, 7.19,
-    7.12, 6.72, 6.13, 5.46, 4.79, 5.66, 14.29, 14.96, 8.97, 4.72, 2.33, 1.47, 1.1, 0.89, 0.83,
-    1.18, 4.9, 39.59, 72.84, 32.61, 7.52, 2.83, 1.96, 1.67, 4.43, 11.28, 14.76, 12.73, 9.74,
-    7.33, 9.72, 55.27, 42.58, 13.18, 13.16, 12.26, 5.11, 2.07, 2.34, 3.58, 3.01, 2.48, 2.14,
-    1.54, 1.33, 1.46, 1.94, 2, 1.2, 1.35, 4.1, 5.58, 2.51, 0.57, 0.27, 0.23, 0.21, 0.24, 0.24,
-    0.2, 0.24, 0.32, 0.26, 0.16, 0.12, 0.09
+constexpr LampFile kLampFiles[] = {
+    {"lamps/cie_f_illuminants.csv", "CIE 15:2004 table 10 (= CIE 15:2018), fluorescent lamps"},
+    {"lamps/cie_led_illuminants.csv", "CIE 15:2018, typical LED illuminants"},
 };
 
 TabulatedSpectrum table_5nm(const double* v, size_t count, double first_nm)
@@ -103,12 +97,26 @@ Illuminant illuminant_by_name(const std::string& name)
     if (n == "D65")
         return {"D65", table_5nm(kD65, std::size(kD65), 300.0), 300.0, 830.0,
                 "CIE 15:2004 table 1 (D65, 300-830 nm)"};
-    if (n == "F2")
-        return {"F2", table_5nm(kF2, std::size(kF2), 380.0), 380.0, 780.0,
-                "CIE 15:2004 table 10 (F2, cool white fluorescent, 380-780 nm)"};
-    if (n == "F11" || n == "FLUORESCENT")
-        return {"F11", table_5nm(kF11, std::size(kF11), 380.0), 380.0, 780.0,
-                "CIE 15:2004 table 10 (F11, narrow-band tri-phosphor fluorescent, 380-780 nm)"};
+    if (n == "FLUORESCENT")
+        n = "F11";
+    if (n == "E" || n == "FLAT") {
+        // The equal-energy spectrum (CIE illuminant E) over the D65 band: a flat lamp.
+        return {"E", TabulatedSpectrum{{300.0, 830.0}, {100.0, 100.0}}, 300.0, 830.0,
+                "CIE illuminant E (equal energy), 300-830 nm"};
+    }
+    for (const LampFile& lamps : kLampFiles) {
+        const SpectrumCsv csv = read_spectrum_csv(find_data_file(lamps.file));
+        for (size_t c = 0; c < csv.columns.size(); ++c) {
+            std::string column = csv.columns[c];
+            std::transform(column.begin(), column.end(), column.begin(),
+                           [](unsigned char ch) { return static_cast<char>(std::toupper(ch)); });
+            if (column != n)
+                continue;
+            Illuminant il = illuminant_from_table(csv.columns[c], csv.lambda_nm, csv.values[c]);
+            il.source = std::string(lamps.source) + " (" + lamps.file + ")";
+            return il;
+        }
+    }
     if (n == "A") {
         // CIE A is defined by Planck's law at 2856 K (core spectrum.h), at any wavelength;
         // tabulated here at 1 nm over the same 300-830 nm band as D65.
@@ -120,7 +128,37 @@ Illuminant illuminant_by_name(const std::string& name)
         return {"A", s, 300.0, 830.0, "CIE 15:2004 (Planck, 2848 K with c2 = 1.435e-2 m K: 2856 K on today's c2)"};
     }
     throw std::runtime_error(fmt::format(
-        "unknown illuminant '{}' (known: D65, A, F2, F11 or fluorescent)", name));
+        "unknown illuminant '{}' (known: {})", name, known_illuminant_names()));
+}
+
+std::string known_illuminant_names()
+{
+    std::string names = "D65, A, E (= flat)";
+    for (const LampFile& lamps : kLampFiles) {
+        try {
+            for (const std::string& column : read_spectrum_csv(find_data_file(lamps.file)).columns)
+                names += ", " + column;
+        } catch (const std::exception&) {
+            names += std::string(", (") + lamps.file + " not found)";
+        }
+    }
+    return names + ", fluorescent (= F11)";
+}
+
+Illuminant illuminant_from_csv(const std::filesystem::path& file, const std::string& column)
+{
+    const SpectrumCsv csv = read_spectrum_csv(file);
+    size_t c = 0;
+    if (column.empty()) {
+        if (csv.columns.size() != 1)
+            throw std::runtime_error(file.string() + ": " + std::to_string(csv.columns.size()) +
+                                     " spectra in the file; name one (FILE:COLUMN)");
+    } else {
+        c = csv.column(column);
+    }
+    Illuminant il = illuminant_from_table(csv.columns[c], csv.lambda_nm, csv.values[c]);
+    il.source = file.string();
+    return il;
 }
 
 Illuminant illuminant_from_table(const std::string& name, std::vector<double> nm,

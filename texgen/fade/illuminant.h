@@ -7,6 +7,7 @@
 #include "texgen/fade/fading_simulation.h"
 #include "texgen/fade/spectral_grid.h"
 
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -29,10 +30,20 @@ struct Illuminant {
 };
 
 /// "D65" (CIE 15:2004 table, 300-830 nm at 5 nm), "A" (Planck 2856 K, CIE 15:2004, over
-/// 300-830 nm), "F2" and "F11" (CIE 15:2004 fluorescent lamps, 380-780 nm at 5 nm; the
-/// paper's lamp, figure 4, is a fluorescent bulb). Case-insensitive; "fluorescent" = F11.
-/// Throws std::runtime_error listing the names for any other.
+/// 300-830 nm), "E" or "flat" (equal energy, 300-830 nm), "F1".."F12" (CIE 15:2004 = 15:2018
+/// fluorescent lamps, 380-780 nm at 5 nm; the paper's lamp, figure 4, is a fluorescent
+/// bulb) and the CIE 15:2018 LED illuminants "LED-B1".."LED-B5", "LED-BH1", "LED-RGB1",
+/// "LED-V1", "LED-V2" (380-780 nm at 5 nm). The F and LED tables are read from
+/// data/lamps/ (core/data_files.h). Case-insensitive; "fluorescent" = F11. Throws
+/// std::runtime_error listing the names for any other.
 Illuminant illuminant_by_name(const std::string& name);
+/// The names illuminant_by_name knows, comma separated.
+std::string known_illuminant_names();
+
+/// An illuminant from a spectral CSV (core/spectrum_csv.h): column `column` ("" when the
+/// file holds one spectrum); the band is the table's range. Throws std::runtime_error naming
+/// the file (and line) for a broken file, a missing column or a negative value.
+Illuminant illuminant_from_csv(const std::filesystem::path& file, const std::string& column);
 
 /// An illuminant from a table (e.g. an exposure map's own spectrum): knots in nm and
 /// relative values (zero outside the knots); the band is the table's range.

@@ -1,0 +1,16 @@
+// Where Patina's shipped reference tables are (lamp spectra, measured reflectances): the
+// repository's `data/` folder, copied to <exe>/../share/patina/data in the build and install
+// trees alike, searched after the directories of $PATINA_DATA_PATH.
+#pragma once
+
+#include <filesystem>
+#include <string_view>
+
+namespace patina {
+
+/// The first existing `<dir>/<relative>` for each directory of $PATINA_DATA_PATH (colon
+/// separated, in order), then `<exe>/../share/patina/data/<relative>`. Throws
+/// std::runtime_error naming the file and the places searched when there is none.
+std::filesystem::path find_data_file(std::string_view relative);
+
+}  // namespace patina
