@@ -209,15 +209,7 @@ void write_maps(const ForecastCliOptions& o, const fade::FadeMaterial& material,
     const forecast::UvFilter filter = forecast::parse_uv_filter(o.uv_filter, "--uv-filter");
     const fade::Illuminant spectrum = forecast::filtered(lamp, filter);
     // A filter in front of a baked map takes its part of the band's energy too
-    double through = 1.0;
-    if (filter.active()) {
-        double all = 0.0, kept = 0.0;
-        for (double nm = lamp.band_min_nm; nm <= lamp.band_max_nm; nm += 1.0) {
-            all += lamp.relative.at(nm);
-            kept += lamp.relative.at(nm) * filter.at(nm);
-        }
-        through = kept / all;
-    }
+    const double through = forecast::filter_share(lamp, filter);
     const double per_year_factor =
         fade::dose_factor(map, o.scale, 365.0 * 86400.0) * through;
     const double threshold = forecast::threshold_dose(material, spectrum, grid, meter, fo);

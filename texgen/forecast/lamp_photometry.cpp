@@ -2,28 +2,43 @@
 
 #include "core/spectrum.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
 namespace patina::texgen::forecast {
 
+namespace {
+
+/// ∫ f over [lo, hi] ∩ the lamp's band, trapezoids of at most 1 nm.
+template <class F>
+double integrate(const fade::Illuminant& lamp, double lo, double hi, F f)
+{
+    lo = std::max(lo, lamp.band_min_nm);
+    hi = std::min(hi, lamp.band_max_nm);
+    if (!(hi > lo))
+        return 0.0;
+    const int n = std::max(1, static_cast<int>(std::ceil(hi - lo)));
+    const double h = (hi - lo) / n;
+    double sum = 0.0;
+    for (int i = 0; i <= n; ++i) {
+        const double nm = lo + i * h;
+        sum += (i == 0 || i == n ? 0.5 : 1.0) * h * lamp.relative.at(nm) * f(nm);
+    }
+    return sum;
+}
+
+}  // namespace
+
 LampPhotometry lamp_photometry(const fade::Illuminant& lamp)
 {
-    // Trapezoid sums at 1 nm over the band (the tables are at 5 nm and linear between).
-    const int n = std::max(1, static_cast<int>(std::ceil(lamp.band_max_nm - lamp.band_min_nm)));
-    const double h = (lamp.band_max_nm - lamp.band_min_nm) / n;
-    double band = 0.0, visual = 0.0, uv = 0.0, damage = 0.0;
-    for (int i = 0; i <= n; ++i) {
-        const double nm = lamp.band_min_nm + i * h;
-        const double w = (i == 0 || i == n ? 0.5 : 1.0) * h;
-        const double s = lamp.relative.at(nm);
-        band += w * s;
-        visual += w * s * cie_y(static_cast<float>(nm));
-        if (nm >= 300.0 && nm <= 400.0)
-            uv += w * s;
-        if (nm >= 300.0 && nm <= 600.0)
-            damage += w * s * std::exp(-kDamageSlopePerNm * (nm - 300.0));
-    }
+    const double band = integrate(lamp, lamp.band_min_nm, lamp.band_max_nm, [](double) { return 1.0; });
+    const double visual = integrate(lamp, lamp.band_min_nm, lamp.band_max_nm,
+                                    [](double nm) { return cie_y(static_cast<float>(nm)); });
+    const double uv = integrate(lamp, 300.0, 400.0, [](double) { return 1.0; });
+    const double damage = integrate(lamp, 300.0, 600.0, [](double nm) {
+        return std::exp(-kDamageSlopePerNm * (nm - 300.0));
+    });
     if (!(visual > 0.0))
         throw std::runtime_error("lamp '" + lamp.name + "' emits no light (no power where the "
                                  "eye sees, 360-830 nm): it has no illuminance to scale");

@@ -86,6 +86,13 @@ double UvFilter::at(double nm) const
     return 1.0;
 }
 
+double filter_share(const fade::Illuminant& lamp, const UvFilter& filter)
+{
+    if (!filter.active())
+        return 1.0;
+    return band_integral(lamp, &filter) / band_integral(lamp, nullptr);
+}
+
 fade::Illuminant filtered(const fade::Illuminant& lamp, const UvFilter& filter)
 {
     if (!filter.active())
@@ -184,8 +191,7 @@ PolicyExposure policy_exposure(const LightingPolicy& p)
             fail(fmt::format("daylight share must be in 0-1, got {}", d.share));
         const DaylightYear y = daylight_year(d);
         // The glazing takes its part of the band's energy.
-        const double through = band_integral(p.lamp, &p.filter) / band_integral(p.lamp, nullptr);
-        e.dose_per_year_j_m2 = y.band_j_m2 * through * d.share;
+        e.dose_per_year_j_m2 = y.band_j_m2 * filter_share(p.lamp, p.filter) * d.share;
         e.lit_hours_per_year = y.lit_hours;
     } else if (p.exposure) {
         const fade::ExposureMap map = fade::read_exposure_map(p.exposure->map, p.exposure->channel);
@@ -202,9 +208,10 @@ PolicyExposure policy_exposure(const LightingPolicy& p)
         e.dose_per_year_j_m2 = factor * sum / covered;
         e.lit_hours_per_year = p.hours_per_day * p.days_per_year;
     } else {
+        // The lux is the lamp's, as designed; a filter in front takes away its part
         e.lit_hours_per_year = p.hours_per_day * p.days_per_year;
-        e.dose_per_year_j_m2 =
-            p.lux / e.photometry.luminous_efficacy_lm_per_w * e.lit_hours_per_year * kSecondsPerHour;
+        const double band_w_m2 = p.lux / lamp_photometry(p.lamp).luminous_efficacy_lm_per_w;
+        e.dose_per_year_j_m2 = band_w_m2 * filter_share(p.lamp, p.filter) * e.lit_hours_per_year * kSecondsPerHour;
     }
     e.lux_hours_per_year =
         e.dose_per_year_j_m2 / kSecondsPerHour * e.photometry.luminous_efficacy_lm_per_w;

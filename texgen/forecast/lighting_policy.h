@@ -51,7 +51,9 @@ struct LightingPolicy {
     std::string name;
     fade::Illuminant lamp;   ///< the source's relative spectrum (daylight: D65)
     UvFilter filter;
-    double lux = 0.0;        ///< at the object
+    /// Illuminance of the lamp at the object without the filter, as a lighting plan states
+    /// it; the filter takes away its part (a 400 nm cut-off: under 1 % of the lux).
+    double lux = 0.0;
     double hours_per_day = 8.0;
     double days_per_year = 365.0;
     std::optional<DaylightSource> daylight;
@@ -66,7 +68,7 @@ inline constexpr double kSolarShareInBand = 0.575;
 struct PolicyExposure {
     fade::Illuminant spectrum;        ///< lamp × filter, over the lamp's band
     LampPhotometry photometry;        ///< of `spectrum`
-    double lux_hours_per_year = 0.0;
+    double lux_hours_per_year = 0.0;  ///< at the object, after the filter
     double dose_per_year_j_m2 = 0.0;  ///< radiant exposure of the band (the model's dose)
     double lit_hours_per_year = 0.0;  ///< hours with light (daylight: hours the file has light)
 };
@@ -74,6 +76,9 @@ struct PolicyExposure {
 /// Checks a policy (lux ≥ 0, 0 ≤ hours ≤ 24, 0 ≤ days ≤ 366, filter within 0-1, a source)
 /// and sums its year. Throws std::runtime_error naming the policy and the field.
 PolicyExposure policy_exposure(const LightingPolicy& policy);
+
+/// The share of the lamp's band energy `filter` lets through (1 without a filter).
+double filter_share(const fade::Illuminant& lamp, const UvFilter& filter);
 
 /// `lamp` seen through `filter`, tabulated at 1 nm over the lamp's band.
 fade::Illuminant filtered(const fade::Illuminant& lamp, const UvFilter& filter);
