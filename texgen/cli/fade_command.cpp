@@ -5,9 +5,11 @@
 #include "texgen/cli/fade_options.h"
 
 #include "core/cancel.h"
+#include "core/image_io.h"
 #include "core/limits.h"
 #include "core/output_transaction.h"
 #include "core/progress.h"
+#include "texgen/fade/depth_profiles.h"
 #include "texgen/fade/dose_table.h"
 #include "texgen/fade/fade_map.h"
 #include "texgen/fade/fade_material.h"
@@ -51,6 +53,11 @@ struct FadeOptions {
     bool both_sides = false;
     fs::path plot;
     std::string plot_title;
+    // The simulation itself over time (depth profiles)
+    std::optional<double> irradiance;
+    std::string time_step;
+    int steps = 0;
+    std::vector<std::string> profiles_at;
     int threads = 0;
     bool quiet = false;
 };
@@ -58,7 +65,7 @@ struct FadeOptions {
 fade::Illuminant choose_illuminant(const FadeOptions& o, const fade::ExposureMap& map)
 {
     if (!o.illuminant.empty())
-        return fade::illuminant_by_name(o.illuminant);
+        return fade::illuminant_from_text(o.illuminant);
     if (!map.illuminant_nm.empty())
         return fade::illuminant_from_table(map.illuminant.empty() ? "exposure map"
                                                                   : map.illuminant,
@@ -137,6 +144,55 @@ Doses gather_doses(const FadeOptions& o, double duration_s)
     return d;
 }
 
+// --time-step: the layered simulation under a constant irradiance, the colorants' fractions
+// over depth and the reflectance at chosen times (docs/fading.md "Depth profiles").
+void run_profiles(const FadeOptions& o, const fade::FadeMaterial& material)
+{
+    if (!o.exposures.empty() || o.dose)
+        throw std::runtime_error("--time-step runs the simulation under --irradiance: leave out "
+                                 "--exposure and --dose");
+    if (!o.irradiance)
+        throw std::runtime_error("--time-step needs --irradiance W/m^2 (in the illuminant's band)");
+    fade::ProfileRun run;
+    run.irradiance_w_m2 = *o.irradiance;
+    run.time_step_s = parse_duration(o.time_step, "--time-step");
+    run.steps = o.steps;
+    run.sublayers = o.sublayers;
+    run.both_sides = o.both_sides;
+    for (const std::string& t : o.profiles_at)
+        run.times_s.push_back(parse_duration(t, "--profiles-at"));
+    if (run.times_s.empty())
+        run.times_s.push_back(run.time_step_s * run.steps);
+    const fade::Illuminant illuminant = fade::illuminant_from_text(o.illuminant.empty() ? "D65" : o.illuminant);
+    const fade::WavelengthGrid grid = parse_grid(o.wavelengths);
+    reserve_output(o.out_dir / "profiles.csv");
+    const auto start = std::chrono::steady_clock::now();
+    const fade::DepthProfiles p = fade::run_depth_profiles(material, illuminant, grid, run);
+    write_file_atomic(o.out_dir / "profiles.csv", {fade::profiles_csv(p)}, "depth profiles");
+    write_file_atomic(o.out_dir / "reflectance.csv", {fade::reflectance_csv(p)}, "reflectance");
+    const std::string what = fmt::format("{} under {} at {:g} W/m2", material.name,
+                                         illuminant.name, run.irradiance_w_m2);
+    fade::write_profiles_plot(o.out_dir / "profiles.png", p,
+                              o.plot_title.empty() ? what + ": colorants over depth" : o.plot_title);
+    std::vector<fade::PlotCurve> curves;
+    for (size_t k = 0; k < p.snapshots.size(); ++k) {
+        fade::PlotCurve c;
+        c.label = fade::duration_label(p.snapshots[k].time_s);
+        c.x = p.wavelength_nm;
+        c.y = p.snapshots[k].reflectance;
+        c.rgb = fade::time_ramp_color(k, p.snapshots.size());
+        curves.push_back(std::move(c));
+    }
+    fade::PlotOptions po;
+    po.title = what;
+    fade::write_reflectance_plot(o.out_dir / "reflectance.png", curves, po);
+    if (!o.quiet)
+        std::fprintf(stderr, "fade: %d steps of %s, %zu profiles of %d sublayers -> %s in %.2f s\n",
+                     run.steps, fade::duration_label(run.time_step_s).c_str(), p.snapshots.size(),
+                     run.sublayers, o.out_dir.string().c_str(),
+                     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+}
+
 void run_fade(const FadeOptions& o)
 {
     std::optional<tbb::global_control> threads;
@@ -153,6 +209,8 @@ void run_fade(const FadeOptions& o)
                                  "<exe>/../share/patina/shaders/fade; pass --materials FILE");
     const fade::FadeLibrary library = fade::FadeLibrary::load_files(files);
     const fade::FadeMaterial material = library.material_with_rates(o.material, o.rates);
+    if (!o.time_step.empty())
+        return run_profiles(o, material);
     // Output locations, before any work.
     reserve_output(o.out_dir / fade::kFadeToml);
     if (!o.plot.empty())
@@ -275,8 +333,8 @@ void register_fade_command(CLI::App& app)
                     "a named set of fading rates from the material files (e.g. Table V's rows)");
     cmd->add_option("-o,--out", o->out_dir, "fade stack folder")->required();
     cmd->add_option("--illuminant", o->illuminant,
-                    "D65, A, F2, F11 or fluorescent (default: the exposure map's own spectrum, "
-                    "else D65)");
+                    "D65, A, E (= flat), F1..F12, LED-B1..LED-V2, or SPD.csv[:COLUMN] (default: the "
+                    "exposure map's own spectrum, else D65)");
     cmd->add_option("--duration", o->duration,
                     "exposure time (7d, 30y, 6h, seconds): required for a W/m^2 map; for a "
                     "J/m^2 map the map's period is repeated over it");
@@ -301,6 +359,16 @@ void register_fade_command(CLI::App& app)
                     "write the material's reflectance at 0, 1/28, 1/7 and all of the largest "
                     "dose (0h, 6h, 1d, 7d of a week) as a PNG");
     cmd->add_option("--plot-title", o->plot_title, "title of the plot");
+    cmd->add_option("--irradiance", o->irradiance,
+                    "with --time-step: constant irradiance in the illuminant's band, W/m^2");
+    cmd->add_option("--time-step", o->time_step,
+                    "run the simulation itself in steps of this length (1h, 1d, seconds) and "
+                    "write profiles.csv/png (fractions over depth) and reflectance.csv/png");
+    cmd->add_option("--steps", o->steps, "with --time-step: number of steps")
+        ->capture_default_str();
+    cmd->add_option("--profiles-at", o->profiles_at,
+                    "with --time-step: times to keep (6h,1d,7d; default: the end)")
+        ->delimiter(',');
     cmd->add_option("--threads", o->threads, "worker threads (0 = all cores)")
         ->capture_default_str();
     cmd->add_flag("--quiet", o->quiet, "no progress");

@@ -93,15 +93,6 @@ std::vector<forecast::LightingPolicy> gather_policies(const ForecastCliOptions& 
     return policies;
 }
 
-constexpr std::array<std::array<float, 3>, 8> kPalette = {{{0.12f, 0.35f, 0.75f},
-                                                           {0.85f, 0.33f, 0.10f},
-                                                           {0.20f, 0.60f, 0.25f},
-                                                           {0.55f, 0.25f, 0.65f},
-                                                           {0.80f, 0.65f, 0.05f},
-                                                           {0.05f, 0.60f, 0.65f},
-                                                           {0.60f, 0.35f, 0.20f},
-                                                           {0.90f, 0.40f, 0.60f}}};
-
 void write_outputs(const ForecastCliOptions& o, const fade::FadeMaterial& material,
                    const forecast::ColourMeter& meter,
                    const std::vector<forecast::PolicyForecast>& results)
@@ -166,7 +157,7 @@ void write_outputs(const ForecastCliOptions& o, const fade::FadeMaterial& materi
         c.label = results[k].policy + " (" + years_text(results[k].years_to_threshold) + " y)";
         c.x = results[k].years;
         c.y = results[k].delta_e;
-        c.rgb = kPalette[k % kPalette.size()];
+        c.rgb = fade::categorical_color(k);
         top = std::max(top, *std::max_element(c.y.begin(), c.y.end()));
         plot.push_back(std::move(c));
     }

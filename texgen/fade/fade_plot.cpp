@@ -92,6 +92,19 @@ std::array<float, 3> time_ramp_color(size_t index, size_t count)
     return {0.35f + 0.55f * t, 0.05f + 0.65f * t, 0.05f + 0.05f * t};
 }
 
+std::array<float, 3> categorical_color(size_t index)
+{
+    static constexpr std::array<std::array<float, 3>, 8> kPalette = {{{0.12f, 0.35f, 0.75f},
+                                                                     {0.85f, 0.33f, 0.10f},
+                                                                     {0.20f, 0.60f, 0.25f},
+                                                                     {0.55f, 0.25f, 0.65f},
+                                                                     {0.80f, 0.65f, 0.05f},
+                                                                     {0.05f, 0.60f, 0.65f},
+                                                                     {0.60f, 0.35f, 0.20f},
+                                                                     {0.90f, 0.40f, 0.60f}}};
+    return kPalette[index % kPalette.size()];
+}
+
 std::string duration_label(double seconds)
 {
     auto fmt_value = [](double v, const char* unit) {

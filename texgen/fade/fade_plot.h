@@ -34,6 +34,10 @@ struct PlotOptions {
 /// progression the paper's plots use for increasing exposure; a single curve is black.
 std::array<float, 3> time_ramp_color(size_t index, size_t count);
 
+/// One of eight distinct colours for the index-th of several things (policies, colorants),
+/// repeating after eight.
+std::array<float, 3> categorical_color(size_t index);
+
 /// Draw `curves` and write `path` (PNG, 8 bit) atomically. Throws std::runtime_error when
 /// there is nothing to draw (no curve, a curve with fewer than two points or mismatched
 /// x and y, non-finite values) or the file cannot be written. Text is left out, with one

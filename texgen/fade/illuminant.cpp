@@ -156,9 +156,25 @@ Illuminant illuminant_from_csv(const std::filesystem::path& file, const std::str
     } else {
         c = csv.column(column);
     }
-    Illuminant il = illuminant_from_table(csv.columns[c], csv.lambda_nm, csv.values[c]);
-    il.source = file.string();
-    return il;
+    try {
+        Illuminant il = illuminant_from_table(csv.columns[c], csv.lambda_nm, csv.values[c]);
+        il.source = file.string();
+        return il;
+    } catch (const std::runtime_error& e) {
+        throw std::runtime_error(file.string() + ": " + e.what());
+    }
+}
+
+Illuminant illuminant_from_text(const std::string& text)
+{
+    const size_t colon = text.rfind(':');
+    const std::filesystem::path file =
+        colon == std::string::npos ? std::filesystem::path(text)
+                                   : std::filesystem::path(text.substr(0, colon));
+    if (text.find('/') != std::string::npos || file.extension() == ".csv" ||
+        std::filesystem::exists(file))
+        return illuminant_from_csv(file, colon == std::string::npos ? "" : text.substr(colon + 1));
+    return illuminant_by_name(text);
 }
 
 Illuminant illuminant_from_table(const std::string& name, std::vector<double> nm,

@@ -45,6 +45,10 @@ std::string known_illuminant_names();
 /// the file (and line) for a broken file, a missing column or a negative value.
 Illuminant illuminant_from_csv(const std::filesystem::path& file, const std::string& column);
 
+/// An illuminant from text: a name illuminant_by_name knows, or "FILE[:COLUMN]" (a spectral
+/// CSV: a path with a '/', a name ending in .csv, or an existing file).
+Illuminant illuminant_from_text(const std::string& text);
+
 /// An illuminant from a table (e.g. an exposure map's own spectrum): knots in nm and
 /// relative values (zero outside the knots); the band is the table's range.
 Illuminant illuminant_from_table(const std::string& name, std::vector<double> nm,

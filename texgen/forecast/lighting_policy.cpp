@@ -158,15 +158,6 @@ UvFilter parse_uv_filter(const std::string& text, const std::string& what)
     return f;
 }
 
-fade::Illuminant parse_lamp(const std::string& text)
-{
-    const size_t colon = text.rfind(':');
-    const fs::path file = colon == std::string::npos ? fs::path(text) : fs::path(text.substr(0, colon));
-    if (text.find('/') != std::string::npos || file.extension() == ".csv" || fs::exists(file))
-        return fade::illuminant_from_csv(file, colon == std::string::npos ? "" : text.substr(colon + 1));
-    return fade::illuminant_by_name(text);
-}
-
 PolicyExposure policy_exposure(const LightingPolicy& p)
 {
     auto fail = [&](const std::string& what) {

@@ -87,7 +87,10 @@ fade::Illuminant filtered(const fade::Illuminant& lamp, const UvFilter& filter);
 /// of transmittance 0-1). Throws std::runtime_error naming `what` (the option or key).
 UvFilter parse_uv_filter(const std::string& text, const std::string& what);
 
-/// A lamp from text: a name illuminant_by_name knows, or "FILE[:COLUMN]" (a spectral CSV).
-fade::Illuminant parse_lamp(const std::string& text);
+/// A lamp from text: fade::illuminant_from_text.
+inline fade::Illuminant parse_lamp(const std::string& text)
+{
+    return fade::illuminant_from_text(text);
+}
 
 }  // namespace patina::texgen::forecast
