@@ -35,6 +35,7 @@ int main(int argc, char** argv)
     pt::register_flatten_command(app);
     pt::register_fade_command(app);
     pt::register_forecast_command(app);
+    pt::register_restore_command(app);
     pt::register_export_command(app);
     pt::register_view_command(app);
 

@@ -20,6 +20,7 @@ void register_stone_command(CLI::App& app);
 void register_flatten_command(CLI::App& app);
 void register_fade_command(CLI::App& app);
 void register_forecast_command(CLI::App& app);
+void register_restore_command(CLI::App& app);
 void register_export_command(CLI::App& app);
 void register_view_command(CLI::App& app);
 

@@ -27,12 +27,17 @@ ColourMeter::ColourMeter(const fade::WavelengthGrid& grid, const fade::Illuminan
                                  "' has no light within the solver's wavelengths");
 }
 
-Lab ColourMeter::lab(std::span<const double> reflectance) const
+Imath::V3d ColourMeter::xyz(std::span<const double> reflectance) const
 {
     Imath::V3d xyz(0.0);
     for (size_t i = 0; i < wx_.size(); ++i)
         xyz += Imath::V3d(wx_[i], wy_[i], wz_[i]) * reflectance[i];
-    return xyz_to_lab(xyz, white_);
+    return xyz / white_.y;
+}
+
+Lab ColourMeter::lab(std::span<const double> reflectance) const
+{
+    return lab_of_xyz(xyz(reflectance));
 }
 
 namespace {

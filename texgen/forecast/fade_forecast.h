@@ -27,6 +27,10 @@ class ColourMeter {
 public:
     ColourMeter(const fade::WavelengthGrid& grid, const fade::Illuminant& view);
     Lab lab(std::span<const double> reflectance) const;
+    /// CIE XYZ of a reflectance, the perfect white diffuser at Y = 1.
+    Imath::V3d xyz(std::span<const double> reflectance) const;
+    /// CIELAB of an XYZ on that scale.
+    Lab lab_of_xyz(const Imath::V3d& xyz) const { return xyz_to_lab(xyz, white_ / white_.y); }
     const std::string& view_name() const { return view_; }
 
 private:
