@@ -50,6 +50,7 @@ struct RestoreOptions {
     double hours_per_day = 8.0, days_per_year = 365.0;
     std::optional<double> years;
     double max_amount = 2.0;
+    std::vector<std::string> colorants;
     int levels = 0;
     int sublayers = 50;
     double max_amplification = 1.5;
@@ -111,15 +112,27 @@ History gather_history(const RestoreOptions& o, int width, int height)
         h.description = fmt::format("{:.4g} J/m^2 of {}", h.uniform, h.light.name);
         return h;
     }
-    const fade::ExposureMap map = fade::read_exposure_map(o.dose_map, o.channel.empty() ? "dose" : o.channel);
+    // A fade stack's dose.exr (channel `dose`, J/m^2) or an exposure map (`exposure`)
+    const ImageData map = read_image(o.dose_map);
+    int channel = map.channel(o.channel.empty() ? "dose" : o.channel);
+    if (channel < 0 && o.channel.empty())
+        channel = map.channel("exposure");
+    if (channel < 0)
+        throw std::runtime_error(fmt::format("--dose-map '{}': no channel '{}' (a fade stack's "
+                                             "dose.exr has 'dose', an exposure map 'exposure')",
+                                             o.dose_map.string(), o.channel.empty() ? "dose" : o.channel));
     if (map.width != width || map.height != height)
         throw std::runtime_error(fmt::format("--dose-map '{}' is {}x{}, the image {}x{}: they must "
                                              "match texel for texel",
                                              o.dose_map.string(), map.width, map.height, width, height));
-    fade::scan_doses(map, o.scale);  // names a NaN or negative texel
-    h.doses.resize(map.values.size());
-    for (size_t i = 0; i < map.values.size(); ++i)
-        h.doses[i] = static_cast<float>(map.values[i] * o.scale);
+    h.doses.resize(static_cast<size_t>(width) * height);
+    for (size_t i = 0; i < h.doses.size(); ++i) {
+        const double d = map.pixels[i * map.channels + channel] * o.scale;
+        if (!(d >= 0.0) || !std::isfinite(d))
+            throw std::runtime_error(fmt::format("--dose-map '{}': texel ({}, {}) has dose {}",
+                                                 o.dose_map.string(), i % width, i / width, d));
+        h.doses[i] = static_cast<float>(d);
+    }
     h.description = fmt::format("the doses of {} ({})", o.dose_map.string(), h.light.name);
     return h;
 }
@@ -169,6 +182,7 @@ void run_restore(const RestoreOptions& o)
     restore::InversionOptions io;
     io.max_amount = o.max_amount;
     io.levels = o.levels;
+    io.colorants = o.colorants;
     io.sublayers = o.sublayers;
     io.max_amplification = o.max_amplification;
     double max_dose = history.uniform;
@@ -276,6 +290,10 @@ void register_restore_command(CLI::App& app)
     cmd->add_option("--years", o->years, "years shown under the policy");
     cmd->add_option("--max-amount", o->max_amount,
                     "largest original amount searched, times the material's")->capture_default_str();
+    cmd->add_option("--colorants", o->colorants,
+                    "the colorants whose original amounts to solve for (default: every fading "
+                    "one, at most three); the others keep the material's")
+        ->delimiter(',');
     cmd->add_option("--levels", o->levels, "model grid levels per colorant (0: by dimension)")
         ->capture_default_str();
     cmd->add_option("--sublayers", o->sublayers, "sublayers of the model's solver")->capture_default_str();

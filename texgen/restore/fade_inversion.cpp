@@ -121,17 +121,25 @@ FadeInversion::FadeInversion(const fade::FadeMaterial& material, const fade::Ill
         for (double v : c.absorption_per_m.value)
             absorbs |= v > 0.0;
         const bool fades = c.fading.rate_m3_per_j > 0.0 || c.breakdown.has_value();
-        if (absorbs && fades && material.initial_fractions[j] > 0.0) {
+        const bool named = options.colorants.empty() ||
+                           std::find(options.colorants.begin(), options.colorants.end(), c.name) !=
+                               options.colorants.end();
+        if (absorbs && fades && material.initial_fractions[j] > 0.0 && named) {
             free_.push_back(j);
             free_names_.push_back(c.name);
         }
     }
+    for (const std::string& name : options.colorants)
+        if (std::find(free_names_.begin(), free_names_.end(), name) == free_names_.end())
+            throw std::runtime_error("restore: '" + name + "' is not a fading colorant '" +
+                                     material.name + "' starts with");
     if (free_.empty())
         throw std::runtime_error("restore: no colorant of '" + material.name + "' fades: there is "
                                  "nothing to restore");
     if (free_.size() > 3)
         throw std::runtime_error(fmt::format(
-            "restore: {} colorants of '{}' fade; one colour fixes at most three original amounts",
+            "restore: {} colorants of '{}' fade; one colour fixes at most three original amounts "
+            "(name the ones to solve for)",
             free_.size(), material.name));
     if (!(options.max_amount > 0.0) || !(options.max_dose_j_m2 > 0.0) || options.entries < 2)
         throw std::runtime_error("restore: the amounts' and the doses' ranges must be > 0");

@@ -40,6 +40,9 @@ struct InversionOptions {
     double max_amplification = 1.5; ///< restored colour change per observed change, for `unique`
     double max_residual = 1.0;    ///< ΔE00 between the fit and the observed colour
     double prior_weight = 0.02;   ///< pull towards the material's amounts (CIELAB per unit)
+    /// The colorants to solve for (empty: every fading colorant the material starts with);
+    /// the others keep the material's amounts.
+    std::vector<std::string> colorants;
 };
 
 struct Inversion {
@@ -58,7 +61,8 @@ class FadeInversion {
 public:
     /// Builds the node tables (in parallel). Throws std::runtime_error naming the material
     /// when no colorant fades or more than three do (an RGB colour fixes at most three
-    /// amounts), or for options out of range.
+    /// amounts; name up to three in options.colorants), when a named colorant is not one
+    /// of its fading colorants, or for options out of range.
     FadeInversion(const fade::FadeMaterial& material, const fade::Illuminant& light,
                   const fade::WavelengthGrid& grid, const forecast::ColourMeter& meter,
                   const InversionOptions& options);
