@@ -12,6 +12,8 @@
 #include "texgen/fade/fade_stack.h"
 #include "texgen/fade/illuminant.h"
 
+#include "synthetic_exposure.h"
+
 #include <tbb/global_control.h>
 
 #include <algorithm>
@@ -31,26 +33,6 @@ namespace {
 double seconds_since(std::chrono::steady_clock::time_point t)
 {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-}
-
-// An exposure map like a window's light on a floor: a smooth falloff with the shadows of
-// two boxes, up to ~3e7 J/m^2 (figure 1's dose is 2.789e7).
-ExposureMap synthetic_map(int n)
-{
-    ExposureMap map;
-    map.width = map.height = n;
-    map.channel = "exposure";
-    map.units = "J/m^2";
-    map.values.resize(static_cast<size_t>(n) * n);
-    for (int y = 0; y < n; ++y)
-        for (int x = 0; x < n; ++x) {
-            const double u = (x + 0.5) / n, v = (y + 0.5) / n;
-            double e = 3e7 * std::exp(-2.0 * (u * u + 0.5 * v * v));
-            if ((u > 0.2 && u < 0.45 && v > 0.3 && v < 0.6) || (u > 0.6 && u < 0.8 && v > 0.1))
-                e *= 0.05;
-            map.values[static_cast<size_t>(y) * n + x] = static_cast<float>(e);
-        }
-    return map;
 }
 
 }  // namespace
@@ -73,7 +55,7 @@ int main(int argc, char** argv)
     const FadeMaterial& material = library.material("newsprint");
     const Illuminant d65 = illuminant_by_name("D65");
     const WavelengthGrid grid = WavelengthGrid::uniform(330.0, 700.0, 1.0);
-    const ExposureMap map = synthetic_map(size);
+    const ExposureMap map = synthetic_exposure_map(size, 3e7);
     const fs::path out = fs::temp_directory_path() / "patina_bench_fade_map";
 
     double best = 1e30;

@@ -63,11 +63,12 @@ expect_success("${PATINA_TEXGEN}" forecast --material congo_red --exposure "${WO
   --scale 0.58 --after 0.01 --wavelengths 300:830:10 -o "${WORK_DIR}/texels")
 expect_in("${LAST_STDERR}" "16x16 maps of congo_red")
 file(READ "${WORK_DIR}/texels/stack.toml" stack)
-expect_in("${stack}" "[maps.years_to_threshold]")
-expect_in("${stack}" "[maps.delta_e_after]")
+expect_in("${stack}" "[maps.fade_forecast]")
+expect_in("${stack}" "channels = [ 'years_to_threshold', 'delta_e_after', 'coverage.A' ]")
 expect_in("${stack}" "baker = 'forecast'")
-execute_process(COMMAND iinfo -v "${WORK_DIR}/texels/years_to_threshold.exr" OUTPUT_VARIABLE info)
+execute_process(COMMAND iinfo -v "${WORK_DIR}/texels/fade_forecast.exr" OUTPUT_VARIABLE info)
 expect_in("${info}" "years_to_threshold")
+expect_in("${info}" "delta_e_after")
 expect_in("${info}" "coverage.A")
 
 # The simulation itself: fractions over depth at 6 h and a day

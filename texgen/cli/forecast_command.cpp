@@ -217,44 +217,15 @@ void write_maps(const ForecastCliOptions& o, const fade::FadeMaterial& material,
         forecast::make_years_maps(map, per_year_factor, threshold, curve, o.after_years);
     throw_if_cancelled();
 
-    // Two texel maps with the exposure map's coverage, and their manifest entries
-    TexelGrid tile;
-    tile.width = map.width;
-    tile.height = map.height;
-    const size_t n = static_cast<size_t>(map.width) * map.height;
-    std::vector<float> pixels(2 * n);
-    auto write_map = [&](const std::string& name, const std::vector<float>& values,
-                         const std::string& units, const std::string& description) {
-        for (size_t i = 0; i < n; ++i) {
-            pixels[2 * i] = values[i];
-            pixels[2 * i + 1] = map.coverage[i];
-        }
-        MapDescription d;
-        d.name = name;
-        d.channels = {name};
-        d.units = units;
-        d.description = description;
-        d.baker = "forecast";
-        d.parameters = {{"material", material.name},
-                        {"spectrum", spectrum.name},
-                        {"view", meter.view_name()},
-                        {"threshold_de2000", fmt::format("{}", o.threshold)},
-                        {"after_years", fmt::format("{}", o.after_years)},
-                        {"exposure", fs::absolute(o.exposure).string()},
-                        {"scale", fmt::format("{}", o.scale)}};
-        TextureOptions to;
-        to.format = OIIO::TypeDesc::FLOAT;
-        to.wrap = "clamp";
-        const fs::path file = o.out_dir / (name + ".exr");
-        make_texture_atomic(file, pixels.data(), map.width, map.height, 2,
-                            {name, formats::kCoverageChannel}, to);
-        record_in_manifest(o.out_dir, d, {file}, {tile});
-    };
-    write_map("years_to_threshold", maps.years, "years",
-              fmt::format("years on display until dE2000 {} (capped at {:g})", o.threshold,
-                          forecast::kNeverYears));
-    write_map("delta_e_after", maps.delta_e, "1",
-              fmt::format("dE2000 after {} years on display", o.after_years));
+    const Metadata parameters = {{"material", material.name},
+                                 {"spectrum", spectrum.name},
+                                 {"view", meter.view_name()},
+                                 {"threshold_de2000", fmt::format("{}", o.threshold)},
+                                 {"after_years", fmt::format("{}", o.after_years)},
+                                 {"exposure", fs::absolute(o.exposure).string()},
+                                 {"scale", fmt::format("{}", o.scale)}};
+    forecast::write_years_maps(o.out_dir, maps, map.coverage, parameters, o.threshold,
+                               o.after_years);
     if (!o.quiet)
         std::fprintf(stderr,
                      "forecast: %dx%d maps of %s under %s: years to dE2000 %g from %s (first) to "
@@ -303,7 +274,7 @@ void run_forecast(const ForecastCliOptions& o)
         if (!policies.empty())
             reserve_output(o.out_dir / "policies.csv");
         if (!o.exposure.empty())
-            reserve_output(o.out_dir / "years_to_threshold.exr");
+            reserve_output(o.out_dir / (std::string(forecast::kForecastMap) + ".exr"));
     }
     forecast::ForecastOptions fo;
     fo.threshold_de2000 = o.threshold;
@@ -360,8 +331,9 @@ void register_forecast_command(CLI::App& app)
     cmd->add_option("-o,--out", o->out_dir,
                     "folder for policies.csv, forecast.csv, forecast.png and the maps");
     cmd->add_option("--exposure", o->exposure,
-                    "exposure map of the object as shown: write years_to_threshold.exr and "
-                    "delta_e_after.exr (its period repeated over a year)");
+                    "exposure map of the object as shown: write fade_forecast.exr, years to the "
+                    "threshold and dE2000 after --after years per texel (its period repeated "
+                    "over a year)");
     cmd->add_option("--channel", o->channel, "channel of the exposure map");
     cmd->add_option("--scale", o->scale, "band dose per unit of the exposure map")
         ->capture_default_str();

@@ -1,5 +1,8 @@
 #include "texgen/forecast/years_map.h"
 
+#include "formats/texture_stack.h"
+#include "texgen/stack/map_output.h"
+
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
 
@@ -21,6 +24,9 @@ YearsMaps make_years_maps(const fade::ExposureMap& map, double dose_per_year_fac
     out.years.resize(count);
     out.delta_e.resize(count);
     std::atomic<size_t> bad{count};  // the first bad texel (lowest index wins)
+    // Per row: the least years and the most ΔE00 over covered texels
+    std::vector<double> row_min(static_cast<size_t>(map.height), kNeverYears),
+        row_max(static_cast<size_t>(map.height), 0.0);
     tbb::parallel_for(tbb::blocked_range<int>(0, map.height, 16), [&](const tbb::blocked_range<int>& rows) {
         for (int y = rows.begin(); y < rows.end(); ++y) {
             const size_t row = static_cast<size_t>(y) * map.width;
@@ -38,6 +44,10 @@ YearsMaps make_years_maps(const fade::ExposureMap& map, double dose_per_year_fac
                 const double years = per_year > 0.0 ? threshold_dose_j_m2 / per_year : kNeverYears;
                 out.years[i] = static_cast<float>(std::min(years, kNeverYears));
                 out.delta_e[i] = static_cast<float>(curve(per_year * after_years));
+                if (map.coverage[i] > 0.0f) {
+                    row_min[y] = std::min(row_min[y], static_cast<double>(out.years[i]));
+                    row_max[y] = std::max(row_max[y], static_cast<double>(out.delta_e[i]));
+                }
             }
         }
     });
@@ -48,20 +58,59 @@ YearsMaps make_years_maps(const fade::ExposureMap& map, double dose_per_year_fac
                                              map.file.string(), i % map.width, i / map.width,
                                              map.values[i]));
     }
+    // Summary: the first texel to fade and the median, over covered texels (the median of
+    // at most 2^20 of them, evenly strided: exact for maps up to 1024², within a texel's
+    // spread beyond)
+    const size_t stride = std::max<size_t>(1, count >> 20);
     std::vector<float> covered;
-    for (size_t i = 0; i < count; ++i) {
-        if (map.coverage[i] > 0.0f) {
+    covered.reserve(count / stride + 1);
+    for (size_t i = 0; i < count; i += stride)
+        if (map.coverage[i] > 0.0f)
             covered.push_back(out.years[i]);
-            out.max_delta_e = std::max(out.max_delta_e, static_cast<double>(out.delta_e[i]));
-        }
-    }
+    const double min_years = *std::min_element(row_min.begin(), row_min.end());
+    out.max_delta_e = *std::max_element(row_max.begin(), row_max.end());
     if (!covered.empty()) {
         const auto mid = covered.begin() + static_cast<std::ptrdiff_t>(covered.size() / 2);
         std::nth_element(covered.begin(), mid, covered.end());
         out.median_years = *mid;
-        out.min_years = *std::min_element(covered.begin(), covered.end());
+        out.min_years = min_years;
     }
     return out;
+}
+
+void write_years_maps(const std::filesystem::path& dir, const YearsMaps& maps,
+                      const std::vector<float>& coverage, const Metadata& parameters,
+                      double threshold_de2000, double after_years)
+{
+    TexelGrid tile;
+    tile.width = maps.width;
+    tile.height = maps.height;
+    const size_t n = static_cast<size_t>(maps.width) * maps.height;
+    std::vector<float> pixels(3 * n);
+    tbb::parallel_for(size_t(0), n, [&](size_t i) {
+        pixels[3 * i] = maps.years[i];
+        pixels[3 * i + 1] = maps.delta_e[i];
+        pixels[3 * i + 2] = coverage[i];
+    });
+    MapDescription d;
+    d.name = kForecastMap;
+    d.channels = {"years_to_threshold", "delta_e_after"};
+    d.units = "years, 1";
+    d.description = fmt::format("years on display until dE2000 {} (capped at {:g}); dE2000 after "
+                                "{} years on display",
+                                threshold_de2000, kNeverYears, after_years);
+    d.baker = "forecast";
+    d.parameters = parameters;
+    TextureOptions to;
+    to.format = OIIO::TypeDesc::FLOAT;
+    to.wrap = "clamp";
+    // Uncompressed, as the fade stack's dose.exr: zip took most of a 4096² run
+    to.compression = "none";
+    to.metadata = parameters;
+    const std::filesystem::path file = dir / (std::string(kForecastMap) + ".exr");
+    make_texture_atomic(file, pixels.data(), maps.width, maps.height, 3,
+                        {"years_to_threshold", "delta_e_after", formats::kCoverageChannel}, to);
+    record_in_manifest(dir, d, {file}, {tile});
 }
 
 }  // namespace patina::texgen::forecast

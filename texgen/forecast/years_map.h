@@ -7,6 +7,7 @@
 // spectrum, fade_forecast.h), and ΔE00 against dose is one DeltaECurve.
 #pragma once
 
+#include "core/image_io.h"
 #include "texgen/fade/fade_map.h"
 #include "texgen/forecast/fade_forecast.h"
 
@@ -33,5 +34,16 @@ struct YearsMaps {
 YearsMaps make_years_maps(const fade::ExposureMap& map, double dose_per_year_factor,
                           double threshold_dose_j_m2, const DeltaECurve& curve,
                           double after_years);
+
+/// The texture-stack map of a forecast: `fade_forecast.exr`.
+inline constexpr const char* kForecastMap = "fade_forecast";
+
+/// Write `fade_forecast.exr` into `dir` (tiled, mip-mapped, float; channels
+/// years_to_threshold, delta_e_after, then the exposure map's `coverage` as its coverage
+/// channel) and record it in the folder's stack.toml (a texture-stack map, baker "forecast",
+/// `parameters` in its header).
+void write_years_maps(const std::filesystem::path& dir, const YearsMaps& maps,
+                      const std::vector<float>& coverage, const Metadata& parameters,
+                      double threshold_de2000, double after_years);
 
 }  // namespace patina::texgen::forecast
