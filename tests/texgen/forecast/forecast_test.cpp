@@ -275,3 +275,39 @@ TEST(YearsMap, EachTexelIsTheThresholdDoseOverItsDosePerYear)
         EXPECT_NE(std::string(e.what()).find("(1, 1)"), std::string::npos) << e.what();
     }
 }
+
+TEST(LightingPolicy, DaylightOnANorthWindowIsHalfTheSkyAndGround)
+{
+    // Two rows of an EPW (Chicago O'Hare TMY3, 20 June, 11-12 h and 12-13 h solar noon in the
+    // south): a north-facing window sees no sun, half the isotropic sky's diffuse horizontal
+    // irradiance and half the ground's reflection of the global one; 0.575 of it in the
+    // 300-830 nm band (kSolarShareInBand); two hours scaled to a year (8760 h).
+    const fs::path dir = temp_dir("daylight");
+    const std::string tail = "0,0,0,0,200,5.0,5,3,24.1,77777,9,999999999,379,0.3670,0,88,999.000,999.0,99.0";
+    const std::string flags = "?9?9?9?9E0?9?9?9?9*9*9*9*9*9";
+    std::ofstream(dir / "two.epw")
+        << "LOCATION,Chicago Ohare Intl Ap,IL,USA,TMY3,725300,41.98,-87.92,-6.0,201.0\n"
+           "DESIGN CONDITIONS,0\nTYPICAL/EXTREME PERIODS,0\nGROUND TEMPERATURES,0\n"
+           "HOLIDAYS/DAYLIGHT SAVINGS,No,0,0,0\nCOMMENTS 1,test\nCOMMENTS 2,\n"
+           "DATA PERIODS,1,1,Data,Sunday, 1/ 1,12/31\n"
+        << "1979,6,20,12,0," << flags << ",30.0,21.1,59,98700,1253,1323,425,858,520,367," << tail << "\n"
+        << "1979,6,20,13,0," << flags << ",31.1,21.7,57,98500,1240,1323,428,853,551,335," << tail << "\n";
+    LightingPolicy p;
+    p.name = "north";
+    p.lamp = fade::illuminant_by_name("D65");
+    p.daylight = DaylightSource{dir / "two.epw", 0.0, 1.0, 0.2};
+    const PolicyExposure north = policy_exposure(p);
+    const double wh = 0.5 * (367.0 + 335.0) + 0.5 * 0.2 * (858.0 + 853.0);
+    EXPECT_NEAR(north.dose_per_year_j_m2, wh * 3600.0 * kSolarShareInBand * 8760.0 / 2.0,
+                1e-9 * north.dose_per_year_j_m2);
+    // A south window gets the sun besides; window glass and a share of it cut the dose
+    p.daylight->facing_azimuth_deg = 180.0;
+    const PolicyExposure south = policy_exposure(p);
+    EXPECT_GT(south.dose_per_year_j_m2, north.dose_per_year_j_m2 + 0.2 * wh * 3600.0 * 4380.0);
+    p.filter = window_glass();
+    p.daylight->share = 0.1;
+    const PolicyExposure glazed = policy_exposure(p);
+    EXPECT_LT(glazed.dose_per_year_j_m2, 0.1 * south.dose_per_year_j_m2);
+    EXPECT_GT(glazed.dose_per_year_j_m2, 0.08 * south.dose_per_year_j_m2);
+    EXPECT_LT(glazed.photometry.uv_uw_per_lm, south.photometry.uv_uw_per_lm);
+}
