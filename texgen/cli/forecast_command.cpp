@@ -52,6 +52,7 @@ struct ForecastCliOptions {
     std::string channel;
     double scale = 1.0;
     double after_years = 0.0;
+    bool preview = false;
     int threads = 0;
     bool quiet = false;
 };
@@ -71,7 +72,8 @@ std::vector<forecast::LightingPolicy> gather_policies(const ForecastCliOptions& 
     std::vector<forecast::LightingPolicy> policies;
     if (!o.policies.empty())
         policies = forecast::read_policy_file(o.policies);
-    if (o.lux || !o.lamp.empty()) {
+    // --lamp alone with --exposure names the map's light, not a policy
+    if (o.lux || (!o.lamp.empty() && o.exposure.empty())) {
         if (!o.lux)
             throw std::runtime_error("--lamp needs --lux (illuminance at the object)");
         if (!(*o.lux >= 0.0) || !std::isfinite(*o.lux))
@@ -226,6 +228,8 @@ void write_maps(const ForecastCliOptions& o, const fade::FadeMaterial& material,
                                  {"scale", fmt::format("{}", o.scale)}};
     forecast::write_years_maps(o.out_dir, maps, map.coverage, parameters, o.threshold,
                                o.after_years);
+    if (o.preview)
+        forecast::write_years_previews(o.out_dir, maps, map.coverage, o.threshold);
     if (!o.quiet)
         std::fprintf(stderr,
                      "forecast: %dx%d maps of %s under %s: years to dE2000 %g from %s (first) to "
@@ -338,6 +342,9 @@ void register_forecast_command(CLI::App& app)
     cmd->add_option("--scale", o->scale, "band dose per unit of the exposure map")
         ->capture_default_str();
     cmd->add_option("--after", o->after_years, "years of the dE2000 map");
+    cmd->add_flag("--preview", o->preview,
+                  "with --exposure: fade_forecast_years.png and fade_forecast_delta_e.png, the "
+                  "maps in false colour (bright: fades first)");
     cmd->add_option("--threads", o->threads, "worker threads (0 = all cores)")->capture_default_str();
     cmd->add_flag("--quiet", o->quiet, "no progress");
     cmd->callback([o] { run_forecast(*o); });

@@ -3,6 +3,7 @@
 #include "formats/texture_stack.h"
 #include "texgen/stack/map_output.h"
 
+#include <OpenImageIO/imagebufalgo.h>
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
 
@@ -111,6 +112,43 @@ void write_years_maps(const std::filesystem::path& dir, const YearsMaps& maps,
     make_texture_atomic(file, pixels.data(), maps.width, maps.height, 3,
                         {"years_to_threshold", "delta_e_after", formats::kCoverageChannel}, to);
     record_in_manifest(dir, d, {file}, {tile});
+}
+
+void write_years_previews(const std::filesystem::path& dir, const YearsMaps& maps,
+                          const std::vector<float>& coverage, double threshold_de2000)
+{
+    const size_t n = static_cast<size_t>(maps.width) * maps.height;
+    auto write = [&](const std::string& name, auto scaled) {
+        OIIO::ImageBuf value(OIIO::ImageSpec(maps.width, maps.height, 1, OIIO::TypeDesc::FLOAT));
+        float* v = static_cast<float*>(value.localpixels());
+        for (size_t i = 0; i < n; ++i)
+            v[i] = std::clamp(static_cast<float>(scaled(i)), 0.0f, 1.0f);
+        const OIIO::ImageBuf colour = OIIO::ImageBufAlgo::color_map(value, 0, "inferno");
+        std::vector<float> rgb(3 * n);
+        colour.get_pixels(OIIO::ROI(0, maps.width, 0, maps.height, 0, 1, 0, 3),
+                          OIIO::TypeDesc::FLOAT, rgb.data());
+        for (size_t i = 0; i < n; ++i)
+            if (!(coverage[i] > 0.0f))
+                rgb[3 * i] = rgb[3 * i + 1] = rgb[3 * i + 2] = 0.5f;
+        write_image_atomic(dir / name, rgb.data(), maps.width, maps.height, 3, {},
+                           OIIO::TypeDesc::UINT8);
+    };
+    // Years on a log scale over the map's own range (covered texels), at least a decade
+    double lo = kNeverYears, hi = 0.0, top = 3.0 * threshold_de2000;
+    for (size_t i = 0; i < n; ++i)
+        if (coverage[i] > 0.0f) {
+            lo = std::min(lo, static_cast<double>(maps.years[i]));
+            hi = std::max(hi, static_cast<double>(maps.years[i]));
+            top = std::max(top, static_cast<double>(maps.delta_e[i]));
+        }
+    const double log_hi = std::log10(std::max(hi, 1e-9));
+    const double log_lo = std::min(std::log10(std::max(lo, 1e-9)), log_hi - 1.0);
+    write("fade_forecast_years.png", [&](size_t i) {
+        const double y = std::log10(std::max(static_cast<double>(maps.years[i]), 1e-9));
+        return (log_hi - y) / (log_hi - log_lo);
+    });
+    write("fade_forecast_delta_e.png",
+          [&](size_t i) { return maps.delta_e[i] / top; });
 }
 
 }  // namespace patina::texgen::forecast
