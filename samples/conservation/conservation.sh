@@ -12,7 +12,9 @@
 #   years.csv           years to a just-noticeable fade (dE2000 1), every material x policy
 #   print/              a framed print on the wall facing a south window: the exposure map
 #                       of a (weekly-sampled) Chicago year, fade_forecast.exr (years to
-#                       dE2000 1 and dE2000 after 5 years per texel) and its pictures
+#                       dE2000 1 and dE2000 after 5 years per texel), its pictures and
+#                       print_forecast.glb (both maps as glTF variants; in the browser:
+#                       out/viewer/print_forecast/index.html)
 #   restored/           the newspaper of samples/fading yellowed by two June days, restored
 #                       from its faded texture: restored.png, confidence.png, and
 #                       side_by_side.png (faded | restored | confidence)
@@ -122,6 +124,10 @@ add above_window -0.8 0.8 2.5 2.7 0.5 0.6
 "$texgen" forecast --material cyan --rates watercolour \
     --exposure "$pr/exposure.exr" --scale 0.58 --lamp D65 \
     --uv-filter "$root/data/filters/window_glass.csv" --after 5 --preview -o "$pr"
+
+# The forecast on the print, as glTF (a variant per map) and in the browser viewer
+"$texgen" export "$pr" -o "$pr/print_forecast.glb" --quiet
+"$texgen" view "$pr/print_forecast.glb" -o "$root/out/viewer/print_forecast"
 
 # ---- The newspaper restored --------------------------------------------------------------
 # A 0.5 m page folded in quarters for a June day, then in half for the next (as

@@ -60,7 +60,7 @@ expect_success("${PATINA_TEXGEN}" exposure --mesh "${WORK_DIR}/plane.obj" -o "${
   --resolution 16 --latitude 43.5 --longitude -80.5 --timezone -5 --start 2026-06-21
   --end 2026-06-22 --sun-bins-deg 5 --sky-samples 16 --quiet)
 expect_success("${PATINA_TEXGEN}" forecast --material congo_red --exposure "${WORK_DIR}/maps/exposure.exr"
-  --scale 0.58 --after 0.01 --wavelengths 300:830:10 -o "${WORK_DIR}/texels")
+  --scale 0.58 --after 0.01 --wavelengths 300:830:10 --preview -o "${WORK_DIR}/texels")
 expect_in("${LAST_STDERR}" "16x16 maps of congo_red")
 file(READ "${WORK_DIR}/texels/stack.toml" stack)
 expect_in("${stack}" "[maps.fade_forecast]")
@@ -70,6 +70,19 @@ execute_process(COMMAND iinfo -v "${WORK_DIR}/texels/fade_forecast.exr" OUTPUT_V
 expect_in("${info}" "years_to_threshold")
 expect_in("${info}" "delta_e_after")
 expect_in("${info}" "coverage.A")
+foreach(f fade_forecast_years.png fade_forecast_delta_e.png)
+  if(NOT EXISTS "${WORK_DIR}/texels/${f}")
+    message(FATAL_ERROR "forecast --preview wrote no ${f}")
+  endif()
+endforeach()
+# The forecast on the plane it was baked on, as glTF: two variants, checked by the Khronos
+# validator
+include(${CMAKE_CURRENT_LIST_DIR}/lib/gltf_validator.cmake)
+expect_success("${PATINA_TEXGEN}" export "${WORK_DIR}/texels" -o "${WORK_DIR}/texels.glb")
+expect_in("${LAST_STDERR}" "a forecast of 16x16")
+expect_valid_gltf("${WORK_DIR}/texels.glb")
+expect_in("${LAST_VALIDATOR_REPORT}" "KHR_materials_variants")
+expect_in("${LAST_VALIDATOR_REPORT}" "materials: 2")
 
 # The simulation itself: fractions over depth at 6 h and a day
 expect_success("${PATINA_TEXGEN}" fade --material newsprint --illuminant flat --irradiance 1

@@ -4,6 +4,7 @@
 
 #include "core/color_management.h"
 #include "texgen/export/export_fade.h"
+#include "texgen/export/export_forecast.h"
 #include "texgen/export/export_flattened.h"
 #include "texgen/export/export_patina.h"
 #include "texgen/export/vdb_export.h"
@@ -57,6 +58,16 @@ void run_export(const ExportCommandOptions& o)
             "export: {} inputs; several inputs are a series of fade stacks, and '{}' is not "
             "one (a patina series is its folder with series.toml)", o.inputs.size(),
             input.string()));
+    if (is_forecast_folder(input)) {
+        const ExportResult r = export_forecast(input, o.output, o.exporting, colors);
+        if (!o.quiet)
+            std::fprintf(stderr, "export: %s, a forecast of %dx%d, %zu texture(s) -> %s (%.2f s)\n",
+                         input.string().c_str(), r.width, r.height, r.textures,
+                         o.output.string().c_str(),
+                         std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
+                             .count());
+        return;
+    }
     if (is_flattened_stack(input)) {
         const ExportResult r = export_flattened(input, o.output, o.exporting, colors);
         if (!o.quiet)

@@ -17,6 +17,31 @@
 
 namespace patina::texgen {
 
+FlattenedStack rough_dielectric(int width, int height, std::vector<float> base,
+                                const std::string& description)
+{
+    FlattenedStack flat;
+    flat.width = width;
+    flat.height = height;
+    flat.udims = {1001};
+    const size_t texels = static_cast<size_t>(width) * height;
+    auto constant = [&](std::initializer_list<float> value) {
+        std::vector<float> v(value.size() * texels);
+        for (size_t i = 0; i < texels; ++i)
+            std::copy(value.begin(), value.end(), v.begin() + i * value.size());
+        return std::vector<std::vector<float>>{std::move(v)};
+    };
+    flat.maps = {
+        {"gltf_base_color", {"R", "G", "B"}, "1", description, true, {std::move(base)}},
+        // R occlusion 1, G roughness 1, B metallic 0
+        {"gltf_metallic_roughness", {"R", "G", "B"}, "1", "", false, constant({1, 1, 0})},
+        {"gltf_clearcoat", {"R", "G", "B"}, "1", "", false, constant({0, 0, 0})},
+        {"normal", {"R", "G", "B"}, "1", "", false, constant({0.5f, 0.5f, 1})},
+        {"height", {"height"}, "um", "", false, constant({0})}};
+    return flat;
+}
+
+
 namespace fs = std::filesystem;
 using nlohmann::json;
 

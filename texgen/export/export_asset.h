@@ -38,6 +38,12 @@ struct ExportGeometry {
     double width_m = 0.0, height_m = 0.0;
 };
 
+/// The maps of a rough dielectric with the base colour `base` (linear Rec.709, 3 floats per
+/// texel, one UDIM tile 1001): roughness 1, metallic 0, no coat, a flat normal, no height.
+/// What a Lambertian surface (spectral_km) or a false-colour picture exports as.
+FlattenedStack rough_dielectric(int width, int height, std::vector<float> base,
+                                const std::string& description);
+
 /// Fills in `options`' defaults (bits) and refuses an unknown preset, bits the preset does
 /// not take, or an output whose extension does not fit it, naming the option.
 void check_export_options(ExportOptions& options, const std::filesystem::path& output);

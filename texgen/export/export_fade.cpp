@@ -104,10 +104,6 @@ namespace {
             throw std::runtime_error(fmt::format("{}: {}x{} texels, not {}x{}",
                                                  dose_file.string(), dose.width, dose.height,
                                                  width, height));
-        FlattenedStack flat;
-        flat.width = width;
-        flat.height = height;
-        flat.udims = {1001};
         const size_t texels = static_cast<size_t>(width) * height;
         std::vector<float> base(3 * texels);
         for (size_t i = 0; i < texels; ++i) {
@@ -125,50 +121,44 @@ namespace {
                 base[3 * i + k] = last == 0 ? rows[k]
                                             : (1.0f - t) * rows[3 * r + k] + t * rows[3 * (r + 1) + k];
         }
-        auto constant = [&](std::initializer_list<float> value) {
-            std::vector<float> v(value.size() * texels);
-            for (size_t i = 0; i < texels; ++i)
-                std::copy(value.begin(), value.end(), v.begin() + i * value.size());
-            return std::vector<std::vector<float>>{std::move(v)};
-        };
-        flat.maps = {
-            {"gltf_base_color", {"R", "G", "B"}, "1", "R_total under D65", true, {std::move(base)}},
-            // R occlusion 1, G roughness 1, B metallic 0: spectral_km is Lambertian.
-            {"gltf_metallic_roughness", {"R", "G", "B"}, "1", "", false, constant({1, 1, 0})},
-            {"gltf_clearcoat", {"R", "G", "B"}, "1", "", false, constant({0, 0, 0})},
-            {"normal", {"R", "G", "B"}, "1", "", false, constant({0.5f, 0.5f, 1})},
-            {"height", {"height"}, "um", "", false, constant({0})}};
-        return flat;
+        // spectral_km is Lambertian: a rough dielectric
+        return rough_dielectric(width, height, std::move(base), "R_total under D65");
     }
 
-    /// The mesh the first exposure map was baked on, as its stack.toml records it ("" when
-    /// it records none).
+    /// The mesh the first exposure map was baked on ("" when none records it).
     fs::path baked_mesh(const std::vector<FadeStep>& steps)
     {
-        for (const FadeStep& step : steps) {
+        for (const FadeStep& step : steps)
             for (const fs::path& given : step.description.exposure.files) {
-                const fs::path map = given.is_absolute() ? given : step.folder / given;
-                std::error_code ec;
-                const fs::path manifest = map.parent_path() / formats::kStackManifest;
-                if (!fs::exists(manifest, ec))
-                    continue;
-                const formats::TextureStack stack = formats::read_texture_stack(manifest);
-                for (const auto& [name, entry] : stack.maps) {
-                    if (entry.file.empty() || !fs::equivalent(stack.folder() / entry.file, map, ec))
-                        continue;
-                    if (const auto mesh = entry.parameters["mesh"].value<std::string>()) {
-                        const fs::path path(*mesh);
-                        if (path.is_absolute() || fs::exists(path, ec))
-                            return path;
-                        return stack.folder() / path;
-                    }
-                }
+                const fs::path mesh =
+                    mesh_of_exposure_map(given.is_absolute() ? given : step.folder / given);
+                if (!mesh.empty())
+                    return mesh;
             }
-        }
         return {};
     }
 
 }  // namespace
+
+fs::path mesh_of_exposure_map(const fs::path& map)
+{
+    std::error_code ec;
+    const fs::path manifest = map.parent_path() / formats::kStackManifest;
+    if (!fs::exists(manifest, ec))
+        return {};
+    const formats::TextureStack stack = formats::read_texture_stack(manifest);
+    for (const auto& [name, entry] : stack.maps) {
+        if (entry.file.empty() || !fs::equivalent(stack.folder() / entry.file, map, ec))
+            continue;
+        if (const auto mesh = entry.parameters["mesh"].value<std::string>()) {
+            const fs::path path(*mesh);
+            if (path.is_absolute() || fs::exists(path, ec))
+                return path;
+            return stack.folder() / path;
+        }
+    }
+    return {};
+}
 
 bool is_fade_stack(const fs::path& input)
 {

@@ -14,6 +14,10 @@
 
 namespace patina::texgen {
 
+/// The mesh an exposure map was baked on, as the stack.toml beside it records it ("" when it
+/// records none).
+std::filesystem::path mesh_of_exposure_map(const std::filesystem::path& map);
+
 /// True when `input` is a fade stack: a fade.toml, or a folder holding one.
 bool is_fade_stack(const std::filesystem::path& input);
 

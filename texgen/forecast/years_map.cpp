@@ -114,11 +114,11 @@ void write_years_maps(const std::filesystem::path& dir, const YearsMaps& maps,
     record_in_manifest(dir, d, {file}, {tile});
 }
 
-void write_years_previews(const std::filesystem::path& dir, const YearsMaps& maps,
-                          const std::vector<float>& coverage, double threshold_de2000)
+FalseColours false_colours(const YearsMaps& maps, const std::vector<float>& coverage,
+                           double threshold_de2000)
 {
     const size_t n = static_cast<size_t>(maps.width) * maps.height;
-    auto write = [&](const std::string& name, auto scaled) {
+    auto paint = [&](auto scaled) {
         OIIO::ImageBuf value(OIIO::ImageSpec(maps.width, maps.height, 1, OIIO::TypeDesc::FLOAT));
         float* v = static_cast<float*>(value.localpixels());
         for (size_t i = 0; i < n; ++i)
@@ -130,8 +130,7 @@ void write_years_previews(const std::filesystem::path& dir, const YearsMaps& map
         for (size_t i = 0; i < n; ++i)
             if (!(coverage[i] > 0.0f))
                 rgb[3 * i] = rgb[3 * i + 1] = rgb[3 * i + 2] = 0.5f;
-        write_image_atomic(dir / name, rgb.data(), maps.width, maps.height, 3, {},
-                           OIIO::TypeDesc::UINT8);
+        return rgb;
     };
     // Years on a log scale over the map's own range (covered texels), at least a decade
     double lo = kNeverYears, hi = 0.0, top = 3.0 * threshold_de2000;
@@ -141,14 +140,27 @@ void write_years_previews(const std::filesystem::path& dir, const YearsMaps& map
             hi = std::max(hi, static_cast<double>(maps.years[i]));
             top = std::max(top, static_cast<double>(maps.delta_e[i]));
         }
-    const double log_hi = std::log10(std::max(hi, 1e-9));
-    const double log_lo = std::min(std::log10(std::max(lo, 1e-9)), log_hi - 1.0);
-    write("fade_forecast_years.png", [&](size_t i) {
+    FalseColours out;
+    out.log10_years_bright = std::min(std::log10(std::max(lo, 1e-9)),
+                                      std::log10(std::max(hi, 1e-9)) - 1.0);
+    out.log10_years_dark = std::log10(std::max(hi, 1e-9));
+    out.delta_e_bright = top;
+    out.years = paint([&](size_t i) {
         const double y = std::log10(std::max(static_cast<double>(maps.years[i]), 1e-9));
-        return (log_hi - y) / (log_hi - log_lo);
+        return (out.log10_years_dark - y) / (out.log10_years_dark - out.log10_years_bright);
     });
-    write("fade_forecast_delta_e.png",
-          [&](size_t i) { return maps.delta_e[i] / top; });
+    out.delta_e = paint([&](size_t i) { return maps.delta_e[i] / top; });
+    return out;
+}
+
+void write_years_previews(const std::filesystem::path& dir, const YearsMaps& maps,
+                          const std::vector<float>& coverage, double threshold_de2000)
+{
+    const FalseColours c = false_colours(maps, coverage, threshold_de2000);
+    write_image_atomic(dir / "fade_forecast_years.png", c.years.data(), maps.width, maps.height,
+                       3, {}, OIIO::TypeDesc::UINT8);
+    write_image_atomic(dir / "fade_forecast_delta_e.png", c.delta_e.data(), maps.width,
+                       maps.height, 3, {}, OIIO::TypeDesc::UINT8);
 }
 
 }  // namespace patina::texgen::forecast

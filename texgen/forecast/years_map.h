@@ -46,12 +46,19 @@ void write_years_maps(const std::filesystem::path& dir, const YearsMaps& maps,
                       const std::vector<float>& coverage, const Metadata& parameters,
                       double threshold_de2000, double after_years);
 
-/// Pictures of the two channels for people, in the perceptually uniform "inferno" map:
-/// `fade_forecast_years.png`, bright where the object fades first (log10 years from the
-/// map's longest, dark, to its shortest, bright, over at least a decade), and
-/// `fade_forecast_delta_e.png`, ΔE00 from 0 (dark) to the map's largest or 3 × the
-/// threshold, whichever is more (bright). Texels the exposure map does not cover are grey.
-/// 8-bit display values.
+/// The two channels as pictures for people, in the perceptually uniform "inferno" map
+/// (display values, 3 per texel): years bright where the object fades first (log10 years
+/// from the map's longest, dark, to its shortest, bright, over at least a decade), ΔE00 from
+/// 0 (dark) to the map's largest or 3 × the threshold, whichever is more (bright). Texels
+/// the exposure map does not cover are grey.
+struct FalseColours {
+    std::vector<float> years, delta_e;
+    double log10_years_dark = 0.0, log10_years_bright = 0.0, delta_e_bright = 0.0;
+};
+FalseColours false_colours(const YearsMaps& maps, const std::vector<float>& coverage,
+                           double threshold_de2000);
+
+/// `fade_forecast_years.png` and `fade_forecast_delta_e.png` (8-bit) of false_colours.
 void write_years_previews(const std::filesystem::path& dir, const YearsMaps& maps,
                           const std::vector<float>& coverage, double threshold_de2000);
 
