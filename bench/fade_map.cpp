@@ -12,7 +12,7 @@
 #include "texgen/fade/fade_stack.h"
 #include "texgen/fade/illuminant.h"
 
-#include "synthetic_exposure.h"
+#include "fade_bench.h"
 
 #include <tbb/global_control.h>
 
@@ -28,26 +28,11 @@
 namespace fs = std::filesystem;
 using namespace patina::texgen::fade;
 
-namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point t)
-{
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-}
-
-}  // namespace
 
 int main(int argc, char** argv)
 {
-    int size = 2048, threads = 2, runs = 3;
-    for (int i = 1; i + 1 < argc; i += 2) {
-        if (!std::strcmp(argv[i], "--size"))
-            size = std::atoi(argv[i + 1]);
-        else if (!std::strcmp(argv[i], "--threads"))
-            threads = std::atoi(argv[i + 1]);
-        else if (!std::strcmp(argv[i], "--runs"))
-            runs = std::atoi(argv[i + 1]);
-    }
+    const FadeBenchOptions options = parse_fade_bench_options(argc, argv, 2048);
+    const int size = options.size, threads = options.threads, runs = options.runs;
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
 
     // The shipped library (<exe>/../share/patina/shaders/fade, or $PATINA_SHADER_PATH)

@@ -17,7 +17,7 @@
 
 #include "core/output_transaction.h"
 
-#include "synthetic_exposure.h"
+#include "fade_bench.h"
 
 #include <tbb/global_control.h>
 
@@ -31,26 +31,11 @@
 namespace fs = std::filesystem;
 using namespace patina::texgen;
 
-namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point t)
-{
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-}
-
-}  // namespace
 
 int main(int argc, char** argv)
 {
-    int size = 4096, threads = 2, runs = 3;
-    for (int i = 1; i + 1 < argc; i += 2) {
-        if (!std::strcmp(argv[i], "--size"))
-            size = std::atoi(argv[i + 1]);
-        else if (!std::strcmp(argv[i], "--threads"))
-            threads = std::atoi(argv[i + 1]);
-        else if (!std::strcmp(argv[i], "--runs"))
-            runs = std::atoi(argv[i + 1]);
-    }
+    const FadeBenchOptions options = parse_fade_bench_options(argc, argv, 4096);
+    const int size = options.size, threads = options.threads, runs = options.runs;
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
 
     const fade::FadeLibrary library = fade::FadeLibrary::load_files(fade::FadeLibrary::default_files());

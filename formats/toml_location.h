@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <stdexcept>
 #include <string>
+#include <initializer_list>
 #include <string_view>
 
 namespace patina::formats {
@@ -38,6 +39,28 @@ inline std::string toml_where(const std::filesystem::path& file, const toml::nod
                                    std::string_view what)
 {
     throw std::runtime_error(toml_where(file, node) + ": " + std::string(what));
+}
+
+/// Throws std::runtime_error("file:line:column: <prefix><key>: unknown key (known: a, b)")
+/// for the first key of `table` not in `allowed` (a typo must not pass as a default).
+inline void toml_check_keys(const std::filesystem::path& file, const toml::table& table,
+                            const std::string& prefix, std::initializer_list<const char*> allowed)
+{
+    for (const auto& [k, v] : table) {
+        const std::string_view key = k.str();
+        bool known = false;
+        for (const char* a : allowed)
+            known |= key == a;
+        if (known)
+            continue;
+        std::string list;
+        for (const char* a : allowed) {
+            if (!list.empty())
+                list += ", ";
+            list += a;
+        }
+        toml_fail(file, &v, prefix + std::string(key) + ": unknown key (known: " + list + ")");
+    }
 }
 
 /// The parsed file, or std::runtime_error("file:line:column: <toml++'s description>").

@@ -27,6 +27,8 @@ texgen="$build/bin/patina-texgen"
 rm -rf "$out"
 mkdir -p "$out"
 policies="$here/policies.toml"
+# box FILE x0 x1 y0 y1 z0 z1: an axis-aligned box as an OBJ
+source "$root/samples/lib/obj.sh"
 
 # ---- The chart, the newspaper, the Blue Wool references under four policies ---------------
 mixtures=(cyan magenta yellow cyan_magenta cyan_yellow magenta_yellow cyan_magenta_yellow)
@@ -75,31 +77,6 @@ vn 0 0 1
 f 1/1/1 2/2/1 3/3/1
 f 1/1/1 3/3/1 4/4/1
 OBJ
-box() {  # box FILE x0 x1 y0 y1 z0 z1: an axis-aligned box (an occluder)
-    local f=$1 x0=$2 x1=$3 y0=$4 y1=$5 z0=$6 z1=$7
-    cat > "$f" <<OBJ
-v $x0 $y0 $z0
-v $x1 $y0 $z0
-v $x1 $y1 $z0
-v $x0 $y1 $z0
-v $x0 $y0 $z1
-v $x1 $y0 $z1
-v $x1 $y1 $z1
-v $x0 $y1 $z1
-f 1 3 2
-f 1 4 3
-f 5 6 7
-f 5 7 8
-f 1 2 6
-f 1 6 5
-f 4 8 7
-f 4 7 3
-f 1 5 8
-f 1 8 4
-f 2 3 7
-f 2 7 6
-OBJ
-}
 occluders=()
 add() { box "$pr/$1.obj" "${@:2}"; occluders+=(--occluder "$pr/$1.obj"); }
 add frame_left   -0.35 -0.30 1.15 1.75 -2.0 -1.96

@@ -1,5 +1,6 @@
 #include "core/data_files.h"
 
+#include <algorithm>
 #include <cstdlib>
 #include <stdexcept>
 #include <string>
@@ -10,10 +11,10 @@ namespace fs = std::filesystem;
 
 namespace patina {
 
-fs::path find_data_file(std::string_view relative)
+std::vector<fs::path> search_path_from_env(const char* name)
 {
     std::vector<fs::path> dirs;
-    if (const char* env = std::getenv("PATINA_DATA_PATH"); env && *env) {
+    if (const char* env = std::getenv(name); env && *env) {
         const std::string s(env);
         size_t start = 0;
         while (start <= s.size()) {
@@ -23,6 +24,12 @@ fs::path find_data_file(std::string_view relative)
             start = end + 1;
         }
     }
+    return dirs;
+}
+
+fs::path find_data_file(std::string_view relative)
+{
+    std::vector<fs::path> dirs = search_path_from_env("PATINA_DATA_PATH");
     std::error_code ec;
     const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
     if (!ec)

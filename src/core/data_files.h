@@ -6,7 +6,13 @@
 #include <filesystem>
 #include <string_view>
 
+#include <vector>
+
 namespace patina {
+
+/// The directories of a colon-separated search path in the environment variable `name`
+/// (empty entries skipped; none when it is unset).
+std::vector<std::filesystem::path> search_path_from_env(const char* name);
 
 /// The first existing `<dir>/<relative>` for each directory of $PATINA_DATA_PATH (colon
 /// separated, in order), then `<exe>/../share/patina/data/<relative>`. Throws

@@ -1,5 +1,7 @@
 #include "core/shader_library.h"
 
+#include "core/data_files.h"
+
 #include <algorithm>
 #include <cstdlib>
 #include <string>
@@ -12,16 +14,8 @@ namespace patina {
 std::vector<fs::path> shader_library_files(std::string_view folder)
 {
     std::vector<fs::path> dirs;
-    if (const char* env = std::getenv("PATINA_SHADER_PATH"); env && *env) {
-        const std::string s(env);
-        size_t start = 0;
-        while (start <= s.size()) {
-            const size_t end = std::min(s.find(':', start), s.size());
-            if (end > start)
-                dirs.push_back(fs::path(s.substr(start, end - start)) / folder);
-            start = end + 1;
-        }
-    }
+    for (const fs::path& dir : search_path_from_env("PATINA_SHADER_PATH"))
+        dirs.push_back(dir / folder);
     std::error_code ec;
     const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
     if (!ec)

@@ -2,6 +2,8 @@
 
 #include "core/limits.h"
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
@@ -43,6 +45,36 @@ fade::WavelengthGrid parse_grid(const std::string& text)
     check_limit("--wavelengths '" + text + "'", std::floor((last - first) / step + 1e-9) + 1,
                 fade::WavelengthGrid::kMaxWavelengths, "wavelengths");
     return fade::WavelengthGrid::uniform(first, last, step);
+}
+
+void add_material_options(CLI::App* cmd, FadeMaterialChoice& c)
+{
+    cmd->add_option("--material", c.material, "fading material (shaders/fade/*.toml)");
+    cmd->add_option("--rates", c.rates, "a named set of fading rates from the material files");
+    cmd->add_option("--blue-wool", c.blue_wool,
+                    "a generic colorant of ISO Blue Wool category 1-8 instead of --material");
+    cmd->add_option("--materials", c.materials, "more fading material files (repeatable)")
+        ->check(CLI::ExistingFile);
+}
+
+fade::FadeMaterial load_material(const FadeMaterialChoice& c)
+{
+    if (c.material.empty() == (c.blue_wool == 0))
+        throw std::runtime_error("give a material: --material NAME or --blue-wool 1..8");
+    if (c.blue_wool != 0 && !c.rates.empty())
+        throw std::runtime_error("--blue-wool sets the rates: leave out --rates");
+    if (c.blue_wool != 0 && (c.blue_wool < 1 || c.blue_wool > 8))
+        throw std::runtime_error(fmt::format(
+            "--blue-wool {}: the ISO Blue Wool categories are 1 (most sensitive) to 8", c.blue_wool));
+    std::vector<std::filesystem::path> files = fade::FadeLibrary::default_files();
+    files.insert(files.end(), c.materials.begin(), c.materials.end());
+    if (files.empty())
+        throw std::runtime_error("no fading materials: none found under $PATINA_SHADER_PATH or "
+                                 "<exe>/../share/patina/shaders/fade; pass --materials FILE");
+    const fade::FadeLibrary library = fade::FadeLibrary::load_files(files);
+    // An ISO Blue Wool category is the blue_wool material at that category's rate
+    return c.blue_wool ? library.material_with_rates("blue_wool", fmt::format("blue_wool_{}", c.blue_wool))
+                       : library.material_with_rates(c.material, c.rates);
 }
 
 }  // namespace patina::texgen

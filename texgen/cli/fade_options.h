@@ -1,9 +1,14 @@
 // Option values the fading commands share (`fade`, `forecast`).
 #pragma once
 
+#include "texgen/fade/fade_material.h"
 #include "texgen/fade/spectral_grid.h"
 
+#include <CLI/CLI.hpp>
+
+#include <filesystem>
 #include <string>
+#include <vector>
 
 namespace patina::texgen {
 
@@ -14,5 +19,21 @@ double parse_duration(const std::string& text, const std::string& what = "--dura
 /// "FIRST:LAST:STEP" in nm -> the solver's grid. Throws std::runtime_error naming
 /// --wavelengths for anything else or a grid over the limit.
 fade::WavelengthGrid parse_grid(const std::string& text);
+
+/// The fading material of `forecast` and `restore`: a library material (with a rate set), or
+/// an ISO Blue Wool category (shaders/fade/blue_wool.toml).
+struct FadeMaterialChoice {
+    std::string material, rates;
+    int blue_wool = 0;
+    std::vector<std::filesystem::path> materials;  ///< more library files
+};
+
+/// --material, --rates, --blue-wool, --materials.
+void add_material_options(CLI::App* cmd, FadeMaterialChoice& choice);
+
+/// The chosen material from the library ($PATINA_SHADER_PATH and the shipped files, then
+/// `materials`). Throws std::runtime_error naming the option for none or both of --material
+/// and --blue-wool, a category outside 1-8, --rates with --blue-wool, an unknown name.
+fade::FadeMaterial load_material(const FadeMaterialChoice& choice);
 
 }  // namespace patina::texgen

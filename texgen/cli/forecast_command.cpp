@@ -33,9 +33,7 @@ namespace fs = std::filesystem;
 namespace {
 
 struct ForecastCliOptions {
-    std::string material, rates;
-    int blue_wool = 0;
-    std::vector<fs::path> materials;
+    FadeMaterialChoice material;
     fs::path policies;
     // One policy from options
     std::string name, lamp, uv_filter;
@@ -248,13 +246,6 @@ void run_forecast(const ForecastCliOptions& o)
         threads.emplace(tbb::global_control::max_allowed_parallelism, o.threads);
     install_cancel_handler();
 
-    if (o.material.empty() == (o.blue_wool == 0))
-        throw std::runtime_error("give a material: --material NAME or --blue-wool 1..8");
-    if (o.blue_wool != 0 && !o.rates.empty())
-        throw std::runtime_error("--blue-wool sets the rates: leave out --rates");
-    if (o.blue_wool != 0 && (o.blue_wool < 1 || o.blue_wool > 8))
-        throw std::runtime_error(fmt::format(
-            "--blue-wool {}: the ISO Blue Wool categories are 1 (most sensitive) to 8", o.blue_wool));
     if (!(o.threshold > 0.0))
         throw std::runtime_error(fmt::format("--threshold {}: a dE2000 must be > 0", o.threshold));
     if (!(o.years > 0.0))
@@ -263,14 +254,7 @@ void run_forecast(const ForecastCliOptions& o)
         throw std::runtime_error("--exposure writes maps: give -o DIR");
     if (!o.exposure.empty() && !(o.after_years > 0.0))
         throw std::runtime_error("--exposure needs --after N (the years of the dE2000 map)");
-    std::vector<fs::path> files = fade::FadeLibrary::default_files();
-    files.insert(files.end(), o.materials.begin(), o.materials.end());
-    const fade::FadeLibrary library = fade::FadeLibrary::load_files(files);
-    // An ISO Blue Wool category is the blue_wool material at that category's rate
-    // (shaders/fade/blue_wool.toml)
-    const fade::FadeMaterial material =
-        o.blue_wool ? library.material_with_rates("blue_wool", fmt::format("blue_wool_{}", o.blue_wool))
-                    : library.material_with_rates(o.material, o.rates);
+    const fade::FadeMaterial material = load_material(o.material);
     const std::vector<forecast::LightingPolicy> policies = gather_policies(o);
     const fade::WavelengthGrid grid = parse_grid(o.wavelengths);
     const forecast::ColourMeter meter(grid, forecast::parse_lamp(o.view));
@@ -305,12 +289,7 @@ void register_forecast_command(CLI::App& app)
         "forecast",
         "years on display to a just-noticeable fade: a fading material under lighting policies "
         "(lamp, lux, hours, UV filter, daylight), and per texel from an exposure map");
-    cmd->add_option("--material", o->material, "fading material (shaders/fade/*.toml)");
-    cmd->add_option("--rates", o->rates, "a named set of fading rates from the material files");
-    cmd->add_option("--blue-wool", o->blue_wool,
-                    "a generic colorant of ISO Blue Wool category 1-8 instead of --material");
-    cmd->add_option("--materials", o->materials, "more fading material files (repeatable)")
-        ->check(CLI::ExistingFile);
+    add_material_options(cmd, o->material);
     cmd->add_option("--policies", o->policies, "lighting-policy file ([[policy]] tables)");
     cmd->add_option("--lamp", o->lamp,
                     "one policy's lamp: D65, A, E, F1..F12, LED-B1..LED-V2, or SPD.csv[:COLUMN] "

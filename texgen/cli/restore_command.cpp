@@ -34,9 +34,7 @@ namespace {
 struct RestoreOptions {
     fs::path image;
     std::string colorspace;
-    std::string material, rates;
-    int blue_wool = 0;
-    std::vector<fs::path> materials;
+    FadeMaterialChoice material;
     std::optional<double> dose;
     fs::path dose_map;
     std::string channel;
@@ -145,17 +143,7 @@ void run_restore(const RestoreOptions& o)
     install_cancel_handler();
     const auto start = std::chrono::steady_clock::now();
 
-    if (o.material.empty() == (o.blue_wool == 0))
-        throw std::runtime_error("give a material: --material NAME or --blue-wool 1..8");
-    if (o.blue_wool != 0 && (o.blue_wool < 1 || o.blue_wool > 8))
-        throw std::runtime_error(fmt::format(
-            "--blue-wool {}: the ISO Blue Wool categories are 1 (most sensitive) to 8", o.blue_wool));
-    std::vector<fs::path> files = fade::FadeLibrary::default_files();
-    files.insert(files.end(), o.materials.begin(), o.materials.end());
-    const fade::FadeLibrary library = fade::FadeLibrary::load_files(files);
-    const fade::FadeMaterial material =
-        o.blue_wool ? library.material_with_rates("blue_wool", fmt::format("blue_wool_{}", o.blue_wool))
-                    : library.material_with_rates(o.material, o.rates);
+    const fade::FadeMaterial material = load_material(o.material);
 
     const ImageData image = read_image(o.image);
     if (image.channels < 3)
@@ -270,10 +258,7 @@ void register_restore_command(CLI::App& app)
         ->check(CLI::ExistingFile);
     cmd->add_option("--colorspace", o->colorspace,
                     "its OCIO colour space (default: srgb_texture, lin_rec709 for .exr)");
-    cmd->add_option("--material", o->material, "fading material (shaders/fade/*.toml)");
-    cmd->add_option("--rates", o->rates, "a named set of fading rates");
-    cmd->add_option("--blue-wool", o->blue_wool, "an ISO Blue Wool category 1-8 instead");
-    cmd->add_option("--materials", o->materials, "more fading material files")->check(CLI::ExistingFile);
+    add_material_options(cmd, o->material);
     cmd->add_option("--dose", o->dose, "one dose for every texel, J/m^2 in the illuminant's band");
     cmd->add_option("--dose-map", o->dose_map,
                     "doses per texel: a fade stack's dose.exr or an exposure map in J/m^2");

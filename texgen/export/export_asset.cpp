@@ -1,5 +1,7 @@
 #include "texgen/export/export_asset.h"
 
+#include "formats/texture_stack.h"
+
 #include "texgen/export/gltf_document.h"
 #include "texgen/export/gltf_geometry.h"
 #include "texgen/export/png_encode.h"
@@ -141,6 +143,12 @@ namespace {
     }
 
 }  // namespace
+
+fs::path stack_manifest_of(const fs::path& input)
+{
+    std::error_code ec;
+    return fs::is_directory(input, ec) ? input / formats::kStackManifest : input;
+}
 
 std::string relative_to(const fs::path& file, const fs::path& dir)
 {

@@ -19,12 +19,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-    fs::path manifest_of(const fs::path& input)
-    {
-        std::error_code ec;
-        return fs::is_directory(input, ec) ? input / formats::kStackManifest : input;
-    }
-
     /// The [flatten] table of `manifest`, parsed (empty when it has none or is unreadable).
     toml::table flatten_table(const fs::path& manifest)
     {
@@ -45,7 +39,7 @@ namespace {
 
 bool is_flattened_stack(const fs::path& input)
 {
-    const fs::path manifest = manifest_of(input);
+    const fs::path manifest = stack_manifest_of(input);
     std::error_code ec;
     if (!fs::is_regular_file(manifest, ec))
         return false;

@@ -14,20 +14,10 @@ namespace patina::texgen {
 
 namespace fs = std::filesystem;
 
-namespace {
-
-fs::path manifest_of(const fs::path& input)
-{
-    std::error_code ec;
-    return fs::is_directory(input, ec) ? input / formats::kStackManifest : input;
-}
-
-}  // namespace
-
 bool is_forecast_folder(const fs::path& input)
 {
     std::error_code ec;
-    const fs::path manifest = manifest_of(input);
+    const fs::path manifest = stack_manifest_of(input);
     if (manifest.filename() != formats::kStackManifest || !fs::exists(manifest, ec))
         return false;
     try {
@@ -44,7 +34,7 @@ ExportResult export_forecast(const fs::path& input, const fs::path& output,
     check_export_options(options, output);
     if (options.resolution > 0)
         throw std::runtime_error("--resolution: a forecast exports at its map's resolution");
-    const fs::path manifest = manifest_of(input);
+    const fs::path manifest = stack_manifest_of(input);
     const formats::TextureStack stack = formats::read_texture_stack(manifest);
     const formats::StackMap& entry = stack.maps.at(forecast::kForecastMap);
     const fs::path file = stack.folder() / entry.file;

@@ -52,6 +52,9 @@ std::string age_name(double years);
 
 /// `file` relative to `dir` with '/' separators, or `file` as given when it has no relative
 /// form.
+/// `input`/stack.toml for a folder, `input` itself otherwise.
+std::filesystem::path stack_manifest_of(const std::filesystem::path& input);
+
 std::string relative_to(const std::filesystem::path& file, const std::filesystem::path& dir);
 
 }  // namespace patina::texgen

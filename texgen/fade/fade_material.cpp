@@ -103,16 +103,7 @@ public:
     void only_keys(const toml::table& t, const std::string& where,
                    std::initializer_list<const char*> allowed) const
     {
-        for (const auto& [k, v] : t) {
-            const std::string key(k.str());
-            if (std::none_of(allowed.begin(), allowed.end(),
-                             [&](const char* a) { return key == a; })) {
-                std::string list;
-                for (const char* a : allowed)
-                    list += fmt::format("{}{}", list.empty() ? "" : ", ", a);
-                fail(v, where + "." + key, fmt::format("unknown key (known: {})", list));
-            }
-        }
+        formats::toml_check_keys(file_, t, where + ".", allowed);
     }
 
     double number(const toml::node& node, const std::string& key, double min) const
