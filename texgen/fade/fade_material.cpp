@@ -3,6 +3,7 @@
 #include "formats/toml_location.h"
 
 #include "core/shader_library.h"
+#include "core/spectrum_csv.h"
 
 #include <fmt/format.h>
 #include <toml++/toml.h>
@@ -125,14 +126,18 @@ public:
         return *n;
     }
 
-    // A number (a constant) or { nm = [...], value = [...] } (piecewise linear).
+    // A number (a constant), { nm = [...], value = [...] } (piecewise linear), or
+    // { file = "measured.csv", column = "K" } (a spectral CSV, relative to this file).
     TabulatedSpectrum spectrum(const toml::node& node, const std::string& key) const
     {
         if (node.is_number())
             return TabulatedSpectrum::constant(number(node, key, 0.0));
         const toml::table* t = node.as_table();
         if (!t)
-            fail(node, key, "expected a number or a table { nm = [...], value = [...] }");
+            fail(node, key, "expected a number, a table { nm = [...], value = [...] } or "
+                            "{ file = \"...csv\", column = \"...\" }");
+        if (t->contains("file"))
+            return spectrum_file(*t, key);
         only_keys(*t, key, {"nm", "value"});
         TabulatedSpectrum s;
         const toml::array* nm = required(*t, key, "nm").as_array();
@@ -149,6 +154,40 @@ public:
                 fail((*nm)[i], key + ".nm", "wavelengths must increase");
         }
         return s;
+    }
+
+    // A measured spectrum from a CSV file (core/spectrum_csv.h): its column, values >= 0.
+    TabulatedSpectrum spectrum_file(const toml::table& t, const std::string& key) const
+    {
+        only_keys(t, key, {"file", "column"});
+        const std::optional<std::string> file = t["file"].value<std::string>();
+        if (!file)
+            fail(t, key + ".file", "expected a file name");
+        const fs::path path = fs::path(*file).is_absolute() ? fs::path(*file)
+                                                            : file_.parent_path() / *file;
+        try {
+            const SpectrumCsv csv = read_spectrum_csv(path);
+            size_t c = 0;
+            if (const toml::node* column = t.get("column")) {
+                const std::optional<std::string> name = column->value<std::string>();
+                if (!name)
+                    fail(*column, key + ".column", "expected a column name");
+                c = csv.column(*name);
+            } else if (csv.columns.size() != 1) {
+                fail(t, key, fmt::format("{} holds {} spectra: name one with column = \"...\"",
+                                         path.string(), csv.columns.size()));
+            }
+            TabulatedSpectrum s{csv.lambda_nm, csv.values[c]};
+            for (size_t i = 0; i < s.value.size(); ++i)
+                if (!(s.value[i] >= 0.0))
+                    fail(t, key, fmt::format("{}: {} at {} nm must be >= 0", path.string(),
+                                             s.value[i], s.nm[i]));
+            return s;
+        } catch (const std::runtime_error& e) {
+            if (std::string(e.what()).rfind(file_.string(), 0) == 0)
+                throw;
+            fail(t, key, e.what());
+        }
     }
 
     WavelengthRate rate(const toml::table& t, const std::string& key) const

@@ -111,3 +111,36 @@ TEST(FadeMaterial, UnknownMaterialListsTheKnownOnes)
     const std::string msg = patina::test::message_of([&] { lib.material("newsprnt"); });
     EXPECT_NE(msg.find("newsprint"), std::string::npos) << msg;
 }
+
+TEST(FadeMaterial, MeasuredSpectraComeFromACsvFile)
+{
+    // Measured absorption and scattering per unit volume fraction (1/m), as a spectral CSV
+    // beside the material file: read as its knots; a broken row is named by its line.
+    const fs::path dir = fs::path(PATINA_TEST_BUILD_DIR) / "fade_materials";
+    fs::create_directories(dir);
+    std::ofstream(dir / "measured.csv") << "# K and S of a dye, 1/m per unit fraction\n"
+                                           "wavelength_nm,K,S\n400,1e5,2e3\n500,3e5,2e3\n600,5e4,2e3\n";
+    std::ofstream(dir / "broken.csv") << "wavelength_nm,K\n400,1e5\n500,oops\n";
+    const std::string text = R"(
+[colorants.dye]
+absorption_per_m = { file = "measured.csv", column = "K" }
+scattering_per_m = { file = "measured.csv", column = "S" }
+fading = { rate = 1e-9 }
+[materials.m]
+thickness_um = 10
+colorants = { dye = 0.1 }
+)";
+    std::ofstream(dir / "measured.toml") << text;
+    FadeLibrary lib;
+    lib.load(dir / "measured.toml");
+    const Colorant& dye = lib.colorant("dye");
+    EXPECT_EQ(dye.absorption_per_m.nm, (std::vector<double>{400, 500, 600}));
+    EXPECT_EQ(dye.absorption_per_m.value, (std::vector<double>{1e5, 3e5, 5e4}));
+    EXPECT_DOUBLE_EQ(dye.scattering_per_m.at(550.0), 2e3);
+
+    std::string broken = text;
+    broken.replace(broken.find("\"measured.csv\", column = \"K\""), 28, "\"broken.csv\", column = \"K\"");
+    const std::string msg = load_error(broken);
+    EXPECT_NE(msg.find("colorants.dye.absorption_per_m"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("broken.csv:3"), std::string::npos) << msg;
+}
