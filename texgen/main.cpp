@@ -48,6 +48,7 @@ int main(int argc, char** argv)
           std::pair{"wetness", "texgen-wetness.md"}, std::pair{"deposit", "texgen-wetness.md"},
           std::pair{"patina", "patina-script.md"}, std::pair{"stone", "stone.md"},
           std::pair{"flatten", "flatten.md"}, std::pair{"fade", "fading.md"},
+          std::pair{"forecast", "forecast.md"}, std::pair{"restore", "forecast.md"},
           std::pair{"export", "export.md"}, std::pair{"view", "viewer.md"}})
         app.get_subcommand(command)->footer(patina::manual_footer(page));
 

@@ -34,11 +34,13 @@ source "$root/samples/lib/obj.sh"
 mixtures=(cyan magenta yellow cyan_magenta cyan_yellow magenta_yellow cyan_magenta_yellow)
 for m in "${mixtures[@]}"; do
     mkdir -p "$out/chart/$m"
-    "$texgen" forecast --material "$m" --rates watercolour --policies "$policies" --years 30 \
+    "$texgen" forecast --material "$m" --rates watercolour --policies "$policies" --years 100 \
+        --log-years \
         -o "$out/chart/$m" > "$out/chart/$m/table.txt"
 done
 mkdir -p "$out/newspaper"
-"$texgen" forecast --material newsprint_free --rates lignin_only --policies "$policies" --years 30 \
+"$texgen" forecast --material newsprint_free --rates lignin_only --policies "$policies" --years 100 \
+    --log-years \
     -o "$out/newspaper" > "$out/newspaper/table.txt"
 for k in 1 2 3 4 5 6 7 8; do
     mkdir -p "$out/blue_wool/$k"

@@ -14,7 +14,7 @@ expect_manual_page(texgen.md "${PATINA_TEXGEN}")
 foreach(pair mesh:texgen.md uv-check:texgen.md ao:texgen-ao.md accessibility:texgen-ao.md
         sun:texgen-exposure.md exposure:texgen-exposure.md wetness:texgen-wetness.md
         deposit:texgen-wetness.md patina:patina-script.md stone:stone.md flatten:flatten.md
-        fade:fading.md export:export.md)
+        fade:fading.md forecast:forecast.md restore:forecast.md export:export.md)
   string(REPLACE ":" ";" parts "${pair}")
   list(GET parts 0 command)
   list(GET parts 1 page)

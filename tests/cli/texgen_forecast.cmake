@@ -50,6 +50,15 @@ if(NOT rows EQUAL 202)
   message(FATAL_ERROR "forecast.csv has ${rows} lines, expected a header and 201 points")
 endif()
 
+# Log-spaced years: four decades up to --years
+expect_success("${PATINA_TEXGEN}" forecast --blue-wool 3 --lamp LED-B2 --lux 50 --threshold 1.6
+  --years 100 --log-years -o "${WORK_DIR}/log")
+file(STRINGS "${WORK_DIR}/log/forecast.csv" log_curve)
+list(GET log_curve 1 first)
+list(GET log_curve 201 last)
+expect_in("${first}" "0.01,")
+expect_in("${last}" "100,")
+
 # One policy from options, twice the lux: half the years
 expect_success("${PATINA_TEXGEN}" forecast --blue-wool 3 --lamp LED-B2 --lux 100 --threshold 1.6)
 expect_in("${LAST_STDOUT}" " 5.14 ")

@@ -42,6 +42,7 @@ struct ForecastCliOptions {
     std::string view = "D65";
     double threshold = 1.0;
     double years = 100.0;
+    bool log_years = false;
     std::string wavelengths = "300:830:5";
     int sublayers = 100;
     fs::path out_dir;
@@ -156,6 +157,9 @@ void write_outputs(const ForecastCliOptions& o, const fade::FadeMaterial& materi
         fade::PlotCurve c;
         c.label = results[k].policy + " (" + years_text(results[k].years_to_threshold) + " y)";
         c.x = results[k].years;
+        if (o.log_years)
+            for (double& x : c.x)
+                x = std::log10(x);
         c.y = results[k].delta_e;
         c.rgb = fade::categorical_color(k);
         top = std::max(top, *std::max_element(c.y.begin(), c.y.end()));
@@ -163,17 +167,18 @@ void write_outputs(const ForecastCliOptions& o, const fade::FadeMaterial& materi
     }
     fade::PlotCurve threshold;
     threshold.label = fmt::format("dE2000 {:g}", o.threshold);
-    threshold.x = {0.0, o.years};
+    threshold.x = o.log_years ? std::vector<double>{std::log10(o.years) - 4.0, std::log10(o.years)}
+                              : std::vector<double>{0.0, o.years};
     threshold.y = {o.threshold, o.threshold};
     threshold.rgb = {0.55f, 0.55f, 0.55f};
     plot.push_back(threshold);
     fade::PlotOptions po;
     po.title = fmt::format("{}: dE2000 under {} against years on display", material.name,
                            meter.view_name());
-    po.x_label = "years";
+    po.x_label = o.log_years ? "log10 years" : "years";
     po.y_label = "dE2000";
-    po.x_min = 0.0;
-    po.x_max = o.years;
+    po.x_min = o.log_years ? std::log10(o.years) - 4.0 : 0.0;
+    po.x_max = o.log_years ? std::log10(o.years) : o.years;
     po.y_min = 0.0;
     // The curves where they cross the threshold matter most: up to 5 thresholds
     po.y_max = std::min(top * 1.05, 5.0 * o.threshold);
@@ -267,6 +272,7 @@ void run_forecast(const ForecastCliOptions& o)
     forecast::ForecastOptions fo;
     fo.threshold_de2000 = o.threshold;
     fo.horizon_years = o.years;
+    fo.log_years = o.log_years;
     fo.sublayers = o.sublayers;
 
     std::vector<forecast::PolicyForecast> results;
@@ -307,6 +313,8 @@ void register_forecast_command(CLI::App& app)
                     "dE2000 of a just-noticeable fade (1.6: the grey-scale step 4)")
         ->capture_default_str();
     cmd->add_option("--years", o->years, "span of the curves, years")->capture_default_str();
+    cmd->add_flag("--log-years", o->log_years,
+                  "curves and plot over four decades of years on a log scale (up to --years)");
     cmd->add_option("--wavelengths", o->wavelengths, "solver wavelengths FIRST:LAST:STEP, nm")
         ->capture_default_str();
     cmd->add_option("--sublayers", o->sublayers, "sublayers of the two-flux solver (§4.1)")

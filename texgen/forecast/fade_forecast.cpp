@@ -124,7 +124,10 @@ PolicyForecast forecast_policy(const fade::FadeMaterial& material, const Lightin
     f.years.resize(static_cast<size_t>(o.curve_points));
     f.delta_e.assign(f.years.size(), 0.0);
     for (size_t i = 0; i < f.years.size(); ++i)
-        f.years[i] = o.horizon_years * static_cast<double>(i) / (o.curve_points - 1);
+        f.years[i] = o.log_years
+                         ? o.horizon_years *
+                               std::pow(10.0, -4.0 + 4.0 * static_cast<double>(i) / (o.curve_points - 1))
+                         : o.horizon_years * static_cast<double>(i) / (o.curve_points - 1);
     if (per_year > 0.0) {
         const fade::DoseTable table =
             make_table(material, f.exposure.spectrum, grid, o, per_year * o.horizon_years);

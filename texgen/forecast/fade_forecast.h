@@ -43,6 +43,9 @@ struct ForecastOptions {
     double threshold_de2000 = 1.0;
     double horizon_years = 100.0;     ///< the curve's span
     int curve_points = 201;           ///< samples of the curve, 0 to the horizon
+    /// Samples evenly in log10 years over four decades up to the horizon (the first at
+    /// horizon / 10^4), for policies years apart; else evenly from 0.
+    bool log_years = false;
     int entries = 96;                 ///< dose table entries
     int sublayers = 100;
     bool both_sides = false;
