@@ -42,6 +42,12 @@ namespace {
 
 size_t SpectrumCsv::column(const std::string& name) const
 {
+    if (name.empty()) {
+        if (columns.size() == 1)
+            return 0;
+        throw std::runtime_error(fmt::format("'{}' holds {} spectra: name one (it has: {})",
+                                             file.string(), columns.size(), fmt::join(columns, ", ")));
+    }
     for (size_t i = 0; i < columns.size(); ++i)
         if (columns[i] == name)
             return i;

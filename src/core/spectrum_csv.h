@@ -17,8 +17,8 @@ struct SpectrumCsv {
     std::vector<double> lambda_nm;
     std::vector<std::vector<double>> values;   ///< per column, one value per wavelength
 
-    /// The index of column `name`; throws std::runtime_error naming the file and listing
-    /// the columns when there is none.
+    /// The index of column `name` ("" = the only one); throws std::runtime_error naming the
+    /// file and listing the columns when there is none (or "" names no single one).
     size_t column(const std::string& name) const;
 };
 

@@ -77,4 +77,37 @@ fade::FadeMaterial load_material(const FadeMaterialChoice& c)
                        : library.material_with_rates(c.material, c.rates);
 }
 
+void add_lamp_policy_options(CLI::App* cmd, LampPolicyChoice& c, const std::string& lamp_note)
+{
+    cmd->add_option("--lamp", c.lamp,
+                    "one policy's lamp: D65, A, E, F1..F12, LED-B1..LED-V2, or SPD.csv[:COLUMN]" +
+                        lamp_note);
+    cmd->add_option("--lux", c.lux, "one policy's illuminance at the object, lux");
+    cmd->add_option("--hours-per-day", c.hours_per_day, "one policy's hours lit a day")
+        ->capture_default_str();
+    cmd->add_option("--days-per-year", c.days_per_year, "one policy's days lit a year")
+        ->capture_default_str();
+    cmd->add_option("--uv-filter", c.uv_filter,
+                    "UV filter: a cut-off in nm (400), or FILTER.csv[:COLUMN] (transmittance)");
+    cmd->add_option("--name", c.name, "one policy's name");
+}
+
+forecast::LightingPolicy lamp_policy(const LampPolicyChoice& c)
+{
+    if (!c.lux)
+        throw std::runtime_error("--lamp needs --lux (illuminance at the object)");
+    if (!(*c.lux >= 0.0) || !std::isfinite(*c.lux))
+        throw std::runtime_error(fmt::format("--lux must be a finite number >= 0, got {}", *c.lux));
+    forecast::LightingPolicy p;
+    p.lamp = forecast::parse_lamp(c.lamp.empty() ? "D65" : c.lamp);
+    p.filter = forecast::parse_uv_filter(c.uv_filter, "--uv-filter");
+    p.lux = *c.lux;
+    p.hours_per_day = c.hours_per_day;
+    p.days_per_year = c.days_per_year;
+    p.name = !c.name.empty() ? c.name
+                             : fmt::format("{} {:g} lx{}", p.lamp.name, p.lux,
+                                           p.filter.active() ? ", " + p.filter.label : "");
+    return p;
+}
+
 }  // namespace patina::texgen

@@ -3,10 +3,12 @@
 
 #include "texgen/fade/fade_material.h"
 #include "texgen/fade/spectral_grid.h"
+#include "texgen/forecast/lighting_policy.h"
 
 #include <CLI/CLI.hpp>
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -35,5 +37,22 @@ void add_material_options(CLI::App* cmd, FadeMaterialChoice& choice);
 /// `materials`). Throws std::runtime_error naming the option for none or both of --material
 /// and --blue-wool, a category outside 1-8, --rates with --blue-wool, an unknown name.
 fade::FadeMaterial load_material(const FadeMaterialChoice& choice);
+
+/// One lighting policy from options (forecast, restore): a lamp, its lux, hours and days,
+/// a UV filter and a name.
+struct LampPolicyChoice {
+    std::string name, lamp, uv_filter;
+    std::optional<double> lux;
+    double hours_per_day = 8.0, days_per_year = 365.0;
+};
+
+/// --lamp, --lux, --hours-per-day, --days-per-year, --uv-filter, --name; `lamp_note` ends
+/// --lamp's help (what else it means to the command).
+void add_lamp_policy_options(CLI::App* cmd, LampPolicyChoice& choice, const std::string& lamp_note);
+
+/// The policy the options describe (lamp D65 when none is named), named by --name or by its
+/// lamp, lux and filter. Throws std::runtime_error naming the option for a missing --lux, a
+/// negative or non-finite lux, an unknown lamp or filter.
+forecast::LightingPolicy lamp_policy(const LampPolicyChoice& choice);
 
 }  // namespace patina::texgen

@@ -36,9 +36,7 @@ struct ForecastCliOptions {
     FadeMaterialChoice material;
     fs::path policies;
     // One policy from options
-    std::string name, lamp, uv_filter;
-    std::optional<double> lux;
-    double hours_per_day = 8.0, days_per_year = 365.0;
+    LampPolicyChoice one;  ///< --lamp, --lux, ...; with --exposure, --lamp and --uv-filter are the map's
     std::string view = "D65";
     double threshold = 1.0;
     double years = 100.0;
@@ -72,22 +70,8 @@ std::vector<forecast::LightingPolicy> gather_policies(const ForecastCliOptions& 
     if (!o.policies.empty())
         policies = forecast::read_policy_file(o.policies);
     // --lamp alone with --exposure names the map's light, not a policy
-    if (o.lux || (!o.lamp.empty() && o.exposure.empty())) {
-        if (!o.lux)
-            throw std::runtime_error("--lamp needs --lux (illuminance at the object)");
-        if (!(*o.lux >= 0.0) || !std::isfinite(*o.lux))
-            throw std::runtime_error(fmt::format("--lux must be a finite number >= 0, got {}", *o.lux));
-        forecast::LightingPolicy p;
-        p.lamp = forecast::parse_lamp(o.lamp.empty() ? "D65" : o.lamp);
-        p.filter = forecast::parse_uv_filter(o.uv_filter, "--uv-filter");
-        p.lux = *o.lux;
-        p.hours_per_day = o.hours_per_day;
-        p.days_per_year = o.days_per_year;
-        p.name = !o.name.empty() ? o.name
-                                 : fmt::format("{} {:g} lx{}", p.lamp.name, p.lux,
-                                               p.filter.active() ? ", " + p.filter.label : "");
-        policies.push_back(p);
-    }
+    if (o.one.lux || (!o.one.lamp.empty() && o.exposure.empty()))
+        policies.push_back(lamp_policy(o.one));
     if (policies.empty() && o.exposure.empty())
         throw std::runtime_error("no lighting: give --policies FILE, or --lamp and --lux, or "
                                  "--exposure MAP");
@@ -197,12 +181,12 @@ void write_maps(const ForecastCliOptions& o, const fade::FadeMaterial& material,
     const fade::ExposureMap map = fade::read_exposure_map(o.exposure, o.channel);
     // The light's spectrum: --lamp, else the map's own (recorded by the exposure baker)
     fade::Illuminant lamp =
-        !o.lamp.empty() ? forecast::parse_lamp(o.lamp)
+        !o.one.lamp.empty() ? forecast::parse_lamp(o.one.lamp)
         : !map.illuminant_nm.empty()
             ? fade::illuminant_from_table(map.illuminant.empty() ? "exposure map" : map.illuminant,
                                           map.illuminant_nm, map.illuminant_value)
             : fade::illuminant_by_name(map.illuminant.empty() ? "D65" : map.illuminant);
-    const forecast::UvFilter filter = forecast::parse_uv_filter(o.uv_filter, "--uv-filter");
+    const forecast::UvFilter filter = forecast::parse_uv_filter(o.one.uv_filter, "--uv-filter");
     const fade::Illuminant spectrum = forecast::filtered(lamp, filter);
     // A filter in front of a baked map takes its part of the band's energy too
     const double through = forecast::filter_share(lamp, filter);
@@ -225,10 +209,10 @@ void write_maps(const ForecastCliOptions& o, const fade::FadeMaterial& material,
     const Metadata parameters = {{"material", material.name},
                                  {"spectrum", spectrum.name},
                                  {"view", meter.view_name()},
-                                 {"threshold_de2000", fmt::format("{}", o.threshold)},
-                                 {"after_years", fmt::format("{}", o.after_years)},
+                                 {"threshold_de2000", static_cast<float>(o.threshold)},
+                                 {"after_years", static_cast<float>(o.after_years)},
                                  {"exposure", fs::absolute(o.exposure).string()},
-                                 {"scale", fmt::format("{}", o.scale)}};
+                                 {"scale", static_cast<float>(o.scale)}};
     forecast::write_years_maps(o.out_dir, maps, map.coverage, parameters, o.threshold,
                                o.after_years);
     if (o.preview)
@@ -297,17 +281,7 @@ void register_forecast_command(CLI::App& app)
         "(lamp, lux, hours, UV filter, daylight), and per texel from an exposure map");
     add_material_options(cmd, o->material);
     cmd->add_option("--policies", o->policies, "lighting-policy file ([[policy]] tables)");
-    cmd->add_option("--lamp", o->lamp,
-                    "one policy's lamp: D65, A, E, F1..F12, LED-B1..LED-V2, or SPD.csv[:COLUMN] "
-                    "(with --exposure: the map's light)");
-    cmd->add_option("--lux", o->lux, "one policy's illuminance at the object, lux");
-    cmd->add_option("--hours-per-day", o->hours_per_day, "one policy's hours lit a day")
-        ->capture_default_str();
-    cmd->add_option("--days-per-year", o->days_per_year, "one policy's days lit a year")
-        ->capture_default_str();
-    cmd->add_option("--uv-filter", o->uv_filter,
-                    "UV filter: a cut-off in nm (400), or FILTER.csv[:COLUMN] (transmittance)");
-    cmd->add_option("--name", o->name, "one policy's name in the table");
+    add_lamp_policy_options(cmd, o->one, " (with --exposure: the map's light)");
     cmd->add_option("--view", o->view, "viewing illuminant for the colours")->capture_default_str();
     cmd->add_option("--threshold", o->threshold,
                     "dE2000 of a just-noticeable fade (1.6: the grey-scale step 4)")

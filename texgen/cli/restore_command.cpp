@@ -43,9 +43,7 @@ struct RestoreOptions {
     // or a policy and years
     fs::path policies;
     std::string policy;
-    std::string lamp, uv_filter;
-    std::optional<double> lux;
-    double hours_per_day = 8.0, days_per_year = 365.0;
+    LampPolicyChoice one;
     std::optional<double> years;
     double max_amount = 2.0;
     std::vector<std::string> colorants;
@@ -86,15 +84,10 @@ History gather_history(const RestoreOptions& o, int width, int height)
                 throw std::runtime_error("--policy '" + o.policy + "': no such policy in " +
                                          o.policies.string());
         } else {
-            if (!o.lux || o.lamp.empty())
+            if (!o.one.lux || o.one.lamp.empty())
                 throw std::runtime_error("--years needs a policy: --lamp and --lux, or --policies "
                                          "FILE --policy NAME");
-            p.name = o.lamp;
-            p.lamp = forecast::parse_lamp(o.lamp);
-            p.filter = forecast::parse_uv_filter(o.uv_filter, "--uv-filter");
-            p.lux = *o.lux;
-            p.hours_per_day = o.hours_per_day;
-            p.days_per_year = o.days_per_year;
+            p = lamp_policy(o.one);
         }
         const forecast::PolicyExposure e = forecast::policy_exposure(p);
         h.light = e.spectrum;
@@ -267,11 +260,7 @@ void register_restore_command(CLI::App& app)
     cmd->add_option("--illuminant", o->illuminant, "the light of --dose or --dose-map (default D65)");
     cmd->add_option("--policies", o->policies, "lighting-policy file (with --policy and --years)");
     cmd->add_option("--policy", o->policy, "the policy's name in --policies");
-    cmd->add_option("--lamp", o->lamp, "one policy's lamp (with --lux and --years)");
-    cmd->add_option("--lux", o->lux, "one policy's illuminance at the object");
-    cmd->add_option("--hours-per-day", o->hours_per_day, "hours lit a day")->capture_default_str();
-    cmd->add_option("--days-per-year", o->days_per_year, "days lit a year")->capture_default_str();
-    cmd->add_option("--uv-filter", o->uv_filter, "UV filter: cut-off nm or FILTER.csv[:COLUMN]");
+    add_lamp_policy_options(cmd, o->one, " (with --lux and --years)");
     cmd->add_option("--years", o->years, "years shown under the policy");
     cmd->add_option("--max-amount", o->max_amount,
                     "largest original amount searched, times the material's")->capture_default_str();

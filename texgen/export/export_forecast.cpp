@@ -46,9 +46,8 @@ ExportResult export_forecast(const fs::path& input, const fs::path& output,
         throw std::runtime_error(fmt::format(
             "{}: expected the channels years_to_threshold, delta_e_after and {}",
             file.string(), formats::kCoverageChannel));
-    const double threshold = entry.parameters["threshold_de2000"].value<double>().value_or(
-        std::stod(entry.parameters["threshold_de2000"].value<std::string>().value_or("1")));
-    const double after = std::stod(entry.parameters["after_years"].value<std::string>().value_or("0"));
+    const double threshold = entry.parameters["threshold_de2000"].value<double>().value_or(1.0);
+    const double after = entry.parameters["after_years"].value<double>().value_or(0.0);
 
     forecast::YearsMaps maps;
     maps.width = image.width;

@@ -167,16 +167,14 @@ public:
                                                             : file_.parent_path() / *file;
         try {
             const SpectrumCsv csv = read_spectrum_csv(path);
-            size_t c = 0;
+            std::string name;
             if (const toml::node* column = t.get("column")) {
-                const std::optional<std::string> name = column->value<std::string>();
-                if (!name)
+                const std::optional<std::string> given = column->value<std::string>();
+                if (!given)
                     fail(*column, key + ".column", "expected a column name");
-                c = csv.column(*name);
-            } else if (csv.columns.size() != 1) {
-                fail(t, key, fmt::format("{} holds {} spectra: name one with column = \"...\"",
-                                         path.string(), csv.columns.size()));
+                name = *given;
             }
+            const size_t c = csv.column(name);
             TabulatedSpectrum s{csv.lambda_nm, csv.values[c]};
             for (size_t i = 0; i < s.value.size(); ++i)
                 if (!(s.value[i] >= 0.0))

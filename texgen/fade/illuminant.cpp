@@ -148,14 +148,7 @@ std::string known_illuminant_names()
 Illuminant illuminant_from_csv(const std::filesystem::path& file, const std::string& column)
 {
     const SpectrumCsv csv = read_spectrum_csv(file);
-    size_t c = 0;
-    if (column.empty()) {
-        if (csv.columns.size() != 1)
-            throw std::runtime_error(file.string() + ": " + std::to_string(csv.columns.size()) +
-                                     " spectra in the file; name one (FILE:COLUMN)");
-    } else {
-        c = csv.column(column);
-    }
+    const size_t c = csv.column(column);
     try {
         Illuminant il = illuminant_from_table(csv.columns[c], csv.lambda_nm, csv.values[c]);
         il.source = file.string();

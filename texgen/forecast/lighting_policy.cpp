@@ -139,14 +139,7 @@ UvFilter parse_uv_filter(const std::string& text, const std::string& what)
         throw std::runtime_error(fmt::format("{} {}: neither a cut-off wavelength nor an existing "
                                              "transmittance file", what, text));
     const SpectrumCsv csv = read_spectrum_csv(file);
-    size_t c = 0;
-    if (column.empty()) {
-        if (csv.columns.size() != 1)
-            throw std::runtime_error(fmt::format("{} {}: the file holds {} curves; name one "
-                                                 "(FILE:COLUMN)", what, text, csv.columns.size()));
-    } else {
-        c = csv.column(column);
-    }
+    const size_t c = csv.column(column);
     for (size_t i = 0; i < csv.lambda_nm.size(); ++i)
         if (!(csv.values[c][i] >= 0.0 && csv.values[c][i] <= 1.0))
             throw std::runtime_error(fmt::format(
