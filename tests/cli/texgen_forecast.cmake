@@ -92,6 +92,10 @@ expect_in("${LAST_STDERR}" "a forecast of 16x16")
 expect_valid_gltf("${WORK_DIR}/texels.glb")
 expect_in("${LAST_VALIDATOR_REPORT}" "KHR_materials_variants")
 expect_in("${LAST_VALIDATOR_REPORT}" "materials: 2")
+# The variants name the threshold and the years, as the forecast recorded them
+file(STRINGS "${WORK_DIR}/texels.glb" glb_text LIMIT_COUNT 8)
+expect_in("${glb_text}" "years to dE00 1")
+expect_in("${glb_text}" "dE00 after 0.01 y")
 
 # The simulation itself: fractions over depth at 6 h and a day
 expect_success("${PATINA_TEXGEN}" fade --material newsprint --illuminant flat --irradiance 1
