@@ -6,6 +6,7 @@
 #include "core/cancel.h"
 #include "core/cli_errors.h"
 #include "core/manual_page.h"
+#include "core/progress.h"
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
@@ -261,6 +262,7 @@ int main(int argc, char** argv)
         std::fprintf(stderr, "\npatina-farm: %s; no output was written\n", e.what());
         return 130;
     } catch (const std::exception& e) {
+        patina::end_progress_line();  // the message on a line of its own
         std::fprintf(stderr, "patina-farm: error: %s\n", patina::one_line(e.what()).c_str());
         return 1;
     }

@@ -6,6 +6,7 @@
 #include "core/cli_errors.h"
 #include "core/manual_page.h"
 #include "core/output_transaction.h"
+#include "core/progress.h"
 #include "texgen/patina/script_error.h"
 
 #include <CLI/CLI.hpp>
@@ -70,6 +71,7 @@ int main(int argc, char** argv)
         std::fprintf(stderr, "\npatina-texgen: %s; no output was written\n", e.what());
         return 130;
     } catch (const pt::ScriptError& e) {
+        patina::end_progress_line();
         // Like a compiler: the script's file, line and column first.
         if (e.location().line > 0)
             std::fprintf(stderr, "patina-texgen: error: %s:%d:%d: %s\n",
@@ -80,6 +82,7 @@ int main(int argc, char** argv)
                          patina::one_line(e.file()).c_str(), patina::one_line(e.message()).c_str());
         return 1;
     } catch (const std::exception& e) {
+        patina::end_progress_line();  // the message on a line of its own
         std::fprintf(stderr, "patina-texgen: error: %s\n", patina::one_line(e.what()).c_str());
         return 1;
     }

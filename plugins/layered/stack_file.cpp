@@ -44,12 +44,10 @@ StackFile read_stack_file(const fs::path& path)
         stack.materials.emplace(name, optics_of(optics));
     for (const formats::PatinaLayer& l : patina.layers) {
         const formats::StackMap& map = file.map(l.map);
-        if (map.tiles.size() > 1)
-            throw std::runtime_error(path.string() + ": layer map '" + map.name + "' has " +
-                                     std::to_string(map.tiles.size()) +
-                                     " UDIM tiles; layered_km reads one-tile stacks (flatten "
-                                     "the stack, or bake one tile per object)");
-        stack.layers.push_back({l.material, map.files(file.folder()).front(), l.channel_index});
+        // A UDIM map is read through its pattern: the host's lookups pick the tile by uv.
+        const fs::path map_file = map.pattern.empty() ? map.files(file.folder()).front()
+                                                      : file.folder() / map.pattern;
+        stack.layers.push_back({l.material, map_file, l.channel_index});
     }
     return stack;
 }

@@ -26,7 +26,8 @@ struct MaterialOptics {
 
 struct StackLayer {
     std::string material;
-    std::filesystem::path map_file; ///< absolute: the thickness map (µm)
+    /// The thickness map (µm); a UDIM map's `<UDIM>` pattern ("thickness.<UDIM>.exr").
+    std::filesystem::path map_file;
     /// The map's channel holding this layer's thickness: the layer's `channel` (an index, or
     /// a name listed in the map's `channels`), 0 when not given. Layers sharing one
     /// multi-channel map are read with one texture lookup.

@@ -6,10 +6,12 @@
 #include <assimp/scene.h>
 #include <fmt/format.h>
 
+#include <cctype>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <numbers>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <string_view>
@@ -119,6 +121,140 @@ namespace {
         }
     };
 
+    std::string lower_extension(const std::filesystem::path& path)
+    {
+        std::string e = path.extension().string();
+        for (char& c : e)
+            c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+        return e;
+    }
+
+    /// A number of Assimp's metadata, whatever type the importer stored it as.
+    std::optional<double> metadata_number(const aiMetadata* metadata, const char* key)
+    {
+        if (!metadata)
+            return std::nullopt;
+        for (unsigned i = 0; i < metadata->mNumProperties; ++i) {
+            if (std::string_view(metadata->mKeys[i].C_Str()) != key)
+                continue;
+            const aiMetadataEntry& e = metadata->mValues[i];
+            switch (e.mType) {
+            case AI_INT32: return *static_cast<const int32_t*>(e.mData);
+            case AI_UINT64: return static_cast<double>(*static_cast<const uint64_t*>(e.mData));
+            case AI_FLOAT: return *static_cast<const float*>(e.mData);
+            case AI_DOUBLE: return *static_cast<const double*>(e.mData);
+            default: return std::nullopt;
+            }
+        }
+        return std::nullopt;
+    }
+
+    /// FBX: the GlobalSettings' UpAxis (0, 1, 2), UpAxisSign (+1, -1) and UnitScaleFactor
+    /// (centimetres per unit: FBX's own unit is the centimetre), which Assimp 5.2 reports
+    /// as scene metadata without applying them.
+    DeclaredConvention fbx_declaration(const std::filesystem::path& path, const aiScene& scene)
+    {
+        DeclaredConvention d;
+        d.source = "FBX GlobalSettings";
+        for (const aiMetadata* m : {scene.mMetaData, scene.mRootNode->mMetaData}) {
+            const auto axis = metadata_number(m, "UpAxis");
+            const auto sign = metadata_number(m, "UpAxisSign");
+            const auto unit = metadata_number(m, "UnitScaleFactor");
+            if (axis && !d.up) {
+                if (*axis != 0 && *axis != 1 && *axis != 2)
+                    throw std::runtime_error(fmt::format(
+                        "mesh file '{}': its FBX GlobalSettings declare UpAxis {}, not 0, 1 or 2 "
+                        "(give the up axis with --up)", path.string(), *axis));
+                d.up = Axis{static_cast<int>(*axis), sign && *sign < 0 ? -1 : 1};
+            }
+            if (unit && !d.metres_per_unit) {
+                if (!(*unit > 0.0) || !std::isfinite(*unit))
+                    throw std::runtime_error(fmt::format(
+                        "mesh file '{}': its FBX GlobalSettings declare UnitScaleFactor {} (give "
+                        "the unit with --unit or --scale)", path.string(), *unit));
+                d.metres_per_unit = 0.01 * *unit;
+            }
+        }
+        return d;
+    }
+
+    /// The value of attribute `name` in the first element `<tag ...>` of `text`.
+    std::optional<std::string> xml_attribute(std::string_view text, std::string_view tag,
+                                             std::string_view name)
+    {
+        // Built by appending: GCC 12 warns falsely (-Wrestrict, its bug 105329) on "<" + s.
+        std::string open_tag(1, '<');
+        open_tag.append(tag);
+        const size_t open = text.find(open_tag);
+        if (open == std::string_view::npos)
+            return std::nullopt;
+        const size_t close = text.find('>', open);
+        const std::string_view element = text.substr(open, close - open);
+        std::string key(1, ' ');
+        key.append(name).push_back('=');
+        const size_t at = element.find(key);
+        if (at == std::string_view::npos)
+            return std::nullopt;
+        const size_t quote = at + key.size();
+        if (quote >= element.size())
+            return std::nullopt;
+        const size_t end = element.find(element[quote], quote + 1);
+        if (end == std::string_view::npos)
+            return std::nullopt;
+        return std::string(element.substr(quote + 1, end - quote - 1));
+    }
+
+    /// COLLADA: `<unit meter="...">` and `<up_axis>` of the document's `<asset>` (defaults 1
+    /// and Y_UP, COLLADA 1.4.1 specification, chapter 5 "asset"). Assimp's reader applies
+    /// both to the root node; they are read here to report them and to undo them when an
+    /// option overrides them.
+    DeclaredConvention collada_declaration(const std::filesystem::path& path)
+    {
+        DeclaredConvention d;
+        d.source = "COLLADA <asset>";
+        d.applied_by_importer = true;
+        d.up = Axis{1, 1};
+        d.metres_per_unit = 1.0;
+        std::ifstream in(path, std::ios::binary);
+        std::string head(1 << 16, '\0');
+        in.read(head.data(), static_cast<std::streamsize>(head.size()));
+        head.resize(static_cast<size_t>(in.gcount()));
+        const size_t begin = head.find("<asset");
+        const size_t end = head.find("</asset>", begin);
+        if (begin == std::string::npos || end == std::string::npos)
+            return d;
+        const std::string_view asset = std::string_view(head).substr(begin, end - begin);
+        if (const auto meter = xml_attribute(asset, "unit", "meter")) {
+            char* stop = nullptr;
+            const double v = std::strtod(meter->c_str(), &stop);
+            if (stop == meter->c_str() || !(v > 0.0) || !std::isfinite(v))
+                throw std::runtime_error(fmt::format(
+                    "mesh file '{}': <unit meter=\"{}\"> is not a length > 0 (give the unit "
+                    "with --unit or --scale)", path.string(), *meter));
+            d.metres_per_unit = v;
+        }
+        if (const size_t up = asset.find("<up_axis>"); up != std::string_view::npos) {
+            const std::string_view value = asset.substr(up + 9, 4);
+            if (value == "X_UP")
+                d.up = Axis{0, 1};
+            else if (value == "Z_UP")
+                d.up = Axis{2, 1};
+        }
+        return d;
+    }
+
+    DeclaredConvention declaration_of(const std::filesystem::path& path, const aiScene& scene)
+    {
+        const std::string ext = lower_extension(path);
+        if (ext == ".fbx")
+            return fbx_declaration(path, scene);
+        if (ext == ".dae")
+            return collada_declaration(path);
+        if (ext == ".gltf" || ext == ".glb")
+            return {Axis{1, 1}, 1.0, "glTF (+Y up, metres by specification)", false};
+        return {};
+    }
+
     /// Assimp 5.2's PLY parser loops forever on a header without `end_header`: refuse such
     /// files before handing them over.
     void check_ply_header(const std::filesystem::path& path)
@@ -185,7 +321,9 @@ namespace {
 
 }  // namespace
 
-std::vector<TriangleMesh> load_meshes(const std::filesystem::path& path, const Imath::M44f& transform)
+std::vector<TriangleMesh> load_meshes(const std::filesystem::path& path,
+                                      const MeshConventionOptions& options,
+                                      MeshConvention* applied, const Imath::M44f& transform)
 {
     std::error_code ec;
     if (!std::filesystem::exists(path, ec))
@@ -209,13 +347,36 @@ std::vector<TriangleMesh> load_meshes(const std::filesystem::path& path, const I
     if (!scene || !scene->mRootNode)
         throw std::runtime_error(fmt::format("mesh file '{}': {}", path.string(),
                                              importer.GetErrorString()));
+    const DeclaredConvention declared = declaration_of(path, *scene);
+    MeshConvention convention = resolve_convention(declared, options);
+    Imath::M44f to_world = convention.file_to_world * transform;
+    if (declared.applied_by_importer) {
+        // Assimp has applied the declaration already: undo it where the options differ.
+        const MeshConvention by_importer = resolve_convention(declared, {});
+        if (!(by_importer.up == convention.up &&
+              by_importer.metres_per_unit == convention.metres_per_unit))
+            to_world = by_importer.file_to_world.inverse() * to_world;
+        else
+            to_world = transform;
+    }
     Loader loader{path, *scene, {}};
-    loader.visit(*scene->mRootNode, transform);
+    loader.visit(*scene->mRootNode, to_world);
     if (loader.meshes.empty())
         throw std::runtime_error(fmt::format("mesh file '{}' contains no triangles", path.string()));
     for (const TriangleMesh& m : loader.meshes)
         validate_mesh(m, loader.where() + ": mesh '" + m.name + "'");
+    if (applied)
+        *applied = std::move(convention);
     return std::move(loader.meshes);
+}
+
+Imath::Box3f bounds_of(const std::vector<TriangleMesh>& meshes)
+{
+    Imath::Box3f box;
+    for (const TriangleMesh& m : meshes)
+        for (const Imath::V3f& p : m.positions)
+            box.extendBy(p);
+    return box;
 }
 
 void validate_mesh(const TriangleMesh& mesh, const std::string& context)

@@ -3,6 +3,8 @@
 // procedural shapes that samples and tests use.
 #pragma once
 
+#include "core/mesh_convention.h"
+
 #include <Imath/ImathMatrix.h>
 #include <Imath/ImathVec.h>
 
@@ -30,15 +32,22 @@ struct TriangleMesh {
     bool has_uvs() const { return !uvs.empty(); }
 };
 
-/// Load every mesh of a scene file through Assimp, triangulated, with each node's transform
-/// and then `transform` applied (Imath row-vector convention: p' = p * transform). One
-/// TriangleMesh per mesh instance in the node graph; points and lines are dropped. Missing
-/// normals stay missing (shading uses the geometric normal; call compute_vertex_normals for
-/// smooth shading). Throws std::runtime_error naming the file when it is missing or Assimp
-/// cannot parse it, when it holds no triangles, or when a position is NaN/Inf or an index
-/// is out of range.
+/// Load every mesh of a scene file through Assimp, triangulated, in Patina's world (+Y up,
+/// metres): each node's transform, then the file's axes and unit (what the file declares,
+/// overridden by `convention`; mesh_convention.h), then `transform` (Imath row-vector
+/// convention: p' = p * transform). `applied`, when given, receives the convention used and
+/// its warnings (an option that contradicts the file). One TriangleMesh per mesh instance
+/// in the node graph; points and lines are dropped. Missing normals stay missing (shading
+/// uses the geometric normal; call compute_vertex_normals for smooth shading). Throws
+/// std::runtime_error naming the file when it is missing or Assimp cannot parse it, when it
+/// holds no triangles, or when a position is NaN/Inf or an index is out of range.
 std::vector<TriangleMesh> load_meshes(const std::filesystem::path& path,
+                                      const MeshConventionOptions& convention = {},
+                                      MeshConvention* applied = nullptr,
                                       const Imath::M44f& transform = Imath::M44f());
+
+/// The world bounds of `meshes`.
+Imath::Box3f bounds_of(const std::vector<TriangleMesh>& meshes);
 
 /// Check the invariants above (sizes, index range, finite values); throws
 /// std::runtime_error starting with `context` (e.g. the file name).

@@ -3,9 +3,30 @@
 #include "core/cancel.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cstdio>
+#include <string>
 
 namespace patina {
+
+namespace {
+    /// Whether the last thing written to stderr by a Progress was a line ending in '\r'.
+    std::atomic<bool> progress_line_open{false};
+}  // namespace
+
+void end_progress_line()
+{
+    if (progress_line_open.exchange(false)) {
+        std::fputc('\n', stderr);
+        std::fflush(stderr);
+    }
+}
+
+void print_warning(const std::string& label, const std::string& message)
+{
+    end_progress_line();
+    std::fprintf(stderr, "%s: warning: %s\n", label.c_str(), message.c_str());
+}
 
 Progress::Progress(size_t total, bool quiet, std::string label)
     : total_(total), quiet_(quiet), label_(std::move(label)), start_(clock::now())
@@ -34,12 +55,13 @@ void Progress::step(size_t units)
                  label_.c_str(),
                  100.0 * static_cast<double>(clamped) / static_cast<double>(total_), elapsed, eta);
     printed_ = true;
+    progress_line_open = true;
 }
 
 void Progress::finish()
 {
     if (!quiet_ && printed_)
-        std::fprintf(stderr, "\n");
+        end_progress_line();
 }
 
 double Progress::seconds() const

@@ -32,4 +32,13 @@ private:
     bool printed_ = false;
 };
 
+/// End a progress line left open on stderr (a line that ended in a carriage return), so
+/// that what follows, an error or a warning, starts on its own line. Does nothing when no
+/// progress line is open. Every tool's error edge calls it before its message.
+void end_progress_line();
+
+/// Print "<label>: warning: <message>" on a line of its own on stderr (after
+/// end_progress_line).
+void print_warning(const std::string& label, const std::string& message);
+
 }  // namespace patina

@@ -6,11 +6,54 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
+#include <string_view>
+#include <vector>
 #include <stdexcept>
 
 namespace patina {
 
 namespace fs = std::filesystem;
+
+namespace {
+
+    constexpr std::string_view kUdimToken = "<UDIM>";
+
+    /// The files of a UDIM pattern ("dir/name.<UDIM>.exr"): the existing "dir/name.NNNN.exr",
+    /// NNNN from 1001, ascending.
+    std::vector<fs::path> udim_tiles(const fs::path& pattern)
+    {
+        const std::string name = pattern.filename().string();
+        const size_t at = name.find(kUdimToken);
+        std::vector<fs::path> tiles;
+        std::error_code ec;
+        const fs::path dir = pattern.parent_path().empty() ? fs::path(".") : pattern.parent_path();
+        for (const auto& entry : fs::directory_iterator(dir, ec)) {
+            const std::string file = entry.path().filename().string();
+            if (file.size() != name.size() - kUdimToken.size() + 4 ||
+                file.compare(0, at, name, 0, at) != 0 ||
+                file.compare(at + 4, std::string::npos, name, at + kUdimToken.size()) != 0)
+                continue;
+            const std::string digits = file.substr(at, 4);
+            if (std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; }) &&
+                std::stoi(digits) >= 1001)
+                tiles.push_back(pattern.parent_path() / file);
+        }
+        std::sort(tiles.begin(), tiles.end());
+        return tiles;
+    }
+
+    /// For a file that does not exist: its UDIM pattern when tiles of it do
+    /// ("dir/name.exr" -> "dir/name.<UDIM>.exr" with "dir/name.1001.exr" present), else "".
+    std::string udim_pattern_of_missing(const fs::path& file)
+    {
+        const fs::path pattern =
+            file.parent_path() / (file.stem().string() + "." + std::string(kUdimToken) +
+                                  file.extension().string());
+        return udim_tiles(pattern).empty() ? std::string() : pattern.string();
+    }
+
+}  // namespace
 
 TextureAccess::TextureAccess(const ColorManager& colors, const Options& options)
     : colors_(&colors), options_(options)
@@ -38,21 +81,43 @@ TextureAccess::Handle* TextureAccess::open(const std::filesystem::path& filename
     const auto fail = [&](const std::string& why) {
         return std::runtime_error(fmt::format("texture '{}': {}", filename.string(), why));
     };
+    const bool udim = filename.filename().string().find(kUdimToken) != std::string::npos;
+    std::vector<fs::path> tiles{filename};
     std::error_code ec;
-    if (!std::filesystem::exists(filename, ec))
-        throw fail("file not found");
-    if (!std::filesystem::is_regular_file(filename, ec))
+    if (udim) {
+        tiles = udim_tiles(filename);
+        if (tiles.empty())
+            throw fail(fmt::format("file not found: no UDIM tile of it exists (the tiles are "
+                                   "the pattern with {} a number from 1001)",
+                                   kUdimToken));
+    } else if (!std::filesystem::exists(filename, ec)) {
+        const std::string pattern = udim_pattern_of_missing(filename);
+        throw fail(pattern.empty()
+                       ? std::string("file not found")
+                       : fmt::format("file not found, but its UDIM tiles are: name them with "
+                                     "the {} token, '{}'",
+                                     kUdimToken, pattern));
+    } else if (!std::filesystem::is_regular_file(filename, ec)) {
         throw fail("not a regular file");
+    }
 
     auto handle = std::make_unique<Handle>();
     handle->filename = filename;
     handle->colorspace = std::string(colorspace);
+    handle->udim = udim;
     fs::path file = filename;
     // A NaN or infinite texel is refused here, naming it, rather than rendering as black or
     // white speckles.
-    check_finite_texels(filename);
+    for (const fs::path& tile : tiles)
+        check_finite_texels(tile);
     try {
         handle->is_data = colors_->is_data(colorspace);
+        if (udim && !handle->is_data &&
+            !colors_->conversion(colorspace, colors_->working_space()).is_identity())
+            throw fail(fmt::format("UDIM tiles in the colour space '{}' are not converted: "
+                                   "declare them in the working space ({}) or as data, or "
+                                   "convert the tiles",
+                                   colorspace, colors_->working_space()));
         // Colour textures are converted once, at load, to a cached working-space texture;
         // lookups then filter linear working-space values and convert nothing.
         if (!handle->is_data &&
@@ -67,8 +132,12 @@ TextureAccess::Handle* TextureAccess::open(const std::filesystem::path& filename
     // silently (black) at the first lookup.
     OIIO::TextureSystem::Perthread* thread = ts_->get_perthread_info();
     handle->oiio = ts_->get_texture_handle(OIIO::ustring(file.string()), thread);
+    // A UDIM pattern is a virtual file without a header of its own: the tiles have theirs.
+    OIIO::TextureSystem::TextureHandle* header =
+        udim ? ts_->get_texture_handle(OIIO::ustring(tiles.front().string()), thread)
+             : handle->oiio;
     OIIO::ImageSpec spec;
-    if (!handle->oiio || !ts_->get_imagespec(handle->oiio, thread, 0, spec) ||
+    if (!handle->oiio || !header || !ts_->get_imagespec(header, thread, 0, spec) ||
         !ts_->good(handle->oiio)) {
         std::string why = ts_->geterror();
         throw fail(why.empty() ? std::string("OpenImageIO cannot read it") : why);
@@ -98,6 +167,14 @@ bool TextureAccess::lookup(const Handle* handle, float s, float t, float dsdx, f
     // magnified data map (thickness, exposure) would not return its texel values.
     opt.interpmode = OIIO::TextureOpt::InterpBilinear;
     OIIO::TextureSystem::Perthread* thread = ts_->get_perthread_info();
+    if (handle->udim) {
+        // OIIO picks a UDIM tile by floor(s) and floor(t), and reads t - floor(t) down the
+        // tile's image. Mesh uvs (v = 1 - t, up) have their tile at floor(v) and their row at
+        // 1 - (v - floor(v)) from its top.
+        const float v = 1.0f - t;
+        const float v0 = std::floor(v);
+        t = v0 + std::min(1.0f - (v - v0), 0.99999994f);
+    }
 
     // Only channels 0-2 (or a grey channel 0) carry colour; others pass through.
     const bool convert = !handle->to_working.is_identity() && first_channel < 3 &&

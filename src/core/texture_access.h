@@ -25,6 +25,10 @@ namespace patina {
 /// (core/texture_conversion.h), so lookups filter and mip-map linear working-space values.
 /// Data maps declare "raw" (any `isdata` space) and are never converted.
 ///
+/// UDIM: a file name holding `<UDIM>` (e.g. "maps/thickness.<UDIM>.exr") names the tiles
+/// "maps/thickness.1001.exr", "...1002.exr", ...; a lookup at (u, v) reads the tile
+/// 1001 + floor(u) + 10 floor(v) (none: 0). Its tiles are data or already in the working space.
+///
 /// Channels 0-2 of a texture are its RGB; a 1- or 2-channel texture in a colour space
 /// holds a grey in channel 0. Other channels (alpha, extra data) are never converted.
 class TextureAccess {
@@ -43,6 +47,7 @@ public:
         int channels = 0;
         int width = 0, height = 0;
         bool is_data = false;          ///< declared colour space is data: no conversion
+        bool udim = false;             ///< a `<UDIM>` pattern: width and height are a tile's
         ColorConversion to_working;    ///< identity for data or working-space textures
         OIIO::TextureSystem::TextureHandle* oiio = nullptr;
     };
@@ -58,8 +63,10 @@ public:
     TextureAccess& operator=(const TextureAccess&) = delete;
 
     /// Open `filename` declared in `colorspace` (a name, alias or role of the OCIO config).
-    /// Checks now that the file exists and OIIO can read it; throws std::runtime_error
-    /// "texture '<file>': <reason>" otherwise, or for an unknown colour space. Opening the
+    /// Checks now that the file exists and OIIO can read it (for a `<UDIM>` pattern: that a
+    /// tile exists and every tile can be read); throws std::runtime_error
+    /// "texture '<file>': <reason>" otherwise, or for an unknown colour space. A file that is
+    /// not found but whose UDIM tiles are is named with the `<UDIM>` pattern to use. Opening the
     /// same file with the same colour space again returns the same handle. Thread-safe.
     Handle* open(const std::filesystem::path& filename, std::string_view colorspace);
 

@@ -5,6 +5,7 @@
 #include "core/cancel.h"
 #include "core/cli_errors.h"
 #include "core/manual_page.h"
+#include "core/progress.h"
 #include "core/host.h"
 
 #include <CLI/CLI.hpp>
@@ -106,6 +107,7 @@ int main(int argc, char** argv)
                              "written, earlier files are as they were\n", e.what());
         return 130;
     } catch (const std::exception& e) {
+        patina::end_progress_line();  // the message on a line of its own
         std::fprintf(stderr, "patina-render: error: %s\n", patina::one_line(e.what()).c_str());
         return 1;
     }

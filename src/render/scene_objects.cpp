@@ -2,10 +2,12 @@
 #include "render/scene_parts.h"
 
 #include "core/mesh.h"
+#include "core/progress.h"
 
 #include <Imath/ImathMatrix.h>
 
 #include <cmath>
+#include <stdexcept>
 #include <map>
 #include <set>
 
@@ -82,6 +84,39 @@ namespace {
                 std::swap(mesh.indices[i + 1], mesh.indices[i + 2]);
     }
 
+    /// `up = "z"` and `unit = "cm"` (or a number of metres per unit): the axes and unit of
+    /// the object's mesh file where they differ from what the file declares.
+    MeshConventionOptions read_convention(const TomlReader& w, const toml::table& t)
+    {
+        MeshConventionOptions c;
+        if (const toml::node* up = t.get("up")) {
+            const auto text = up->value<std::string>();
+            if (!text)
+                w.fail(up, "'up' must be a string: x, y, z, -x, -y or -z");
+            try {
+                c.up = parse_axis(*text, "up");
+            } catch (const std::invalid_argument& e) {
+                w.fail(up, e.what());
+            }
+        }
+        if (const toml::node* unit = t.get("unit")) {
+            if (const auto text = unit->value<std::string>()) {
+                try {
+                    c.metres_per_unit = parse_unit(*text, "unit");
+                } catch (const std::invalid_argument& e) {
+                    w.fail(unit, e.what());
+                }
+            } else if (const auto metres = unit->value<double>();
+                       metres && *metres > 0 && std::isfinite(*metres)) {
+                c.metres_per_unit = *metres;
+            } else {
+                w.fail(unit, "'unit' must be a unit name (m, cm, mm, in, ft, ...) or the metres "
+                             "per unit, a number > 0");
+            }
+        }
+        return c;
+    }
+
     std::vector<TriangleMesh> read_geometry(const TomlReader& w, const toml::table& t,
                                             const fs::path& base_dir)
     {
@@ -93,12 +128,21 @@ namespace {
         std::vector<TriangleMesh> meshes;
         if (!mesh.empty()) {
             const fs::path p = fs::path(mesh).is_relative() ? base_dir / mesh : fs::path(mesh);
+            const MeshConventionOptions convention = read_convention(w, t);
             try {
-                return load_meshes(p, m);
+                MeshConvention applied;
+                meshes = load_meshes(p, convention, &applied, m);
+                for (const std::string& warning : applied.warnings)
+                    print_warning("patina-render", fmt::format("mesh file '{}': {}", p.string(),
+                                                               warning));
+                return meshes;
             } catch (const std::exception& ex) {
                 w.fail(t.get("mesh"), ex.what());
             }
         }
+        if (t.contains("up") || t.contains("unit"))
+            w.fail(t.get(t.contains("up") ? "up" : "unit"),
+                   "'up' and 'unit' describe a mesh file; a shape is in metres, +Y up");
         const Imath::V3f center = w.vec3(t, "center", {0, 0, 0}, "object");
         if (shape == "sphere") {
             const float r = static_cast<float>(w.number(t, "radius", 1, 1e-6, 1e9, "object"));
@@ -130,7 +174,7 @@ void add_objects(const TomlReader& w, const toml::table& root, const fs::path& b
     for (const toml::node& e : *list) {
         const toml::table& t = *e.as_table();
         w.check_keys(t, "object", {"shape", "mesh", "center", "radius", "size", "transform",
-                                   "bsdf", "emitter", "materials", "interior"});
+                                   "up", "unit", "bsdf", "emitter", "materials", "interior"});
         const auto interior = shader_named(w, scene, t.get("interior"), "interior", PATINA_SHADER_MEDIUM);
         if (interior)
             scene.has_media = true;

@@ -21,6 +21,7 @@ if not hasattr(numpy, "bool"):
     numpy.bool = bool
 
 import bpy  # noqa: E402
+import mathutils  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import blender_render  # noqa: E402
@@ -67,6 +68,11 @@ def main():
     report = {
         "materials": {m.name: wiring(m) for m in bpy.data.materials if m.node_tree},
         "dimensions": list(obj.dimensions),
+        # World-space bounds in Blender's axes (Z up): the importer turns glTF's +Y up to +Z.
+        "bounds_min": [min((obj.matrix_world @ mathutils.Vector(c))[k] for c in obj.bound_box)
+                       for k in range(3)],
+        "bounds_max": [max((obj.matrix_world @ mathutils.Vector(c))[k] for c in obj.bound_box)
+                       for k in range(3)],
         "variants": [],
         "shown": [],
     }

@@ -75,7 +75,7 @@ TEST(Mesh, AppliesTransformsAndKeepsWindingUnderMirroring)
     Imath::M44f t;
     t.setTranslation(Imath::V3f(1, 2, 3));
     const Imath::M44f transform = Imath::M44f().setScale(Imath::V3f(2.0f)) * t; // row vectors: scale, then move
-    const TriangleMesh m = load_meshes(path, transform)[0];
+    const TriangleMesh m = load_meshes(path, {}, nullptr, transform)[0];
     EXPECT_NEAR(surface_area(m), 4.0, 1e-5);
     for (const auto& p : m.positions) {
         EXPECT_NEAR(p.y, 2.0f, 1e-6f);
@@ -83,7 +83,7 @@ TEST(Mesh, AppliesTransformsAndKeepsWindingUnderMirroring)
     }
 
     // Mirror in x: normals stay up, and the winding is swapped to agree with them.
-    const TriangleMesh mirrored = load_meshes(path, Imath::M44f().setScale(Imath::V3f(-1, 1, 1)))[0];
+    const TriangleMesh mirrored = load_meshes(path, {}, nullptr, Imath::M44f().setScale(Imath::V3f(-1, 1, 1)))[0];
     for (const auto& n : mirrored.normals)
         EXPECT_NEAR(n.y, 1.0f, 1e-6f);
     for (size_t i = 0; i < mirrored.triangle_count(); ++i)

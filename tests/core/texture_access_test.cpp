@@ -166,3 +166,80 @@ TEST(TextureAccess, MissingFileBadFileAndUnknownColourSpaceAreNamed)
 }
 
 }  // namespace patina
+
+namespace patina {
+namespace {
+
+    /// A 32x32 UDIM tile file `name`: `top` in the upper half of the image (v in [0.5, 1)
+    /// of the tile, mesh uvs), `bottom` in the lower.
+    void make_tile(const std::string& name, float top, float bottom)
+    {
+        const int w = 32, h = 32;
+        std::vector<float> p(static_cast<size_t>(w) * h);
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x)
+                p[static_cast<size_t>(y) * w + x] = y < h / 2 ? top : bottom;
+        TextureOptions opt;
+        opt.format = OIIO::TypeDesc::FLOAT;
+        opt.tile_size = 16;
+        make_texture_atomic(scratch(name), p.data(), w, h, 1, {}, opt);
+    }
+
+    /// A lookup at the mesh uv (u, v), as the host makes it (t = 1 - v).
+    float at_uv(const TextureAccess& tex, const TextureAccess::Handle* h, float u, float v,
+                bool* ok = nullptr)
+    {
+        float out = -1.0f;
+        const bool found = tex.lookup(h, u, 1.0f - v, 0, 0, 0, 0, 0, 1, &out);
+        if (ok)
+            *ok = found;
+        return out;
+    }
+
+}  // namespace
+
+TEST(TextureAccess, UdimPatternsReadTheTileOfEachUv)
+{
+    make_tile("thickness.1001.exr", 1.1f, 1.2f);
+    make_tile("thickness.1002.exr", 2.1f, 2.2f);
+    make_tile("thickness.1011.exr", 11.1f, 11.2f);
+    ColorManager cm(kConfig);
+    TextureAccess tex(cm);
+    TextureAccess::Handle* h = tex.open(scratch("thickness.<UDIM>.exr"), "raw");
+    ASSERT_NE(h, nullptr);
+    EXPECT_TRUE(h->udim);
+    EXPECT_EQ(h->width, 32);
+    // Tile 1001 + floor(u) + 10 floor(v); within it v runs up the image, as in every tile of
+    // a texel map (texgen/texels/texel_grid.h).
+    EXPECT_FLOAT_EQ(at_uv(tex, h, 0.5f, 0.75f), 1.1f);
+    EXPECT_FLOAT_EQ(at_uv(tex, h, 0.5f, 0.25f), 1.2f);
+    EXPECT_FLOAT_EQ(at_uv(tex, h, 1.5f, 0.75f), 2.1f);
+    EXPECT_FLOAT_EQ(at_uv(tex, h, 1.5f, 0.25f), 2.2f);
+    EXPECT_FLOAT_EQ(at_uv(tex, h, 0.5f, 1.75f), 11.1f);
+    EXPECT_FLOAT_EQ(at_uv(tex, h, 0.5f, 1.25f), 11.2f);
+    // No tile 1003: nothing there.
+    bool ok = true;
+    EXPECT_EQ(at_uv(tex, h, 2.5f, 0.5f, &ok), 0.0f);
+    EXPECT_FALSE(ok);
+}
+
+TEST(TextureAccess, AMissingFileWhoseTilesExistNamesTheUdimToken)
+{
+    make_tile("exposure.1001.exr", 1.0f, 1.0f);
+    ColorManager cm(kConfig);
+    TextureAccess tex(cm);
+    const std::string missing =
+        test::message_of([&] { tex.open(scratch("exposure.exr"), "raw"); });
+    EXPECT_NE(missing.find("file not found, but its UDIM tiles are"), std::string::npos)
+        << missing;
+    EXPECT_NE(missing.find("exposure.<UDIM>.exr"), std::string::npos) << missing;
+    const std::string none =
+        test::message_of([&] { tex.open(scratch("nothing.<UDIM>.exr"), "raw"); });
+    EXPECT_NE(none.find("no UDIM tile of it exists"), std::string::npos) << none;
+    // Colour tiles that would need converting are refused, naming the colour space.
+    const std::string colour =
+        test::message_of([&] { tex.open(scratch("exposure.<UDIM>.exr"), "srgb_texture"); });
+    EXPECT_NE(colour.find("are not converted"), std::string::npos) << colour;
+}
+
+}  // namespace patina

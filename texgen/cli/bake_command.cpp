@@ -5,7 +5,11 @@
 #include "core/progress.h"
 #include "texgen/stack/manifest.h"
 #include "texgen/bake/bake_driver.h"
+#include "texgen/cli/mesh_options.h"
+#include "texgen/meshes/mesh_input.h"
+#include "texgen/texels/ground.h"
 #include "texgen/texels/mesh_merge.h"
+#include "texgen/texels/uv_wrap.h"
 #include "texgen/texels/texel_grid.h"
 
 #include <tbb/global_control.h>
@@ -23,8 +27,16 @@ void add_common_bake_options(CLI::App& command, CommonBakeOptions& o)
 {
     command.add_option("--mesh", o.mesh, "mesh to bake (any Assimp format, with uvs)")
         ->required();
+    add_mesh_convention_options(command, o.convention);
     command.add_option("--occluder", o.occluders,
-                       "more geometry that casts shadows but is not baked (repeatable)");
+                       "more geometry that casts shadows but is not baked (repeatable; read with "
+                       "the mesh's --up, --unit, --scale)");
+    command.add_flag("--uv-wrap", o.uv_wrap,
+                     "fold triangles whose uvs lie outside the UDIM tiles (u < 0, v < 0, "
+                     "u >= 10) into tile 1001, as a renderer's repeat wrapping reads them");
+    command.add_flag("--ground", o.ground,
+                     "a ground plane under the mesh: horizontal at its lowest point, 20 times its "
+                     "widest horizontal extent across");
     command.add_option("-o,--out", o.out_dir, "output folder (stack.toml is updated there)")
         ->capture_default_str();
     command.add_option("--name", o.name, "map name, the file stem (default: the baker's)");
@@ -53,6 +65,11 @@ void add_common_bake_options(CLI::App& command, CommonBakeOptions& o)
 
 namespace {
 
+struct Occluder {
+    std::string name;  ///< the file, or --ground
+    std::vector<TriangleMesh> meshes;
+};
+
 std::string join_paths(const std::vector<std::filesystem::path>& paths)
 {
     std::string s;
@@ -77,11 +94,25 @@ void run_bake(const CommonBakeOptions& options, const BakerFactory& make_baker, 
     else
         check_manifest_can_be_updated(options.out_dir);
 
-    const TriangleMesh target = load_merged_mesh(options.mesh);
+    MeshConvention convention;
+    TriangleMesh target = load_mesh_with_warnings(options.mesh, options.convention, &convention);
+    if (options.uv_wrap)
+        wrap_uvs_outside_udims(target);
+    std::vector<Occluder> occluders;
+    // Occluders are read with the mesh's --up and --unit: they come from the same pipeline.
+    for (const auto& occluder_file : options.occluders)
+        occluders.push_back({occluder_file.string(),
+                             load_meshes(occluder_file, options.convention)});
+    if (options.ground)
+        occluders.push_back({"--ground", {ground_under(target)}});
+    for (const Occluder& occluder : occluders)
+        if (const std::string crossing = occluder_crossing(target, occluder.meshes); !crossing.empty())
+            print_warning("patina-texgen", fmt::format("occluder '{}' cuts through the baked "
+                                                       "mesh: {}", occluder.name, crossing));
     EmbreeScene scene;
     scene.add_mesh(target);
-    for (const auto& occluder_file : options.occluders)
-        for (const TriangleMesh& m : load_meshes(occluder_file))
+    for (const Occluder& occluder : occluders)
+        for (const TriangleMesh& m : occluder.meshes)
             scene.add_mesh(m);
     scene.commit();
 
@@ -97,10 +128,15 @@ void run_bake(const CommonBakeOptions& options, const BakerFactory& make_baker, 
     }
     if (!options.name.empty())
         map.name = options.name;
-    map.parameters.insert(map.parameters.begin(),
-                          {{"mesh", options.mesh.string()},
-                           {"occluders", join_paths(options.occluders)},
-                           {"seed", std::to_string(options.seed)}});
+    Metadata recorded{{"mesh", options.mesh.string()}};
+    record_convention(recorded, convention);
+    if (options.uv_wrap)
+        record_uv_wrap(recorded);
+    recorded.emplace_back("occluders", join_paths(options.occluders));
+    if (options.ground)
+        recorded.emplace_back("ground_y", ground_under(target).positions.front().y);
+    recorded.emplace_back("seed", std::to_string(options.seed));
+    map.parameters.insert(map.parameters.begin(), recorded.begin(), recorded.end());
 
     size_t rays = 0;
     size_t elements = 0;

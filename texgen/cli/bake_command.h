@@ -4,6 +4,7 @@
 #pragma once
 
 #include "core/embree_scene.h"
+#include "core/mesh_convention.h"
 #include "texgen/bake/sample_baker.h"
 #include "texgen/stack/map_output.h"
 
@@ -19,7 +20,10 @@ namespace patina::texgen {
 
 struct CommonBakeOptions {
     std::filesystem::path mesh;                    ///< the mesh whose surface is baked
+    MeshConventionOptions convention;              ///< --up, --unit, --scale (mesh, occluders)
     std::vector<std::filesystem::path> occluders;  ///< more geometry that casts shadows
+    bool ground = false;                           ///< a ground plane under the mesh
+    bool uv_wrap = false;                          ///< fold uvs outside the UDIM tiles
     std::filesystem::path out_dir = "maps";
     std::string name;                              ///< map name (file stem); baker's default
     int width = 1024;
@@ -33,7 +37,7 @@ struct CommonBakeOptions {
     bool quiet = false;
 };
 
-/// Add --mesh, --occluder, --out, --name, --resolution, --supersampling, --seed,
+/// Add --mesh, --up, --unit, --scale, --occluder, --ground, --out, --name, --resolution, --supersampling, --seed,
 /// --threads, --per-vertex, --padding, --half, --quiet to `command`.
 void add_common_bake_options(CLI::App& command, CommonBakeOptions& options);
 

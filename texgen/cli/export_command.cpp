@@ -1,6 +1,7 @@
 // `patina-texgen export INPUT -o FILE`: a patina stack or time series as glTF 2.0 that other
 // programs open already wired (texgen/export/export_patina.h; docs/export.md).
 #include "texgen/cli/commands.h"
+#include "texgen/cli/mesh_options.h"
 
 #include "core/color_management.h"
 #include "texgen/export/export_fade.h"
@@ -145,6 +146,7 @@ void register_export_command(CLI::App& app)
     cmd->add_option("--mesh", o->exporting.mesh,
                     "the mesh a stack was grown on (default: the path the stack records)")
         ->check(CLI::ExistingFile);
+    add_mesh_convention_options(*cmd, o->exporting.convention);
     cmd->add_option("--scene", o->scene,
                     ".vdb: a patina-render scene whose slab_volume medium gives the density's "
                     "sigma_t and the colour's albedos and gains (default: the medium's defaults)")

@@ -14,7 +14,9 @@
 #include "texgen/patina/material_library.h"
 #include "texgen/patina/script_parser.h"
 #include "texgen/patina/stack_writer.h"
-#include "texgen/texels/mesh_merge.h"
+#include "texgen/cli/mesh_options.h"
+#include "texgen/meshes/mesh_input.h"
+#include "texgen/texels/uv_wrap.h"
 
 #include <fmt/format.h>
 #include <tbb/global_control.h>
@@ -35,6 +37,8 @@ namespace {
 struct PatinaOptions {
     fs::path script;
     fs::path mesh;
+    MeshConventionOptions convention;
+    bool uv_wrap = false;
     fs::path out_dir = "patina";
     std::vector<double> times{30.0};
     double end_time = 0;
@@ -61,6 +65,32 @@ fs::path mesh_path_from(const fs::path& dir, const fs::path& mesh)
     return rel.empty() ? to : rel;
 }
 
+/// The convention to read the mesh with: the user's options, completed by what the stacks of
+/// the script's maps record (they were baked on the same mesh); a map baked with another
+/// convention than the options say, or two maps that disagree, are refused.
+MeshConventionOptions convention_with_maps(const Script& script, const fs::path& script_dir,
+                                           const MeshConventionOptions& user)
+{
+    MeshConventionOptions options = user;
+    for (const Statement& statement : script.statements) {
+        const auto* map = std::get_if<MapStatement>(&statement);
+        if (!map)
+            continue;
+        const fs::path file = fs::path(map->path).is_relative() ? script_dir / map->path
+                                                                : fs::path(map->path);
+        std::error_code ec;
+        if (!fs::is_regular_file(file.parent_path() / formats::kStackManifest, ec))
+            continue;
+        const formats::TextureStack stack = formats::read_texture_stack(file.parent_path());
+        for (const auto& [name, entry] : stack.maps)
+            if (entry.file == file.filename() || entry.pattern == file.filename())
+                options = convention_for_stack(
+                    options, recorded_convention(entry.parameters),
+                    fmt::format("map '{}' ({})", map->name, file.string()));
+    }
+    return options;
+}
+
 void run_patina(const PatinaOptions& o)
 {
     std::optional<tbb::global_control> threads;
@@ -68,6 +98,9 @@ void run_patina(const PatinaOptions& o)
         threads.emplace(tbb::global_control::max_allowed_parallelism, o.threads);
     const auto start = std::chrono::steady_clock::now();
 
+    if (o.mesh.empty() && (!o.convention.empty() || o.uv_wrap))
+        throw std::runtime_error("--up, --unit, --scale and --uv-wrap describe the file of "
+                                 "--mesh; a strip is in metres with uvs in one tile");
     reserve_output(o.out_dir / formats::kSeriesManifest);  // a bad output folder fails before the run
     ColorManager colors(ColorManager::default_config_path());
     const MaterialLibrary library = MaterialLibrary::load_default(o.materials, colors);
@@ -83,9 +116,14 @@ void run_patina(const PatinaOptions& o)
     }
 
     TriangleMesh mesh;
+    MeshConvention convention;
     PatinaDomain domain;
     if (!o.mesh.empty()) {
-        mesh = load_merged_mesh(o.mesh);
+        mesh = load_mesh_with_warnings(
+            o.mesh, convention_with_maps(script, o.script.parent_path(), o.convention),
+            &convention);
+        if (o.uv_wrap)
+            wrap_uvs_outside_udims(mesh);
         RasterOptions raster;
         raster.width = o.width > 0 ? o.width : 1024;
         raster.height = o.height > 0 ? o.height : raster.width;
@@ -134,9 +172,13 @@ void run_patina(const PatinaOptions& o)
                                                          steps.back().time_years)
                    : o.out_dir;
         PatinaOutputOptions step_out = out;
-        if (!o.mesh.empty())  // where export finds the mesh: relative to the step's folder
+        if (!o.mesh.empty()) {  // where export finds the mesh: relative to the step's folder
             step_out.parameters.emplace_back(
                 "patina:mesh", mesh_path_from(dir, o.mesh).generic_string());
+            record_convention(step_out.parameters, convention);
+            if (o.uv_wrap)
+                record_uv_wrap(step_out.parameters);
+        }
         write_patina_step(dir, steps[k], domain, step_out, colors);
         series_toml.steps.push_back({steps[k].time_years, dir.filename().string()});
     }
@@ -199,6 +241,10 @@ void register_patina_command(CLI::App& app)
         ->check(CLI::ExistingFile);
     cmd->add_option("--mesh", o->mesh, "the uv-mapped mesh (any Assimp format); without it, "
                                        "a flat strip")->check(CLI::ExistingFile);
+    add_mesh_convention_options(*cmd, o->convention);
+    cmd->add_flag("--uv-wrap", o->uv_wrap,
+                  "fold triangles whose uvs lie outside the UDIM tiles into tile 1001, as a "
+                  "renderer's repeat wrapping reads them (as the bakers' --uv-wrap)");
     cmd->add_option("-o,--out", o->out_dir, "output folder (a stack, or one per time step)")
         ->capture_default_str();
     cmd->add_option("--times", *times_text,

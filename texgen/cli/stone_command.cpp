@@ -3,6 +3,7 @@
 // the world-grid volume (for the slab_volume medium), the slab volume, the eroded mesh and
 // surface maps, once or as a time series. The work is in texgen/stone/stone_job.h.
 #include "texgen/cli/commands.h"
+#include "texgen/cli/mesh_options.h"
 
 #include "core/cli_errors.h"
 #include "texgen/stone/stone_job.h"
@@ -23,29 +24,10 @@ namespace {
     struct StoneCommandOptions {
         stone::StoneJobOptions job;
         std::string stone = "sandstone";
-        std::string up = "y";
         std::vector<double> rain_dir;
         double chemistry_scale = 1.0;
         int threads = 0;
     };
-
-    Imath::V3d axis_of(const std::string& text)
-    {
-        std::string name = text;
-        double sign = 1.0;
-        if (!name.empty() && (name[0] == '-' || name[0] == '+')) {
-            sign = name[0] == '-' ? -1.0 : 1.0;
-            name = name.substr(1);
-        }
-        if (name == "x")
-            return {sign, 0, 0};
-        if (name == "y")
-            return {0, sign, 0};
-        if (name == "z")
-            return {0, 0, sign};
-        throw std::runtime_error(
-            fmt::format("--up '{}' must be x, y or z (optionally -x, -y, -z)", text));
-    }
 
     void run_stone(StoneCommandOptions o)
     {
@@ -54,7 +36,8 @@ namespace {
             threads.emplace(tbb::global_control::max_allowed_parallelism, o.threads);
         stone::StoneJobOptions& job = o.job;
         job.quarry.kind = stone::stone_kind_from_name(o.stone);
-        job.quarry.up = job.params.up = axis_of(o.up);
+        // The mesh is read into Patina's world, +Y up (--up, --unit, --scale).
+        job.quarry.up = job.params.up = Imath::V3d(0.0, 1.0, 0.0);
         job.params.seed = job.quarry.seed;
         // Chemistry accelerated against the hydraulic time (like a morphological factor).
         for (double& k : job.params.solubility)
@@ -82,20 +65,20 @@ void register_stone_command(CLI::App& app)
         "wet/dry cycles of moisture, dissolution, transport, crusts and erosion; writes "
         "volume.exr (world grid for the slab_volume medium), slabs.exr, eroded.obj and the "
         "stone_colour / stone_crust maps");
-    cmd->add_option("--mesh", j.mesh, "the closed stone mesh (any Assimp format; metres)")
+    cmd->add_option("--mesh", j.mesh, "the closed stone mesh (any Assimp format)")
         ->required()
         ->check(CLI::ExistingFile);
     cmd->add_option("--slab-mesh", j.slab_mesh,
                     "a coarse closed mesh to build the slabs on (default: --mesh; each triangle "
                     "makes three slabs)")
         ->check(CLI::ExistingFile);
+    add_mesh_convention_options(*cmd, j.convention);
     cmd->add_option("--out", j.out_dir, "output folder")->capture_default_str();
     cmd->add_option("--stone", o->stone, "granite, marble or sandstone")->capture_default_str();
     cmd->add_option("--feature-size", j.quarry.feature_size,
                     "grain size, vein spacing or bed thickness (m)")
         ->capture_default_str()
         ->check(patina::positive);
-    cmd->add_option("--up", o->up, "the up axis: x, y or z (or -x, -y, -z)")->capture_default_str();
     cmd->add_option("--depth", j.depth,
                     "shell depth below the surface (m; default 15% of the largest extent)")
         ->check(patina::positive);

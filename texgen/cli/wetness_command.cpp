@@ -22,29 +22,9 @@ namespace {
         CommonBakeOptions common;
         WetnessParameters wetness;
         std::vector<float> rain_dir; ///< empty: -up
-        std::string up = "y";
         float base_level = 0.0f;
         bool base_level_given = false;
     };
-
-    Imath::V3f axis_of(const std::string& text)
-    {
-        // "x", "y", "z", optionally signed.
-        std::string name = text;
-        float sign = 1.0f;
-        if (!name.empty() && (name[0] == '-' || name[0] == '+')) {
-            sign = name[0] == '-' ? -1.0f : 1.0f;
-            name = name.substr(1);
-        }
-        if (name == "x")
-            return {sign, 0.0f, 0.0f};
-        if (name == "y")
-            return {0.0f, sign, 0.0f};
-        if (name == "z")
-            return {0.0f, 0.0f, sign};
-        throw std::runtime_error(
-            fmt::format("--up '{}' must be x, y or z (optionally -x, -y, -z)", text));
-    }
 
     std::string vec_text(const Imath::V3f& v)
     {
@@ -54,7 +34,7 @@ namespace {
     void run_wetness(WetnessCommandOptions o)
     {
         WetnessParameters& p = o.wetness;
-        p.up = axis_of(o.up);
+        p.up = Imath::V3f(0.0f, 1.0f, 0.0f);  // the mesh is read into +Y up (--up, --unit)
         p.rain_direction = o.rain_dir.size() == 3
                                ? Imath::V3f(o.rain_dir[0], o.rain_dir[1], o.rain_dir[2])
                                : Imath::V3f(0.0f) - p.up; // not -up: no "-0" in the header
@@ -107,10 +87,9 @@ void register_wetness_command(CLI::App& app)
     add_common_bake_options(*cmd, o->common);
     WetnessParameters& p = o->wetness;
     cmd->add_option("--rain-dir", o->rain_dir,
-                    "X Y Z: the direction the rain travels (default: down, -up)")
+                    "X Y Z: the direction the rain travels, in Patina's world (+Y up, "
+                    "north -Z; default: straight down)")
         ->expected(3);
-    cmd->add_option("--up", o->up, "the scene's up axis: x, y or z (or -x, -y, -z)")
-        ->capture_default_str();
     cmd->add_option("--spread-deg", p.spread_deg,
                     "half-angle of the cone of rain directions, degrees in [0, 90)")
         ->capture_default_str();

@@ -7,6 +7,9 @@
 #include "core/image_io.h"
 #include "core/spectrum.h"
 
+#include "texgen/meshes/mesh_input.h"
+#include "texgen/texels/uv_wrap.h"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -126,13 +129,13 @@ namespace {
     }
 
     /// The mesh the first exposure map was baked on ("" when none records it).
-    fs::path baked_mesh(const std::vector<FadeStep>& steps)
+    BakedMesh baked_mesh(const std::vector<FadeStep>& steps)
     {
         for (const FadeStep& step : steps)
             for (const fs::path& given : step.description.exposure.files) {
-                const fs::path mesh =
+                BakedMesh mesh =
                     mesh_of_exposure_map(given.is_absolute() ? given : step.folder / given);
-                if (!mesh.empty())
+                if (!mesh.file.empty())
                     return mesh;
             }
         return {};
@@ -140,7 +143,7 @@ namespace {
 
 }  // namespace
 
-fs::path mesh_of_exposure_map(const fs::path& map)
+BakedMesh mesh_of_exposure_map(const fs::path& map)
 {
     std::error_code ec;
     const fs::path manifest = map.parent_path() / formats::kStackManifest;
@@ -152,9 +155,11 @@ fs::path mesh_of_exposure_map(const fs::path& map)
             continue;
         if (const auto mesh = entry.parameters["mesh"].value<std::string>()) {
             const fs::path path(*mesh);
+            const MeshConventionOptions convention = recorded_convention(entry.parameters);
+            const bool wrap = recorded_uv_wrap(entry.parameters);
             if (path.is_absolute() || fs::exists(path, ec))
-                return path;
-            return stack.folder() / path;
+                return {path, convention, wrap};
+            return {stack.folder() / path, convention, wrap};
         }
     }
     return {};
@@ -212,14 +217,20 @@ ExportResult export_fade(const std::vector<fs::path>& inputs, const fs::path& ou
         }
 
     ExportGeometry geometry;
-    const fs::path mesh_file = options.mesh.empty() ? baked_mesh(steps) : options.mesh;
+    const BakedMesh baked = baked_mesh(steps);
+    const fs::path mesh_file = options.mesh.empty() ? baked.file : options.mesh;
     if (!mesh_file.empty()) {
         std::error_code ec;
         if (!fs::is_regular_file(mesh_file, ec))
             throw std::runtime_error(fmt::format(
                 "export of '{}': the mesh '{}' its exposure maps were baked on does not exist "
                 "(pass --mesh)", steps.front().manifest.string(), mesh_file.string()));
-        geometry.mesh = load_merged_mesh(mesh_file);
+        geometry.mesh = load_merged_mesh(
+            mesh_file, convention_for_stack(options.convention, baked.convention,
+                                            "the exposure map of " +
+                                                steps.front().manifest.string()));
+        if (baked.uv_wrap)
+            wrap_uvs_outside_udims(geometry.mesh);
     } else if (std::any_of(steps.begin(), steps.end(), [](const FadeStep& s) { return !s.uniform; })) {
         throw std::runtime_error(fmt::format(
             "export of '{}': the exposure maps do not say which mesh they were baked on; pass "

@@ -14,9 +14,14 @@
 
 namespace patina::texgen {
 
-/// The mesh an exposure map was baked on, as the stack.toml beside it records it ("" when it
-/// records none).
-std::filesystem::path mesh_of_exposure_map(const std::filesystem::path& map);
+/// The mesh an exposure map was baked on and the up axis and unit it was read with, as the
+/// stack.toml beside the map records them (an empty file when it records none).
+struct BakedMesh {
+    std::filesystem::path file;
+    MeshConventionOptions convention;
+    bool uv_wrap = false;  ///< its uvs outside the UDIM tiles were folded (texels/uv_wrap.h)
+};
+BakedMesh mesh_of_exposure_map(const std::filesystem::path& map);
 
 /// True when `input` is a fade stack: a fade.toml, or a folder holding one.
 bool is_fade_stack(const std::filesystem::path& input);

@@ -7,6 +7,9 @@
 
 #include "core/image_io.h"
 
+#include "texgen/meshes/mesh_input.h"
+#include "texgen/texels/uv_wrap.h"
+
 #include <fmt/format.h>
 #include <toml++/toml.h>
 
@@ -131,7 +134,11 @@ ExportResult export_flattened(const fs::path& input, const fs::path& output,
         if (!fs::is_regular_file(mesh_file, ec))
             throw std::runtime_error(fmt::format("export of '{}': the mesh '{}' does not exist",
                                                  stack.manifest.string(), mesh_file.string()));
-        geometry.mesh = load_merged_mesh(mesh_file);
+        geometry.mesh = load_merged_mesh(
+            mesh_file, convention_for_stack(options.convention, source.mesh_convention,
+                                            "the stack of " + stack.manifest.string()));
+        if (source.uv_wrap)
+            wrap_uvs_outside_udims(geometry.mesh);
     } else if (have_source ? source.strip_size_m > 0.0 : flat.texel_size_m > 0.0) {
         // A strip of its stack's size; without the stack, a plane of the maps' own size.
         geometry.width_m = have_source ? source.strip_size_m : flat.texel_size_m * flat.width;

@@ -8,6 +8,9 @@
 
 #include "core/image_io.h"
 
+#include "texgen/meshes/mesh_input.h"
+#include "texgen/texels/uv_wrap.h"
+
 #include <fmt/format.h>
 
 namespace patina::texgen {
@@ -68,15 +71,21 @@ ExportResult export_forecast(const fs::path& input, const fs::path& output,
 
     ExportGeometry geometry;
     fs::path mesh_file = options.mesh;
+    BakedMesh baked;
+    if (const auto exposure = entry.parameters["exposure"].value<std::string>())
+        baked = mesh_of_exposure_map(*exposure);
     if (mesh_file.empty())
-        if (const auto exposure = entry.parameters["exposure"].value<std::string>())
-            mesh_file = mesh_of_exposure_map(*exposure);
+        mesh_file = baked.file;
     std::error_code ec;
     if (mesh_file.empty() || !fs::is_regular_file(mesh_file, ec))
         throw std::runtime_error(fmt::format(
             "export of '{}': the mesh its exposure map was baked on is {}; pass --mesh",
             manifest.string(), mesh_file.empty() ? "not recorded" : "'" + mesh_file.string() + "', which does not exist"));
-    geometry.mesh = load_merged_mesh(mesh_file);
+    geometry.mesh = load_merged_mesh(
+        mesh_file, convention_for_stack(options.convention, baked.convention,
+                                        "the exposure map of " + manifest.string()));
+    if (baked.uv_wrap)
+        wrap_uvs_outside_udims(geometry.mesh);
 
     const std::string years_variant = fmt::format("years to dE00 {:g}", threshold);
     const std::string delta_e_variant = fmt::format("dE00 after {:g} y", after);

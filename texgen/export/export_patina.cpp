@@ -9,6 +9,9 @@
 
 #include "core/cancel.h"
 
+#include "texgen/meshes/mesh_input.h"
+#include "texgen/texels/uv_wrap.h"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -85,7 +88,11 @@ ExportResult export_patina(const fs::path& input, const fs::path& output,
                 "export of '{}': the mesh '{}' the stack was grown on does not exist{}",
                 first_stack.manifest.string(), mesh_file.string(),
                 options.mesh.empty() ? " (pass --mesh)" : ""));
-        mesh = load_merged_mesh(mesh_file);
+        mesh = load_merged_mesh(
+            mesh_file, convention_for_stack(options.convention, first_stack.mesh_convention,
+                                            first_stack.manifest.string()));
+        if (first_stack.uv_wrap)
+            wrap_uvs_outside_udims(mesh);
         const int width = options.resolution > 0 ? options.resolution : first_stack.width;
         flatten.texel_size_m = mean_texel_size_m(mesh, width, mesh_file.string());
     }

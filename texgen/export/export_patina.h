@@ -7,6 +7,7 @@
 #pragma once
 
 #include "core/color_management.h"
+#include "core/mesh_convention.h"
 #include "texgen/patina/material_library.h"
 
 #include <filesystem>
@@ -26,6 +27,9 @@ struct ExportOptions {
     std::string name_template = "$mesh_$material_$map";
     /// The mesh a stack grown on a mesh was grown on; empty: the path the stack records.
     std::filesystem::path mesh;
+    /// Its up axis and unit; what they leave open comes from the stack's record
+    /// (texgen/meshes/mesh_input.h), then from the file.
+    MeshConventionOptions convention;
 };
 
 /// What an export wrote and of what.

@@ -2,6 +2,7 @@
 
 #include <vector>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -45,6 +46,17 @@ ExposureBaker::ExposureBaker(const EmbreeScene& scene, const ExposureSky& sky,
         scale_ = 1.0 / sky.duration_s;
     }
     cos_sun_radius_ = static_cast<float>(std::cos(0.5 * options.sun_diameter_deg * kPi / 180.0));
+
+    // H: the sun bins seen from flat open ground, the sky cells at their centres.
+    for (const SunBin& bin : sky.sun_bins)
+        horizontal_ += std::max(0.0, bin.weighted.y);
+    const int res = sky.sky_resolution;
+    for (int i = 0; i < res; ++i)
+        for (int j = 0; j < res; ++j) {
+            const Imath::V3d w = hemisphere_direction((j + 0.5) / res, (i + 0.5) / res);
+            horizontal_ += sky.sky_radiance_time[static_cast<size_t>(i) * res + j] *
+                           std::max(0.0, w.y) * sky.cell_solid_angle;
+        }
 }
 
 std::vector<std::string> ExposureBaker::channels() const
@@ -54,6 +66,7 @@ std::vector<std::string> ExposureBaker::channels() const
         names.push_back("direct");
         names.push_back("sky");
     }
+    names.push_back("relative");
     return names;
 }
 
@@ -128,6 +141,8 @@ void ExposureBaker::evaluate(const SurfaceSample& s, size_t group_size, Pcg32& r
         out[1] = static_cast<float>(direct * scale_);
         out[2] = static_cast<float>(sky * scale_);
     }
+    out[options_.components ? 3 : 1] =
+        horizontal_ > 0.0 ? static_cast<float>((direct + sky) / horizontal_) : 0.0f;
 }
 
 }  // namespace patina::texgen

@@ -11,6 +11,11 @@
 //     R_c the cell's radiance-time, w_c a direction jittered uniformly within the cell
 //     (one stratified ray per cell), Omega_c = 2 pi / n^2.
 // Ground-reflected light is not included (no albedo term).
+//
+// relative = (direct + sky) / H, H the same period's exposure of unobstructed horizontal
+// ground: sum over sun bins of max(0, W_b . up) plus sum over sky cells of R_c cos(theta_c)
+// Omega_c at the cells' centres. 1 is "as much as open flat ground", whatever the site,
+// period or units: the channel patina scripts use (docs/texgen-exposure.md).
 #pragma once
 
 #include "texgen/bake/sample_baker.h"
@@ -35,7 +40,7 @@ public:
     ExposureBaker(const EmbreeScene& scene, const ExposureSky& sky, const ExposureOptions& options);
 
     /// {"exposure"} (J/m^2) or {"irradiance"} (W/m^2), then "direct" and "sky" with
-    /// components.
+    /// components, then "relative" (to unobstructed horizontal ground, dimensionless).
     std::vector<std::string> channels() const override;
     /// One ray per sun bin and per non-empty sky cell (an upper bound: directions below
     /// the surface cast none).
@@ -43,11 +48,15 @@ public:
     void evaluate(const SurfaceSample& s, size_t group_size, Pcg32& rng,
                   float* out) const override;
 
+    /// H, the exposure of unobstructed horizontal ground over the period (J/m^2).
+    double horizontal_exposure() const { return horizontal_; }
+
 private:
     const EmbreeScene& scene_;
     const ExposureSky& sky_;
     ExposureOptions options_;
     double scale_ = 1.0;        // 1, or 1 / duration for --average
+    double horizontal_ = 0.0;   // H: unobstructed horizontal ground's exposure, J/m^2
     float cos_sun_radius_ = 1.0f;
 };
 

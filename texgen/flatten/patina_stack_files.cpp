@@ -1,5 +1,7 @@
 #include "texgen/flatten/patina_stack_files.h"
 
+#include "texgen/meshes/mesh_input.h"
+
 #include <fmt/format.h>
 
 #include <stdexcept>
@@ -29,6 +31,9 @@ PatinaStackFiles read_patina_stack(const fs::path& stack)
             out.domain = *d;
         if (const auto m = map.parameters["mesh"].value<std::string>())
             out.mesh = (file.folder() / fs::path(*m)).lexically_normal();
+        if (const MeshConventionOptions c = recorded_convention(map.parameters); !c.empty())
+            out.mesh_convention = c;
+        out.uv_wrap = out.uv_wrap || recorded_uv_wrap(map.parameters);
     };
     for (const formats::PatinaLayer& layer : patina.layers) {
         const formats::StackMap& map = file.map(layer.map);

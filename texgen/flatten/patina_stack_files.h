@@ -5,6 +5,8 @@
 
 #include "formats/texture_stack.h"
 
+#include "core/mesh_convention.h"
+
 #include <filesystem>
 #include <map>
 #include <string>
@@ -34,6 +36,12 @@ struct PatinaStackFiles {
     /// The mesh the stack was grown on (the maps' parameter `mesh`, resolved against the
     /// manifest's folder), or empty: a strip, or a stack written before the path was kept.
     std::filesystem::path mesh;
+    /// The up axis and unit the mesh was read with (the maps' `mesh_up`,
+    /// `mesh_metres_per_unit`); empty for a strip or a stack that does not record them.
+    MeshConventionOptions mesh_convention;
+    /// Whether its uvs outside the UDIM tiles were folded into tile 1001 (the maps'
+    /// `uv_wrap`; texels/uv_wrap.h).
+    bool uv_wrap = false;
     /// The maps' parameter `domain`: "strip", or the file name of the mesh.
     std::string domain;
     /// The optics the stack records for its base and layers ([patina.materials]).

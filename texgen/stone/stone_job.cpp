@@ -6,6 +6,7 @@
 #include "core/output_transaction.h"
 #include "core/progress.h"
 #include "formats/stone_volume.h"
+#include "texgen/meshes/mesh_input.h"
 #include "texgen/stack/surface_map.h"
 #include "texgen/stone/eroded_mesh.h"
 #include "texgen/stone/stone_checkpoint.h"
@@ -64,7 +65,7 @@ std::string stone_setup_fingerprint(const StoneJobOptions& o)
     const std::string rain = o.rain_direction ? v3(*o.rain_direction) : std::string("-");
     // Every input of the states, as text (fmt writes doubles so they read back exactly).
     const std::string text = fmt::format(
-        "mesh {} slab_mesh {} wetness {} {} rain {} deposit {} {}\n"
+        "mesh {} slab_mesh {} up {} unit {} wetness {} {} rain {} deposit {} {}\n"
         "quarry {} {} {} {} {}\n"
         "shell {} {} {}\n"
         "moisture {} {} {} {} {} {} {}\n"
@@ -73,6 +74,9 @@ std::string stone_setup_fingerprint(const StoneJobOptions& o)
         "decay {} {} {} {} {}\n"
         "cycle {} {} seed {}\n",
         file_fingerprint(o.mesh), fingerprint_or_empty(o.slab_mesh),
+        o.convention.up ? o.convention.up->name() : std::string("-"),
+        o.convention.metres_per_unit ? fmt::format("{}", *o.convention.metres_per_unit)
+                                     : std::string("-"),
         fingerprint_or_empty(o.wetness_map), o.wetness_value, rain,
         fingerprint_or_empty(o.deposit_map), o.deposit_value, stone_kind_name(q.kind), q.seed,
         q.feature_size, v3(q.up), q.kozeny_carman_k0, o.depth, o.tangential_res, o.depth_res,
@@ -105,8 +109,9 @@ void run_stone_job(const StoneJobOptions& o)
     reserve_output(o.out_dir / "volume.exr");  // a bad output folder fails before the run
     if (!o.checkpoint.empty())
         reserve_output(o.checkpoint);
-    const TriangleMesh mesh = load_merged_mesh(o.mesh);
-    const TriangleMesh base = o.slab_mesh.empty() ? mesh : load_merged_mesh(o.slab_mesh);
+    const TriangleMesh mesh = load_mesh_with_warnings(o.mesh, o.convention);
+    const TriangleMesh base =
+        o.slab_mesh.empty() ? mesh : load_mesh_with_warnings(o.slab_mesh, o.convention);
     check_world_volume_memory(mesh, o.grid_resolution, "--grid");
     if (o.cycles < 0 || o.snapshots < 0)
         throw std::runtime_error("stone: --cycles and --steps must be >= 0");

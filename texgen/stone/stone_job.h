@@ -7,6 +7,8 @@
 #include "texgen/stone/stone_state.h"
 
 #include <filesystem>
+#include "core/mesh_convention.h"
+
 #include <optional>
 #include <string>
 #include <vector>
@@ -16,6 +18,7 @@ namespace patina::texgen::stone {
 struct StoneJobOptions {
     std::filesystem::path mesh;         ///< the closed stone mesh (world space, metres)
     std::filesystem::path slab_mesh;    ///< coarser base for the slabs (empty: `mesh`)
+    MeshConventionOptions convention;   ///< --up, --unit, --scale of both meshes
     std::filesystem::path out_dir = "stone";
     QuarryOptions quarry;
     StoneParameters params;

@@ -61,9 +61,10 @@ TriangleMesh merge_meshes(const std::vector<TriangleMesh>& meshes,
     return merged;
 }
 
-TriangleMesh load_merged_mesh(const std::filesystem::path& file)
+TriangleMesh load_merged_mesh(const std::filesystem::path& file,
+                              const MeshConventionOptions& convention, MeshConvention* applied)
 {
-    return merge_meshes(load_meshes(file), file);
+    return merge_meshes(load_meshes(file, convention, applied), file);
 }
 
 }  // namespace patina::texgen

@@ -18,7 +18,10 @@ namespace patina::texgen {
 TriangleMesh merge_meshes(const std::vector<TriangleMesh>& meshes,
                           const std::filesystem::path& file);
 
-/// load_meshes(file) merged by merge_meshes.
-TriangleMesh load_merged_mesh(const std::filesystem::path& file);
+/// load_meshes(file, convention) merged by merge_meshes; `applied`, when given, receives the
+/// convention used (mesh_convention.h).
+TriangleMesh load_merged_mesh(const std::filesystem::path& file,
+                              const MeshConventionOptions& convention = {},
+                              MeshConvention* applied = nullptr);
 
 }  // namespace patina::texgen

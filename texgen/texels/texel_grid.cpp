@@ -277,7 +277,8 @@ UvRasterizer::UvRasterizer(const TriangleMesh& mesh, const RasterOptions& option
                               mesh.uvs[mesh.indices[3 * t + 2]]) / 3.0f;
         throw std::runtime_error(fmt::format(
             "{}: triangle {} has its uv centroid at ({}, {}), outside the UDIM tiles "
-            "(0 <= u < 10, 0 <= v < 100); {} triangles are outside (patina-texgen uv-check "
+            "(0 <= u < 10, 0 <= v < 100); {} triangles are outside. --uv-wrap folds them into "
+            "tile 1001 as a renderer's repeat wrapping reads them (patina-texgen uv-check "
             "reports the layout)",
             mesh_label(mesh), t, c.x, c.y, stats_.outside_udims));
     }

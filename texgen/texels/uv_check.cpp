@@ -117,8 +117,10 @@ UvCheck check_uvs(const TriangleMesh& mesh, const UvCheckOptions& options)
     check.supersampling = options.supersampling;
     if (!check.has_uvs) {
         validate_mesh(mesh, fmt::format("mesh '{}'", mesh.name));
+        check.topology = mesh_topology(mesh);
         return check;
     }
+    check.topology = mesh_topology(mesh);
 
     // Lenient: triangles outside the UDIM tiles and degenerate ones are counted, not fatal.
     const UvRasterizer raster(mesh, RasterOptions{options.width, options.height,
@@ -144,11 +146,13 @@ UvCheck check_uvs(const TriangleMesh& mesh, const UvCheckOptions& options)
                        i2 = mesh.indices[3 * t + 2];
         const Imath::V2d e1 = Imath::V2d(mesh.uvs[i1]) - Imath::V2d(mesh.uvs[i0]);
         const Imath::V2d e2 = Imath::V2d(mesh.uvs[i2]) - Imath::V2d(mesh.uvs[i0]);
-        const double uv_area = 0.5 * std::abs(e1.x * e2.y - e1.y * e2.x);
+        const double signed_uv_area = 0.5 * (e1.x * e2.y - e1.y * e2.x);
+        const double uv_area = std::abs(signed_uv_area);
         const Imath::V3d p0(mesh.positions[i0]);
         const double surface = 0.5 * (Imath::V3d(mesh.positions[i1]) - p0)
                                          .cross(Imath::V3d(mesh.positions[i2]) - p0)
                                          .length();
+        check.mirrored_uv_triangles += signed_uv_area < 0.0 && surface > 0.0;
         if (!(uv_area > 0.0 && surface > 0.0))
             continue;
         const double density = uv_area * texels_per_uv_area / surface;
@@ -228,14 +232,45 @@ UvCheck check_uvs(const TriangleMesh& mesh, const UvCheckOptions& options)
     return check;
 }
 
+std::string UvCheck::refusal() const
+{
+    if (!has_uvs)
+        return "the mesh has no uvs: bake per vertex (--per-vertex out.ply), or give it a uv "
+               "layout";
+    if (triangles_outside_udims > 0)
+        return fmt::format("{} triangles lie outside the UDIM tiles: --uv-wrap folds them into "
+                           "tile 1001 as a renderer's repeat wrapping reads them",
+                           triangles_outside_udims);
+    if (zero_uv_area + zero_surface_area >= triangles)
+        return "every triangle has zero uv or surface area";
+    return {};
+}
+
 std::string format_uv_check(const UvCheck& c)
 {
     std::string out = fmt::format("mesh             '{}'\n", c.mesh_name);
     out += fmt::format("triangles        {}\n", c.triangles);
     out += fmt::format("vertices         {}\n", c.vertices);
+    const MeshTopology& t = c.topology;
+    out += fmt::format("surface          {} piece(s); {} open edges, {} non-manifold edges, {} "
+                       "flipped faces{}\n",
+                       t.pieces, t.boundary_edges, t.non_manifold_edges, t.flipped_faces,
+                       t.flipped_faces ? " (wound against their neighbours: they bake their "
+                                         "inside)"
+                                       : "");
+    const std::string refusal = c.refusal();
+    const auto verdict = [&] {
+        return refusal.empty()
+                   ? fmt::format("bakers           will bake {} triangles{}\n",
+                                 c.triangles - c.zero_uv_area - c.zero_surface_area,
+                                 c.uv_wrap ? fmt::format(" ({} folded into tile 1001 by --uv-wrap)",
+                                                         c.wrapped_triangles)
+                                           : std::string())
+                   : fmt::format("bakers           will refuse the mesh: {}\n", refusal);
+    };
     if (!c.has_uvs) {
         out += "uvs              missing: no uvs; bake per vertex with --per-vertex out.ply\n";
-        return out;
+        return out + verdict();
     }
     out += "uvs              yes\n";
     out += fmt::format("uv islands       {}\n", c.islands);
@@ -256,7 +291,7 @@ std::string format_uv_check(const UvCheck& c)
     out += fmt::format("udim tiles       {}\n", tiles.empty() ? "none" : tiles);
     if (c.vertices_outside_udims || c.triangles_outside_udims)
         out += fmt::format("outside udims    {} vertices have uvs outside 0 <= u < 10, 0 <= v < "
-                           "100; {} triangles (by uv centroid) will not be baked\n",
+                           "100; {} triangles by their uv centroid\n",
                            c.vertices_outside_udims, c.triangles_outside_udims);
     else
         out += "outside udims    none\n";
@@ -266,6 +301,9 @@ std::string format_uv_check(const UvCheck& c)
                            c.zero_uv_area, c.zero_surface_area);
     else
         out += "degenerate       none\n";
+    if (c.mirrored_uv_triangles)
+        out += fmt::format("mirrored uvs     {} triangles (clockwise in uv: a tangent-space normal "
+                           "map flips there)\n", c.mirrored_uv_triangles);
     if (c.texel_density_mean > 0.0) {
         out += fmt::format("texel density    at {} x {}: mean {}\n", c.width, c.height,
                            density_text(c.texel_density_mean));
@@ -274,7 +312,7 @@ std::string format_uv_check(const UvCheck& c)
     } else {
         out += "texel density    none (no triangle has uv and surface area)\n";
     }
-    return out;
+    return out + verdict();
 }
 
 }  // namespace patina::texgen

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "core/mesh.h"
+#include "texgen/texels/mesh_topology.h"
 
 #include <string>
 #include <vector>
@@ -48,6 +49,16 @@ struct UvCheck {
     size_t triangles_outside_udims = 0;  ///< uv centroid outside: not baked
     size_t zero_uv_area = 0;             ///< degenerate triangles, not baked
     size_t zero_surface_area = 0;
+    size_t wrapped_triangles = 0;        ///< folded into tile 1001 by --uv-wrap (the caller's)
+    bool uv_wrap = false;                ///< the bakers were asked to fold (--uv-wrap)
+    /// Triangles whose uvs run clockwise while the surface runs counter-clockwise (mirrored
+    /// uv islands): tangent-space normal maps flip there.
+    size_t mirrored_uv_triangles = 0;
+    MeshTopology topology;
+
+    /// Why the bakers would refuse this mesh (no uvs, triangles outside the UDIM tiles, no
+    /// triangle of non-zero area); empty when they bake it.
+    std::string refusal() const;
 
     bool overlaps() const { return overlapping_sub_samples > 0; }
     /// Overlapping over covered sub-samples: the share of the covered uv area that more

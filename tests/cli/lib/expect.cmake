@@ -14,6 +14,11 @@ function(expect_failure message_part)
   if(NOT n EQUAL 1)
     message(FATAL_ERROR "expected exactly one 'patina-<tool>: error' line, got ${n}:\n${err}")
   endif()
+  # ... on a line of its own: never after a progress line's carriage return.
+  string(REGEX MATCH "(^|\n)patina-[a-z]+: error" own_line "${err}")
+  if(NOT own_line)
+    message(FATAL_ERROR "the error does not start a line of its own:\n${err}")
+  endif()
 endfunction()
 
 function(expect_success)

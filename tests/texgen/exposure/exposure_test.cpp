@@ -122,11 +122,15 @@ TEST(Exposure, OpenHorizontalPlaneGetsTheIntegralOfGlobalHorizontal)
         EXPECT_FLOAT_EQ(v[0], v[1] + v[2]);
         // The parts on their own: direct = integral of DNI cos z, sky = integral of DHI.
         EXPECT_NEAR(v[2] / sky.diffuse_horizontal, 1.0, 0.01) << sky_name;
+        // relative: open flat ground is 1 by definition (its estimate jitters within the sun
+        // bins and sky cells that H takes at their centres).
+        EXPECT_NEAR(v[3], 1.0, 0.01) << sky_name;
         // The average is the total over the 86400 s period.
         pt::ExposureOptions average;
         average.average = true;
         const pt::ExposureBaker baker(plane.scene, sky, average);
-        EXPECT_EQ(baker.channels(), std::vector<std::string>{"irradiance"});
+        EXPECT_EQ(baker.channels(), (std::vector<std::string>{"irradiance", "relative"}));
+        EXPECT_NEAR(baker.horizontal_exposure() / v[0], 1.0, 0.01) << sky_name;
         const std::vector<float> w = pt::bake_groups(
             samples_at(Imath::V3f(0, 0, 0), Imath::V3f(0, 1, 0)), baker, {7, 0, nullptr});
         EXPECT_NEAR(w[0] * 86400.0 / v[0], 1.0, 1e-5);
@@ -152,6 +156,9 @@ TEST(Exposure, SurfacesFacingAwayFromTheSunGetNoDirectTerm)
     const std::vector<float> down =
         bake(ceiling.scene, sky, samples_at(Imath::V3f(0, 0, 0), Imath::V3f(0, -1, 0)));
     EXPECT_EQ(down[0], 0.0f);
+    EXPECT_EQ(down[3], 0.0f);
+    EXPECT_GT(north[3], 0.0f);
+    EXPECT_LT(north[3], 0.5f);  // sky alone, from half of it
     // The same wall turned south gets the sun: direct = sum of DNI dt cos(incidence), a
     // large share of the period's direct normal energy.
     OpenPlane south_wall(patina::make_plane(Imath::V3f(0, 0, 0), 10.0f, 1, Imath::V3f(0, 0, 1)));

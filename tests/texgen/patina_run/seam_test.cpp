@@ -120,7 +120,8 @@ TEST(SurfaceGrowth, PatternsAreContinuousAcrossEverySeamOfASixIslandCube)
         // The test can fail: grown without the seam links, the seams are cuts, rougher than
         // the joined surface next to them (except for solid noise, which is continuous in
         // space whatever the lattice).
-        if (c.model != GrowthModelKind::Turbulence)
+        if (c.model != GrowthModelKind::Turbulence) {
             EXPECT_GT(dc.across, 1.5 * d.inside) << name;
+        }
     }
 }

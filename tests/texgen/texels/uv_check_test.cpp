@@ -124,8 +124,11 @@ namespace {
         EXPECT_EQ(c.vertices_outside_udims, 2u);  // u = -1 (u = 0 is inside)
         EXPECT_EQ(c.triangles_outside_udims, 2u);
         EXPECT_TRUE(c.udims.empty());
-        EXPECT_NE(format_uv_check(c).find("2 triangles (by uv centroid) will not be baked"),
+        EXPECT_NE(format_uv_check(c).find("2 triangles by their uv centroid"), std::string::npos);
+        EXPECT_NE(format_uv_check(c).find("will refuse the mesh: 2 triangles lie outside the "
+                                          "UDIM tiles: --uv-wrap folds them"),
                   std::string::npos);
+        EXPECT_NE(c.refusal(), "");
     }
 
     TEST(UvCheck, MissingUvsSuggestThePerVertexMode)

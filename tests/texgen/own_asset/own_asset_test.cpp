@@ -1,0 +1,385 @@
+// A user's own asset, in the conventions other programs write (docs/your-asset.md): Blender
+// headless writes a figure 0.40 x 0.30 x 1.50 m as a Z-up FBX in centimetres, a Z-up COLLADA
+// in centimetres and a glTF modelled in millimetres (tests/clients/blender_asset_corpus.py);
+// each goes through uv-check, a bake, a patina script and export, and the exported glb is
+// checked by the Khronos validator and opened by Blender: upright and in metres. Also uvs
+// outside the tiles (refused, naming --uv-wrap; folded with it), the ground plane placed
+// under the asset, an occluder that cuts through it, and bad options.
+#include "core/image_io.h"
+
+#include <Imath/ImathVec.h>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+#include <toml++/toml.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <unistd.h>
+
+namespace patina {
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::string kBin = PATINA_TEST_BIN_DIR;
+const std::string kSource = PATINA_SOURCE_DIR;
+
+struct Result {
+    int status = -1;
+    std::string out, err;
+};
+
+std::string slurp(const fs::path& file)
+{
+    std::ifstream in(file, std::ios::binary);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+/// Run `command` through the shell, capturing stdout and stderr.
+Result run(const std::string& command, const fs::path& dir)
+{
+    const fs::path out = dir / "last.out", err = dir / "last.err";
+    const int rc = std::system((command + " > '" + out.string() + "' 2> '" + err.string() + "'")
+                                   .c_str());
+    return {WIFEXITED(rc) ? WEXITSTATUS(rc) : -1, slurp(out), slurp(err)};
+}
+
+std::string texgen() { return "'" + kBin + "/patina-texgen'"; }
+std::string quoted(const fs::path& p)
+{
+    // Appended, not "'" + ...: GCC 12 warns falsely (-Wrestrict, its bug 105329) on that.
+    std::string s(1, '\'');
+    s.append(p.string()).push_back('\'');
+    return s;
+}
+
+/// The mean of `channel` over the texels a map covers (its coverage channel > 0).
+double covered_mean(const fs::path& exr, const std::string& channel)
+{
+    const ImageData image = read_image(exr);
+    const int c = image.channel(channel), a = image.channel("coverage.A");
+    double sum = 0.0, weight = 0.0;
+    for (int y = 0; y < image.height; ++y)
+        for (int x = 0; x < image.width; ++x)
+            if (image.at(x, y, a) > 0.0f) {
+                sum += image.at(x, y, c);
+                weight += 1.0;
+            }
+    return weight > 0.0 ? sum / weight : -1.0;
+}
+
+class OwnAsset : public ::testing::Test {
+protected:
+    static fs::path corpus_;
+
+    // The corpus once for all the tests: Blender takes seconds to start. CTest runs each
+    // test in a process of its own, in parallel: the corpus is written into a folder of
+    // this process and renamed into place, so no test reads a half-written file.
+    static void SetUpTestSuite()
+    {
+        const fs::path root = fs::path(PATINA_TEST_BUILD_DIR) / "own_asset_test";
+        corpus_ = root / "corpus";
+        if (fs::exists(corpus_ / "figure_mm.glb"))
+            return;
+        const fs::path mine = root / ("corpus." + std::to_string(::getpid()));
+        fs::create_directories(mine);
+        const std::string command =
+            "blender -b --factory-startup --python-exit-code 1 --python '" + kSource +
+            "/tests/clients/blender_asset_corpus.py' -- " + quoted(mine) + " > " +
+            quoted(mine / "blender.log") + " 2>&1";
+        if (std::system(command.c_str()) != 0) {
+            corpus_ = mine;  // SetUp names its log
+            return;
+        }
+        std::error_code ec;
+        fs::rename(mine, corpus_, ec);  // fails when another process was first: use theirs
+        if (ec)
+            fs::remove_all(mine, ec);
+    }
+
+    void SetUp() override
+    {
+        // Never skipped: without Blender the corpus is missing and the test says what to install.
+        ASSERT_TRUE(fs::exists(corpus_ / "figure_mm.glb"))
+            << "Blender could not write the corpus (see " << (corpus_ / "blender.log").string()
+            << "): install Debian 12's blender and python3-numpy (scripts/bootstrap.sh does)";
+        dir_ = fs::path(PATINA_TEST_BUILD_DIR) / "own_asset_test" /
+               ::testing::UnitTest::GetInstance()->current_test_info()->name();
+        fs::remove_all(dir_);
+        fs::create_directories(dir_);
+    }
+
+    Result texgen_run(const std::string& arguments) { return run(texgen() + " " + arguments, dir_); }
+
+    /// Accessibility baked on `mesh` with `options` into `out`.
+    Result bake_accessibility(const fs::path& mesh, const fs::path& out, const std::string& options)
+    {
+        return texgen_run("accessibility --mesh " + quoted(mesh) + " -o " + quoted(out) +
+                          " --resolution 48 --max-radius 0.3 --seed 1 --quiet " + options);
+    }
+
+    /// The mesh's stack grown by a small script reading `maps`' accessibility, exported to a
+    /// glb that the validator passes; Blender's report of it.
+    nlohmann::json grow_export_open(const fs::path& mesh, const fs::path& maps,
+                                    const std::string& options)
+    {
+        std::ofstream(maps.parent_path() / "grow.patina")
+            << "new copper\nmap accessibility = \"" << maps.filename().string()
+            << "/accessibility.exr\" \"accessibility\"\ncoat tarnish 1.0 0.5 * accessibility\n"
+               "render maps\n";
+        const Result grow = texgen_run("patina " + quoted(maps.parent_path() / "grow.patina") +
+                                    " --mesh " + quoted(mesh) + " -o " + quoted(dir_ / "stack") +
+                                    " --resolution 32 --quiet --no-preview " + options);
+        EXPECT_EQ(grow.status, 0) << grow.err;
+        const fs::path glb = dir_ / "asset.glb";
+        const Result exported = texgen_run("export " + quoted(dir_ / "stack") + " -o " +
+                                        quoted(glb) + " --quiet");
+        EXPECT_EQ(exported.status, 0) << exported.err;
+        const Result valid = run("node '" + kSource + "/tests/clients/validate_gltf.mjs' " +
+                                  quoted(glb), dir_);
+        EXPECT_EQ(valid.status, 0) << valid.out << valid.err;
+        const fs::path report = dir_ / "blender.json";
+        const Result opened = run("blender -b --factory-startup --python-exit-code 1 --python '" +
+                                   kSource + "/tests/clients/blender_gltf_check.py' -- " +
+                                   quoted(glb) + " " + quoted(report), dir_);
+        EXPECT_EQ(opened.status, 0) << opened.out.substr(0, 4000);
+        std::ifstream in(report);
+        return in ? nlohmann::json::parse(in) : nlohmann::json();
+    }
+
+    /// The figure upright in metres in Blender's axes (Z up): 0.40 x 0.30 x 1.50 m, standing
+    /// on z = 0.
+    static void expect_upright_figure(const nlohmann::json& report)
+    {
+        ASSERT_FALSE(report.is_null());
+        const auto& lo = report["bounds_min"];
+        const auto& hi = report["bounds_max"];
+        EXPECT_NEAR(hi[0].get<double>() - lo[0].get<double>(), 0.40, 1e-4);
+        EXPECT_NEAR(hi[1].get<double>() - lo[1].get<double>(), 0.30, 1e-4);
+        EXPECT_NEAR(hi[2].get<double>() - lo[2].get<double>(), 1.50, 1e-4);
+        EXPECT_NEAR(lo[2].get<double>(), 0.0, 1e-4);
+    }
+
+    fs::path dir_;
+};
+
+fs::path OwnAsset::corpus_;
+
+TEST_F(OwnAsset, ZUpFbxInCentimetresBakesUprightAndExportsInMetres)
+{
+    const fs::path fbx = corpus_ / "figure_zup_cm.fbx";
+    const Result check = texgen_run("uv-check " + quoted(fbx) + " --resolution 64");
+    ASSERT_EQ(check.status, 0) << check.err;
+    EXPECT_NE(check.out.find("up +z (FBX GlobalSettings), unit cm (FBX GlobalSettings)"),
+              std::string::npos) << check.out;
+    EXPECT_EQ(check.err.find("warning"), std::string::npos) << check.err;
+
+    const Result baked = bake_accessibility(fbx, dir_ / "maps", "--ground");
+    ASSERT_EQ(baked.status, 0) << baked.err;
+    const toml::table stack = toml::parse_file((dir_ / "maps" / "stack.toml").string());
+    const auto* parameters = stack["maps"]["accessibility"]["parameters"].as_table();
+    ASSERT_NE(parameters, nullptr);
+    EXPECT_EQ((*parameters)["mesh_up"].value_or(std::string()), "+z");
+    EXPECT_NEAR((*parameters)["mesh_metres_per_unit"].value_or(0.0), 0.01, 1e-9);
+
+    // The same file read as metres: a 150 m figure, for which a 30 cm sphere reaches every
+    // crevice; the options warn twice (a unit against the file's, a size against reason).
+    const Result as_metres = bake_accessibility(fbx, dir_ / "maps_m", "--ground --unit m");
+    ASSERT_EQ(as_metres.status, 0) << as_metres.err;
+    EXPECT_NE(as_metres.err.find("the file declares its unit as cm (FBX GlobalSettings)"),
+              std::string::npos) << as_metres.err;
+    EXPECT_NE(as_metres.err.find("--unit cm"), std::string::npos) << as_metres.err;
+    const double right = covered_mean(dir_ / "maps" / "accessibility.exr", "accessibility");
+    const double wrong = covered_mean(dir_ / "maps_m" / "accessibility.exr", "accessibility");
+    std::printf("[ own asset ] mean accessibility: %.3f in centimetres, %.3f read as metres\n",
+                right, wrong);
+    EXPECT_LT(right, wrong - 0.02);
+
+    // patina reads the unit from the maps' stack; export writes +Y-up metres.
+    expect_upright_figure(grow_export_open(fbx, dir_ / "maps", ""));
+}
+
+TEST_F(OwnAsset, ColladaUnitAndUpAxisAreHonoured)
+{
+    const fs::path dae = corpus_ / "figure_zup_cm.dae";
+    const Result check = texgen_run("uv-check " + quoted(dae));
+    ASSERT_EQ(check.status, 0) << check.err;
+    EXPECT_NE(check.out.find("up +z (COLLADA <asset>), unit cm (COLLADA <asset>)"),
+              std::string::npos) << check.out;
+    ASSERT_EQ(bake_accessibility(dae, dir_ / "maps", "--ground").status, 0);
+    expect_upright_figure(grow_export_open(dae, dir_ / "maps", ""));
+}
+
+TEST_F(OwnAsset, AGltfInMillimetresIsNamedAndTheUnitOptionFixesIt)
+{
+    const fs::path glb = corpus_ / "figure_mm.glb";
+    const Result check = texgen_run("uv-check " + quoted(glb));
+    ASSERT_EQ(check.status, 0) << check.err;
+    EXPECT_NE(check.err.find("1500 m along its longest side"), std::string::npos) << check.err;
+    EXPECT_NE(check.err.find("--unit mm"), std::string::npos) << check.err;
+
+    const Result baked = bake_accessibility(glb, dir_ / "maps", "--ground --unit mm");
+    ASSERT_EQ(baked.status, 0) << baked.err;
+    EXPECT_NE(baked.err.find("the file declares its unit as m (glTF"), std::string::npos)
+        << baked.err;
+    EXPECT_EQ(baked.err.find("longest side"), std::string::npos) << baked.err;
+    // A later step that contradicts the stack is refused; one that says nothing agrees.
+    std::ofstream(dir_ / "grow.patina") << "new copper\nmap accessibility = "
+                                           "\"maps/accessibility.exr\"\nrender maps\n";
+    const Result contradicted = texgen_run("patina " + quoted(dir_ / "grow.patina") + " --mesh " +
+                                        quoted(glb) + " --unit cm -o " + quoted(dir_ / "bad") +
+                                        " --resolution 16 --quiet");
+    EXPECT_NE(contradicted.status, 0);
+    EXPECT_NE(contradicted.err.find("was made with the mesh in mm, not cm"), std::string::npos)
+        << contradicted.err;
+    expect_upright_figure(grow_export_open(glb, dir_ / "maps", ""));
+}
+
+TEST_F(OwnAsset, UvsOutsideTheTilesAreRefusedNamingUvWrapAndFoldedWithIt)
+{
+    // A 1 m square whose uvs lie one tile left and one below the unit tile.
+    const fs::path obj = dir_ / "negative_uvs.obj";
+    std::ofstream(obj) << "v 0 0 0\nv 1 0 0\nv 1 0 -1\nv 0 0 -1\nvt -1 -1\nvt -0.01 -1\n"
+                          "vt -0.01 -0.01\nvt -1 -0.01\nvn 0 1 0\n"
+                          "f 1/1/1 2/2/1 3/3/1\nf 1/1/1 3/3/1 4/4/1\n";
+    const Result refused = texgen_run("ao --mesh " + quoted(obj) + " -o " + quoted(dir_ / "ao") +
+                                   " --resolution 16 --rays 4 --quiet");
+    EXPECT_EQ(refused.status, 1);
+    EXPECT_NE(refused.err.find("--uv-wrap folds them into tile 1001"), std::string::npos)
+        << refused.err;
+    EXPECT_FALSE(fs::exists(dir_ / "ao" / "ao.exr"));
+
+    // uv-check says the same, and exits non-zero as the bakers would.
+    const Result check = texgen_run("uv-check " + quoted(obj));
+    EXPECT_EQ(check.status, 1);
+    EXPECT_NE(check.out.find("will refuse the mesh: 2 triangles lie outside"), std::string::npos)
+        << check.out;
+    const Result wrapped_check = texgen_run("uv-check " + quoted(obj) + " --uv-wrap");
+    EXPECT_EQ(wrapped_check.status, 0) << wrapped_check.err;
+    EXPECT_NE(wrapped_check.out.find("will bake 2 triangles (2 folded into tile 1001"),
+              std::string::npos) << wrapped_check.out;
+
+    const Result wrapped = texgen_run("ao --mesh " + quoted(obj) + " -o " + quoted(dir_ / "ao") +
+                                   " --resolution 16 --rays 4 --quiet --uv-wrap");
+    ASSERT_EQ(wrapped.status, 0) << wrapped.err;
+    // The square fills 0.99 of the tile: nearly every texel is baked, AO 1 under an open sky.
+    EXPECT_NEAR(covered_mean(dir_ / "ao" / "ao.exr", "ao"), 1.0, 1e-6);
+    const toml::table stack = toml::parse_file((dir_ / "ao" / "stack.toml").string());
+    EXPECT_EQ(stack["maps"]["ao"]["parameters"]["uv_wrap"].value_or(0), 1);
+}
+
+TEST_F(OwnAsset, TheGroundGoesUnderTheAssetAndAnOccluderThroughItIsReported)
+{
+    const fs::path fbx = corpus_ / "figure_zup_cm.fbx";
+    // A ground plane at half the figure's height: it cuts the figure in two.
+    const fs::path cut = dir_ / "cut.obj";
+    std::ofstream(cut) << "v -5 0.75 5\nv 5 0.75 5\nv 5 0.75 -5\nv -5 0.75 -5\nf 1 2 3\nf 1 3 4\n";
+    const Result cutting = bake_accessibility(fbx, dir_ / "cut", "--occluder " + quoted(cut));
+    ASSERT_EQ(cutting.status, 0) << cutting.err;
+    EXPECT_NE(cutting.err.find("cuts through the baked mesh"), std::string::npos) << cutting.err;
+    EXPECT_NE(cutting.err.find("--ground places a ground plane there"), std::string::npos);
+
+    const Result grounded = bake_accessibility(fbx, dir_ / "ground", "--ground");
+    ASSERT_EQ(grounded.status, 0) << grounded.err;
+    EXPECT_EQ(grounded.err.find("cuts through"), std::string::npos) << grounded.err;
+    const toml::table stack = toml::parse_file((dir_ / "ground" / "stack.toml").string());
+    EXPECT_NEAR(stack["maps"]["accessibility"]["parameters"]["ground_y"].value_or(1.0), 0.0, 1e-5);
+    // On the ground the figure's foot is less accessible than standing in the air.
+    const Result floating = bake_accessibility(fbx, dir_ / "air", "");
+    ASSERT_EQ(floating.status, 0) << floating.err;
+    EXPECT_LT(covered_mean(dir_ / "ground" / "accessibility.exr", "accessibility"),
+              covered_mean(dir_ / "air" / "accessibility.exr", "accessibility"));
+}
+
+/// The mean linear RGB of the pixels in columns [x0, x1) and rows [y0, y1) of an image.
+Imath::V3d mean_rgb(const ImageData& image, int x0, int x1, int y0, int y1)
+{
+    Imath::V3d sum(0.0);
+    const int r = image.channel("R"), g = image.channel("G"), b = image.channel("B");
+    for (int y = y0; y < y1; ++y)
+        for (int x = x0; x < x1; ++x)
+            sum += Imath::V3d(image.at(x, y, r), image.at(x, y, g), image.at(x, y, b));
+    return sum / (static_cast<double>(x1 - x0) * (y1 - y0));
+}
+
+TEST_F(OwnAsset, AUdimStackRendersEveryTileWithLayeredKm)
+{
+    // Two 1 m quads side by side facing up, the left on tile 1001, the right on 1002, under
+    // a uniform layer of Dorsey & Hanrahan 1996 §5.1's rural patina, 20 um: both must look
+    // alike, and unlike bare copper. Were tile 1002 not read, the right quad would render as
+    // bare copper (a thickness of 0).
+    const fs::path obj = dir_ / "two_tiles.obj";
+    std::ofstream(obj) << "v 0 0 0\nv 1 0 0\nv 1 0 -1\nv 0 0 -1\nv 1.5 0 0\nv 2.5 0 0\n"
+                          "v 2.5 0 -1\nv 1.5 0 -1\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvt 1 0\n"
+                          "vt 2 0\nvt 2 1\nvt 1 1\nvn 0 1 0\nf 1/1/1 2/2/1 3/3/1\n"
+                          "f 1/1/1 3/3/1 4/4/1\nf 5/5/1 6/6/1 7/7/1\nf 5/5/1 7/7/1 8/8/1\n";
+    const auto render_grown = [&](const std::string& name, const std::string& script) {
+        std::ofstream(dir_ / (name + ".patina")) << script;
+        const Result grown = texgen_run("patina " + quoted(dir_ / (name + ".patina")) +
+                                        " --mesh " + quoted(obj) + " -o " +
+                                        quoted(dir_ / name) + " --resolution 16 --quiet "
+                                        "--no-preview");
+        EXPECT_EQ(grown.status, 0) << grown.err;
+        const fs::path scene = dir_ / (name + ".toml");
+        std::ofstream(scene) << "[film]\nwidth = 80\nheight = 32\nspp = 16\nseed = 1\n"
+                                "[camera]\nfrom = [1.25, 4.0, -0.5]\nto = [1.25, 0.0, -0.5]\n"
+                                "up = [0.0, 0.0, -1.0]\nfov_deg = 16.5\n[environment]\n"
+                                "color = [1.0, 1.0, 1.0]\ncolorspace = \"lin_rec709\"\n"
+                                "[[shader]]\nname = \"patina\"\ntype = \"layered_km\"\n"
+                                "stack = \""
+                             << (dir_ / name / "stack.toml").string()
+                             << "\"\n[[object]]\nmesh = \"" << obj.string()
+                             << "\"\nbsdf = \"patina\"\n";
+        const fs::path exr = dir_ / (name + ".exr");
+        const Result rendered = run("'" + kBin + "/patina-render' " + quoted(scene) + " -o " +
+                                        quoted(exr) + " --quiet", dir_);
+        EXPECT_EQ(rendered.status, 0) << rendered.err;
+        return read_image(exr);
+    };
+    const ImageData patina =
+        render_grown("patina", "new copper\ncoat rural patina 3 1.0 20\nrender maps\n");
+    const ImageData copper = render_grown("copper", "new copper\nrender maps\n");
+    ASSERT_GT(patina.width, 0);
+    ASSERT_GT(copper.width, 0);
+    // 32 rows span 1.16 m at 4 m (16.5 degrees): 27.6 px a metre; the quads' centres,
+    // x = 0.5 and 2.0 m, lie 0.75 m either side of the axis, at columns 19 and 61.
+    const auto quad = [](const ImageData& image, int centre) {
+        return mean_rgb(image, centre - 6, centre + 6, 6, 26);
+    };
+    const Imath::V3d left = quad(patina, 19), right = quad(patina, 61);
+    const Imath::V3d bare = quad(copper, 61);
+    std::printf("[ own asset ] UDIM render: tile 1001 (%.3f, %.3f, %.3f), tile 1002 (%.3f, "
+                "%.3f, %.3f), bare copper (%.3f, %.3f, %.3f)\n",
+                left.x, left.y, left.z, right.x, right.y, right.z, bare.x, bare.y, bare.z);
+    EXPECT_LT((right - left).length(), 0.05 * left.length());
+    EXPECT_GT((right - bare).length(), 0.3 * bare.length());
+}
+
+TEST_F(OwnAsset, BadAxisAndUnitOptionsGetOneClearMessage)
+{
+    const fs::path fbx = corpus_ / "figure_zup_cm.fbx";
+    const Result bad_axis = texgen_run("uv-check " + quoted(fbx) + " --up w");
+    EXPECT_EQ(bad_axis.status, 2);
+    EXPECT_NE(bad_axis.err.find("'w' is not an axis"), std::string::npos) << bad_axis.err;
+    const Result bad_unit = texgen_run("uv-check " + quoted(fbx) + " --unit furlong");
+    EXPECT_EQ(bad_unit.status, 2);
+    EXPECT_NE(bad_unit.err.find("'furlong' is not a unit"), std::string::npos) << bad_unit.err;
+    const Result both = texgen_run("uv-check " + quoted(fbx) + " --unit cm --scale 0.01");
+    EXPECT_EQ(both.status, 2);
+    EXPECT_NE(both.err.find("excludes"), std::string::npos) << both.err;
+    std::ofstream(dir_ / "bare.patina") << "new copper\nrender maps\n";
+    const Result strip = texgen_run("patina " + quoted(dir_ / "bare.patina") + " --up z -o " +
+                                 quoted(dir_ / "strip") + " --quiet");
+    EXPECT_EQ(strip.status, 1);
+    EXPECT_NE(strip.err.find("describe the file of --mesh"), std::string::npos) << strip.err;
+}
+
+}  // namespace
+}  // namespace patina
