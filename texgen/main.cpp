@@ -24,6 +24,7 @@ int main(int argc, char** argv)
     // Keep this list in the order of `patina-texgen --help`.
     pt::register_mesh_command(app);
     pt::register_uv_check_command(app);
+    pt::register_unwrap_command(app);
     pt::register_ao_command(app);
     pt::register_accessibility_command(app);
     pt::register_sun_command(app);
@@ -43,7 +44,7 @@ int main(int argc, char** argv)
     // Each command's --help ends with its page of the manual.
     app.footer(patina::manual_footer("texgen.md"));
     for (const auto& [command, page] :
-         {std::pair{"mesh", "texgen.md"}, std::pair{"uv-check", "texgen.md"},
+         {std::pair{"mesh", "texgen.md"}, std::pair{"uv-check", "texgen.md"}, std::pair{"unwrap", "your-asset.md"},
           std::pair{"ao", "texgen-ao.md"}, std::pair{"accessibility", "texgen-ao.md"},
           std::pair{"sun", "texgen-exposure.md"}, std::pair{"sky", "lookdev.md"}, std::pair{"exposure", "texgen-exposure.md"},
           std::pair{"wetness", "texgen-wetness.md"}, std::pair{"deposit", "texgen-wetness.md"},

@@ -42,6 +42,7 @@ namespace {
     struct Loader {
         const std::filesystem::path& path;
         const aiScene& scene;
+        int uv_set = 0;
         std::vector<TriangleMesh> meshes;
 
         std::string where() const { return fmt::format("mesh file '{}'", path.string()); }
@@ -79,13 +80,27 @@ namespace {
                     m.normals[i] = normals_ok ? n.normalized() : n;
                 }
             }
-            if (in.HasTextureCoords(0)) {
-                m.uvs.resize(in.mNumVertices);
+            const auto read_uvs = [&](unsigned set, std::vector<Imath::V2f>& out) {
+                out.resize(in.mNumVertices);
                 for (unsigned i = 0; i < in.mNumVertices; ++i) {
-                    m.uvs[i] = Imath::V2f(in.mTextureCoords[0][i].x, in.mTextureCoords[0][i].y);
-                    if (!std::isfinite(m.uvs[i].x) || !std::isfinite(m.uvs[i].y))
-                        throw std::runtime_error(fmt::format("{}: vertex {} has a non-finite uv", what, i));
+                    out[i] = Imath::V2f(in.mTextureCoords[set][i].x, in.mTextureCoords[set][i].y);
+                    if (!std::isfinite(out[i].x) || !std::isfinite(out[i].y))
+                        throw std::runtime_error(fmt::format("{}: vertex {} has a non-finite uv "
+                                                             "in uv set {}", what, i, set));
                 }
+            };
+            m.uv_set_count = static_cast<int>(in.GetNumUVChannels());
+            m.uv_set = uv_set;
+            if (uv_set > 0) {
+                const unsigned sets = in.GetNumUVChannels();
+                if (static_cast<unsigned>(uv_set) >= sets)
+                    throw std::runtime_error(fmt::format(
+                        "{}: --uv-set {} asks for uv set {} of {} (the sets count from 0); "
+                        "`patina-texgen unwrap` adds one", what, uv_set, uv_set, sets));
+                read_uvs(static_cast<unsigned>(uv_set), m.uvs);
+                read_uvs(0, m.source_uvs);
+            } else if (in.HasTextureCoords(0)) {
+                read_uvs(0, m.uvs);
             }
 
             // A mirroring transform reverses the winding; swap two indices to keep it
@@ -359,7 +374,11 @@ std::vector<TriangleMesh> load_meshes(const std::filesystem::path& path,
         else
             to_world = transform;
     }
-    Loader loader{path, *scene, {}};
+    if (options.uv_set < 0 || options.uv_set >= static_cast<int>(AI_MAX_NUMBER_OF_TEXTURECOORDS))
+        throw std::runtime_error(fmt::format("mesh file '{}': --uv-set {} is not a uv set (0 to "
+                                             "{})", path.string(), options.uv_set,
+                                             AI_MAX_NUMBER_OF_TEXTURECOORDS - 1));
+    Loader loader{path, *scene, options.uv_set, {}};
     loader.visit(*scene->mRootNode, to_world);
     if (loader.meshes.empty())
         throw std::runtime_error(fmt::format("mesh file '{}' contains no triangles", path.string()));
@@ -388,6 +407,9 @@ void validate_mesh(const TriangleMesh& mesh, const std::string& context)
         throw std::runtime_error(fmt::format("{}: {} normals for {} vertices", context, mesh.normals.size(), n));
     if (!mesh.uvs.empty() && mesh.uvs.size() != n)
         throw std::runtime_error(fmt::format("{}: {} uvs for {} vertices", context, mesh.uvs.size(), n));
+    if (!mesh.source_uvs.empty() && mesh.source_uvs.size() != n)
+        throw std::runtime_error(fmt::format("{}: {} source uvs for {} vertices", context,
+                                             mesh.source_uvs.size(), n));
     for (size_t i = 0; i < n; ++i)
         if (!finite(mesh.positions[i]))
             throw std::runtime_error(fmt::format("{}: vertex {} has a non-finite position", context, i));

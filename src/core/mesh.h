@@ -24,7 +24,12 @@ struct TriangleMesh {
     std::string material_name;
     std::vector<Imath::V3f> positions;
     std::vector<Imath::V3f> normals;
-    std::vector<Imath::V2f> uvs;
+    std::vector<Imath::V2f> uvs;   ///< the uv set Patina bakes into (the file's first, or --uv-set)
+    /// The file's first uv set (the artist's, for their own textures) when `uvs` holds
+    /// another; empty otherwise. Export keeps it as TEXCOORD_0.
+    std::vector<Imath::V2f> source_uvs;
+    int uv_set = 0;        ///< which of the file's uv sets `uvs` holds
+    int uv_set_count = 0;  ///< how many the file has for this mesh
     std::vector<uint32_t> indices; ///< 3 per triangle
 
     size_t triangle_count() const { return indices.size() / 3; }

@@ -39,12 +39,13 @@ double parse_unit(std::string_view text, std::string_view what);
 std::string unit_name(double metres_per_unit);
 
 /// What the user says about a mesh file; an empty field leaves it to the file, then to
-/// Patina's default (+Y up, metres).
+/// Patina's default (+Y up, metres). Also which of its uv sets Patina bakes into.
 struct MeshConventionOptions {
     std::optional<Axis> up;
     std::optional<double> metres_per_unit;
+    int uv_set = 0;  ///< --uv-set: 0 is the file's first
 
-    bool empty() const { return !up && !metres_per_unit; }
+    bool empty() const { return !up && !metres_per_unit && uv_set == 0; }
 };
 
 /// What a mesh file declares of itself.

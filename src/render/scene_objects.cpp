@@ -85,7 +85,8 @@ namespace {
     }
 
     /// `up = "z"` and `unit = "cm"` (or a number of metres per unit): the axes and unit of
-    /// the object's mesh file where they differ from what the file declares.
+    /// the object's mesh file where they differ from what the file declares; `uv_set = 1`:
+    /// the uv set its textures are looked up in (a stack baked with --uv-set 1).
     MeshConventionOptions read_convention(const TomlReader& w, const toml::table& t)
     {
         MeshConventionOptions c;
@@ -114,6 +115,12 @@ namespace {
                              "per unit, a number > 0");
             }
         }
+        if (const toml::node* set = t.get("uv_set")) {
+            const auto index = set->value<int64_t>();
+            if (!index || *index < 0 || *index > 7)
+                w.fail(set, "'uv_set' must be a uv set of the mesh file, 0 (its first) to 7");
+            c.uv_set = static_cast<int>(*index);
+        }
         return c;
     }
 
@@ -140,9 +147,10 @@ namespace {
                 w.fail(t.get("mesh"), ex.what());
             }
         }
-        if (t.contains("up") || t.contains("unit"))
-            w.fail(t.get(t.contains("up") ? "up" : "unit"),
-                   "'up' and 'unit' describe a mesh file; a shape is in metres, +Y up");
+        for (const char* key : {"up", "unit", "uv_set"})
+            if (t.contains(key))
+                w.fail(t.get(key), "'up', 'unit' and 'uv_set' describe a mesh file; a shape is "
+                                   "in metres, +Y up, with one uv set");
         const Imath::V3f center = w.vec3(t, "center", {0, 0, 0}, "object");
         if (shape == "sphere") {
             const float r = static_cast<float>(w.number(t, "radius", 1, 1e-6, 1e9, "object"));
@@ -174,7 +182,7 @@ void add_objects(const TomlReader& w, const toml::table& root, const fs::path& b
     for (const toml::node& e : *list) {
         const toml::table& t = *e.as_table();
         w.check_keys(t, "object", {"shape", "mesh", "center", "radius", "size", "transform",
-                                   "up", "unit", "bsdf", "emitter", "materials", "interior"});
+                                   "up", "unit", "uv_set", "bsdf", "emitter", "materials", "interior"});
         const auto interior = shader_named(w, scene, t.get("interior"), "interior", PATINA_SHADER_MEDIUM);
         if (interior)
             scene.has_media = true;

@@ -68,6 +68,7 @@ def main():
     report = {
         "materials": {m.name: wiring(m) for m in bpy.data.materials if m.node_tree},
         "dimensions": list(obj.dimensions),
+        "uv_maps": [layer.name for layer in obj.data.uv_layers],
         # World-space bounds in Blender's axes (Z up): the importer turns glTF's +Y up to +Z.
         "bounds_min": [min((obj.matrix_world @ mathutils.Vector(c))[k] for c in obj.bound_box)
                        for k in range(3)],

@@ -130,6 +130,7 @@ void run_bake(const CommonBakeOptions& options, const BakerFactory& make_baker, 
         map.name = options.name;
     Metadata recorded{{"mesh", options.mesh.string()}};
     record_convention(recorded, convention);
+    record_uv_set(recorded, options.convention.uv_set);
     if (options.uv_wrap)
         record_uv_wrap(recorded);
     recorded.emplace_back("occluders", join_paths(options.occluders));

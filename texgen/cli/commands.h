@@ -8,6 +8,7 @@ namespace patina::texgen {
 
 void register_mesh_command(CLI::App& app);
 void register_uv_check_command(CLI::App& app);
+void register_unwrap_command(CLI::App& app);
 void register_ao_command(CLI::App& app);
 void register_accessibility_command(CLI::App& app);
 void register_sun_command(CLI::App& app);

@@ -51,6 +51,12 @@ void add_mesh_convention_options(CLI::App& command, MeshConventionOptions& o)
             "metres per unit of the mesh file, for a unit --unit does not name")
         ->check(patina::positive)
         ->excludes(unit);
+    command
+        .add_option("--uv-set", o.uv_set,
+                    "the mesh file's uv set to bake into, from 0 (the first); a set made for "
+                    "weathering, as `patina-texgen unwrap` adds, keeps the artist's own uvs for "
+                    "their textures")
+        ->check(CLI::Range(0, 7));
 }
 
 }  // namespace patina::texgen

@@ -8,7 +8,8 @@
 
 namespace patina::texgen {
 
-/// Add --up, --unit and --scale (--unit and --scale exclude each other) to `command`.
+/// Add --up, --unit, --scale (--unit and --scale exclude each other) and --uv-set to
+/// `command`.
 void add_mesh_convention_options(CLI::App& command, MeshConventionOptions& options);
 
 }  // namespace patina::texgen

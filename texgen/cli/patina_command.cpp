@@ -117,11 +117,11 @@ void run_patina(const PatinaOptions& o)
 
     TriangleMesh mesh;
     MeshConvention convention;
+    MeshConventionOptions read_with;
     PatinaDomain domain;
     if (!o.mesh.empty()) {
-        mesh = load_mesh_with_warnings(
-            o.mesh, convention_with_maps(script, o.script.parent_path(), o.convention),
-            &convention);
+        read_with = convention_with_maps(script, o.script.parent_path(), o.convention);
+        mesh = load_mesh_with_warnings(o.mesh, read_with, &convention);
         if (o.uv_wrap)
             wrap_uvs_outside_udims(mesh);
         RasterOptions raster;
@@ -176,6 +176,7 @@ void run_patina(const PatinaOptions& o)
             step_out.parameters.emplace_back(
                 "patina:mesh", mesh_path_from(dir, o.mesh).generic_string());
             record_convention(step_out.parameters, convention);
+            record_uv_set(step_out.parameters, read_with.uv_set);
             if (o.uv_wrap)
                 record_uv_wrap(step_out.parameters);
         }

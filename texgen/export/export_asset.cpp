@@ -278,8 +278,16 @@ ExportResult write_export(std::vector<ExportStep>& steps, const ExportGeometry& 
         return t;
     };
 
-    // A material per step and tile: materials[step][tile].
+    // A material per step and tile: materials[step][tile]. Its textures read the uv set the
+    // maps were baked into.
     const bool tiled = udims.size() > 1;
+    const int tex_coord = weathering_tex_coord(geometry.mesh);
+    const auto info = [tex_coord](int texture) {
+        json i = {{"index", texture}};
+        if (tex_coord != 0)
+            i["texCoord"] = tex_coord;
+        return i;
+    };
     std::vector<std::vector<int>> materials(steps.size());
     for (size_t k = 0; k < steps.size(); ++k) {
         const ExportStep& step = steps[k];
@@ -299,15 +307,15 @@ ExportResult write_export(std::vector<ExportStep>& steps, const ExportGeometry& 
                 {"name", tiled ? fmt::format("{} {} {}", mesh_name, step.variant, udims[tile])
                                : fmt::format("{} {}", mesh_name, step.variant)},
                 {"pbrMetallicRoughness",
-                 {{"baseColorTexture", {{"index", base_tex}}},
-                  {"metallicRoughnessTexture", {{"index", mr_tex}}}}},
-                {"normalTexture", {{"index", normal_tex}}},
+                 {{"baseColorTexture", info(base_tex)},
+                  {"metallicRoughnessTexture", info(mr_tex)}}},
+                {"normalTexture", info(normal_tex)},
                 {"extensions",
                  {{"KHR_materials_clearcoat",
                    {{"clearcoatFactor", 1.0},
-                    {"clearcoatTexture", {{"index", coat_tex}}},
+                    {"clearcoatTexture", info(coat_tex)},
                     {"clearcoatRoughnessFactor", 1.0},
-                    {"clearcoatRoughnessTexture", {{"index", coat_tex}}}}}}},
+                    {"clearcoatRoughnessTexture", info(coat_tex)}}}}},
                 {"extras", {{"patina", patina}}}};
             materials[k].push_back(doc.add("materials", std::move(material)));
         }

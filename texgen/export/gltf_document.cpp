@@ -124,7 +124,7 @@ json Document::finished(bool glb, std::vector<unsigned char>* bin) const
     return out;
 }
 
-void Document::write_glb(const fs::path& path) const
+std::string Document::glb() const
 {
     std::vector<unsigned char> bin;
     const json doc = finished(true, &bin);
@@ -146,7 +146,15 @@ void Document::write_glb(const fs::path& path) const
         put_u32(bin_header, 0x004E4942);  // "BIN\0"
     }
     const std::string_view bytes(reinterpret_cast<const char*>(bin.data()), bin.size());
-    write_file_atomic(path, {header, text, bin_header, bytes}, "glTF binary");
+    std::string glb;
+    glb.reserve(header.size() + text.size() + bin_header.size() + bytes.size());
+    glb.append(header).append(text).append(bin_header).append(bytes);
+    return glb;
+}
+
+void Document::write_glb(const fs::path& path) const
+{
+    write_file_atomic(path, {glb()}, "glTF binary");
 }
 
 std::vector<fs::path> Document::write_gltf(const fs::path& path) const

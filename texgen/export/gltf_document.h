@@ -46,6 +46,8 @@ public:
     /// Records an extension in extensionsUsed (once).
     void use_extension(const std::string& name);
 
+    /// The whole asset as the bytes of one .glb.
+    std::string glb() const;
     /// The whole asset as one .glb, written under a temporary name and renamed.
     void write_glb(const std::filesystem::path& path) const;
     /// The asset as `path` (.gltf), `<stem>.bin` and its images beside it, each written

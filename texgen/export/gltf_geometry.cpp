@@ -21,7 +21,8 @@ namespace {
                                 const std::vector<Imath::V3f>& normals,
                                 const std::vector<Imath::V4f>& tangents,
                                 const std::vector<Imath::V2f>& uvs,
-                                const std::vector<uint32_t>& indices)
+                                const std::vector<uint32_t>& indices,
+                                const std::vector<Imath::V2f>& source_uvs = {})
     {
         constexpr float inf = std::numeric_limits<float>::infinity();
         std::vector<float> lo(3, inf), hi(3, -inf);
@@ -43,8 +44,15 @@ namespace {
         if (!tangents.empty())
             out.attributes["TANGENT"] = doc.add_accessor(view(tangents, gltf::kArrayBuffer),
                                                          gltf::kFloat, tangents.size(), "VEC4");
-        out.attributes["TEXCOORD_0"] = doc.add_accessor(view(uvs, gltf::kArrayBuffer),
-                                                        gltf::kFloat, uvs.size(), "VEC2");
+        // The artist's own uvs, when the maps are on another set, stay TEXCOORD_0 for their
+        // textures; the maps' set is TEXCOORD_1 (weathering_tex_coord).
+        const std::string maps_set = source_uvs.empty() ? "TEXCOORD_0" : "TEXCOORD_1";
+        if (!source_uvs.empty())
+            out.attributes["TEXCOORD_0"] = doc.add_accessor(view(source_uvs, gltf::kArrayBuffer),
+                                                            gltf::kFloat, source_uvs.size(),
+                                                            "VEC2");
+        out.attributes[maps_set] = doc.add_accessor(view(uvs, gltf::kArrayBuffer), gltf::kFloat,
+                                                    uvs.size(), "VEC2");
         out.indices = doc.add_accessor(view(indices, gltf::kElementArrayBuffer),
                                        gltf::kUnsignedInt, indices.size(), "SCALAR");
         return out;
@@ -160,6 +168,9 @@ std::vector<TileGeometry> split_by_tile(const TriangleMesh& given, const std::ve
                 const Imath::V2d uv(mesh->uvs[v[i]]);
                 tile.uvs.emplace_back(static_cast<float>(uv.x - u0),
                                       static_cast<float>(v0 + 1.0 - uv.y));
+                if (!mesh->source_uvs.empty())  // glTF's v down, as they are, not moved
+                    tile.source_uvs.emplace_back(mesh->source_uvs[v[i]].x,
+                                                 1.0f - mesh->source_uvs[v[i]].y);
                 Imath::V3d n(mesh->normals[v[i]]);
                 if (!(n.length2() > 1e-24))
                     n = face_normal(*mesh, t);
@@ -191,7 +202,7 @@ std::vector<TilePrimitive> add_mesh_primitives(gltf::Document& doc, const Triang
     std::vector<TilePrimitive> out;
     for (const TileGeometry& tile : split_by_tile(mesh, udims, context))
         out.push_back(add_primitive(doc, tile.tile, tile.positions, tile.normals, tile.tangents,
-                                    tile.uvs, tile.indices));
+                                    tile.uvs, tile.indices, tile.source_uvs));
     return out;
 }
 

@@ -32,6 +32,8 @@ struct TileGeometry {
     std::vector<Imath::V3f> positions, normals;
     std::vector<Imath::V4f> tangents;  ///< xyz, w = ±1 (glTF's bitangent = cross(N, T) w)
     std::vector<Imath::V2f> uvs;       ///< glTF's: (0, 0) at the image's top-left
+    /// The mesh's source_uvs (the artist's first set) in glTF's convention, or empty.
+    std::vector<Imath::V2f> source_uvs;
     std::vector<uint32_t> indices;
 };
 
@@ -45,7 +47,12 @@ struct TileGeometry {
 std::vector<TileGeometry> split_by_tile(const TriangleMesh& mesh, const std::vector<int>& udims,
                                         const std::string& context);
 
-/// split_by_tile's tiles as primitives of `doc`, one per tile.
+/// The texCoord index of the maps' uvs: 1 when the mesh keeps the artist's first set
+/// (source_uvs, TEXCOORD_0) beside the set the maps were baked into, else 0.
+inline int weathering_tex_coord(const TriangleMesh& mesh) { return mesh.source_uvs.empty() ? 0 : 1; }
+
+/// split_by_tile's tiles as primitives of `doc`, one per tile: the maps' uvs are
+/// TEXCOORD_<weathering_tex_coord(mesh)>.
 std::vector<TilePrimitive> add_mesh_primitives(gltf::Document& doc, const TriangleMesh& mesh,
                                                const std::vector<int>& udims,
                                                const std::string& context);

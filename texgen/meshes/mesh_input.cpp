@@ -41,6 +41,12 @@ void record_convention(Metadata& parameters, const MeshConvention& applied)
     parameters.emplace_back("mesh_metres_per_unit", static_cast<float>(applied.metres_per_unit));
 }
 
+void record_uv_set(Metadata& parameters, int uv_set)
+{
+    if (uv_set != 0)
+        parameters.emplace_back("uv_set", uv_set);
+}
+
 void record_uv_wrap(Metadata& parameters) { parameters.emplace_back("uv_wrap", 1); }
 
 bool recorded_uv_wrap(const toml::table& parameters)
@@ -55,6 +61,7 @@ MeshConventionOptions recorded_convention(const toml::table& parameters)
         o.up = parse_axis(*up, "mesh_up");
     if (const auto metres = parameters["mesh_metres_per_unit"].value<double>())
         o.metres_per_unit = *metres;
+    o.uv_set = parameters["uv_set"].value_or(0);
     return o;
 }
 
@@ -78,6 +85,12 @@ MeshConventionOptions convention_for_stack(const MeshConventionOptions& user,
                 unit_name(*recorded.metres_per_unit)));
         o.metres_per_unit = user.metres_per_unit;
     }
+    if (user.uv_set != 0 && recorded.uv_set != 0 && user.uv_set != recorded.uv_set)
+        throw std::runtime_error(fmt::format("{} was made in the mesh's uv set {}, not {}: give "
+                                             "--uv-set {} or leave it out",
+                                             what, recorded.uv_set, user.uv_set,
+                                             recorded.uv_set));
+    o.uv_set = user.uv_set != 0 ? user.uv_set : recorded.uv_set;
     return o;
 }
 

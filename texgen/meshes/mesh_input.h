@@ -25,6 +25,9 @@ TriangleMesh load_mesh_with_warnings(const std::filesystem::path& file,
 /// (`mesh_up = "+z"`, `mesh_metres_per_unit = 0.01`), after the mesh's path.
 void record_convention(Metadata& parameters, const MeshConvention& applied);
 
+/// Record the uv set baked into (`uv_set`, when not the first).
+void record_uv_set(Metadata& parameters, int uv_set);
+
 /// Record that the mesh's uvs outside the UDIM tiles were folded into tile 1001
 /// (`uv_wrap = 1`; texels/uv_wrap.h), and read it back.
 void record_uv_wrap(Metadata& parameters);

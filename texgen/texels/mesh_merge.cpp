@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <limits>
 #include <stdexcept>
 
@@ -34,16 +35,26 @@ TriangleMesh merge_meshes(const std::vector<TriangleMesh>& meshes,
     TriangleMesh merged;
     merged.name = meshes.size() == 1 ? meshes.front().name : file.stem().string();
     merged.material_name = meshes.front().material_name;
+    merged.uv_set = meshes.front().uv_set;
+    merged.uv_set_count = meshes.front().uv_set_count;
+    for (const TriangleMesh& m : meshes)
+        merged.uv_set_count = std::min(merged.uv_set_count, m.uv_set_count);
     merged.positions.reserve(vertex_count);
     merged.indices.reserve(index_count);
     if (any_normals)
         merged.normals.reserve(vertex_count);
     if (with_uvs)
         merged.uvs.reserve(vertex_count);
+    // The artist's own uv set travels along when every mesh has it (--uv-set > 0).
+    const bool sources = std::all_of(meshes.begin(), meshes.end(),
+                                     [](const TriangleMesh& m) { return !m.source_uvs.empty(); });
     for (const TriangleMesh& m : meshes) {
         const uint32_t base = static_cast<uint32_t>(merged.positions.size());
         merged.positions.insert(merged.positions.end(), m.positions.begin(), m.positions.end());
         merged.uvs.insert(merged.uvs.end(), m.uvs.begin(), m.uvs.end());
+        if (sources)
+            merged.source_uvs.insert(merged.source_uvs.end(), m.source_uvs.begin(),
+                                     m.source_uvs.end());
         if (any_normals) {
             if (m.has_normals()) {
                 merged.normals.insert(merged.normals.end(), m.normals.begin(), m.normals.end());

@@ -112,6 +112,8 @@ UvCheck check_uvs(const TriangleMesh& mesh, const UvCheckOptions& options)
     check.triangles = mesh.triangle_count();
     check.vertices = mesh.positions.size();
     check.has_uvs = mesh.has_uvs();
+    check.uv_set = mesh.uv_set;
+    check.uv_set_count = mesh.uv_set_count;
     check.width = options.width;
     check.height = options.height;
     check.supersampling = options.supersampling;
@@ -272,7 +274,8 @@ std::string format_uv_check(const UvCheck& c)
         out += "uvs              missing: no uvs; bake per vertex with --per-vertex out.ply\n";
         return out + verdict();
     }
-    out += "uvs              yes\n";
+    out += fmt::format("uvs              set {} of {}{}\n", c.uv_set, c.uv_set_count,
+                       c.uv_set_count > 1 ? " (--uv-set chooses the set to bake into)" : "");
     out += fmt::format("uv islands       {}\n", c.islands);
     if (c.overlaps())
         out += fmt::format("overlapping uvs  {:.3g}% of the covered uv area ({} of {} sub-samples "
@@ -280,6 +283,10 @@ std::string format_uv_check(const UvCheck& c)
                            100.0 * c.overlap_fraction(), c.overlapping_sub_samples,
                            c.covered_sub_samples, c.width, c.height, c.supersampling,
                            c.supersampling, c.overlapping_triangle_pairs, c.overlapping_islands);
+    if (c.overlaps())
+        out += "                 overlapping texels average different surface points: give the "
+               "mesh a layout of its own (patina-texgen unwrap MESH -o OUT.glb, then bake OUT.glb "
+               "with the --uv-set it names)\n";
     else
         out += fmt::format("overlapping uvs  none ({} covered sub-samples at {} x {}, {}x{} per "
                            "texel)\n",

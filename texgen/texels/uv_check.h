@@ -24,6 +24,8 @@ struct UvCheck {
     size_t triangles = 0;
     size_t vertices = 0;
     bool has_uvs = false;
+    int uv_set = 0;        ///< the set checked (--uv-set)
+    int uv_set_count = 0;  ///< the sets the file has
     int width = 0;
     int height = 0;
     int supersampling = 0;

@@ -46,6 +46,8 @@ size_t wrap_uvs_outside_udims(TriangleMesh& mesh)
                 mesh.positions.push_back(mesh.positions[v[k]]);
                 if (mesh.has_normals())
                     mesh.normals.push_back(mesh.normals[v[k]]);
+                if (!mesh.source_uvs.empty())
+                    mesh.source_uvs.push_back(mesh.source_uvs[v[k]]);
                 const Imath::V2f uv = mesh.uvs[v[k]];
                 mesh.uvs.emplace_back(static_cast<float>(uv.x - su), static_cast<float>(uv.y - sv));
             }

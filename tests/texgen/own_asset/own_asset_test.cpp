@@ -13,7 +13,9 @@
 #include <nlohmann/json.hpp>
 #include <toml++/toml.h>
 
+#include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
@@ -360,6 +362,107 @@ TEST_F(OwnAsset, AUdimStackRendersEveryTileWithLayeredKm)
                 left.x, left.y, left.z, right.x, right.y, right.z, bare.x, bare.y, bare.z);
     EXPECT_LT((right - left).length(), 0.05 * left.length());
     EXPECT_GT((right - bare).length(), 0.3 * bare.length());
+}
+
+/// The JSON chunk of a .glb (glTF 2.0 §4.4.3).
+nlohmann::json glb_json(const fs::path& glb)
+{
+    const std::string bytes = slurp(glb);
+    if (bytes.size() < 20)
+        return {};
+    uint32_t length = 0;
+    std::memcpy(&length, bytes.data() + 12, 4);
+    return nlohmann::json::parse(bytes.substr(20, length));
+}
+
+TEST_F(OwnAsset, MirroredHalvesGetAUniqueLayoutAndExportKeepsTheArtistsUvs)
+{
+    // Two 1 m squares side by side sharing one uv square, the second mirrored: the usual
+    // mirrored halves of a symmetric model. uv-check names the overlap and the remedy.
+    const fs::path obj = dir_ / "mirrored.obj";
+    std::ofstream(obj) << "v 0 0 0\nv 1 0 0\nv 1 0 -1\nv 0 0 -1\nv -1 0 0\nv -1 0 -1\n"
+                          "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvn 0 1 0\n"
+                          "f 1/1/1 2/2/1 3/3/1\nf 1/1/1 3/3/1 4/4/1\n"
+                          "f 1/1/1 6/3/1 5/2/1\nf 1/1/1 4/4/1 6/3/1\n";
+    const Result overlapping = texgen_run("uv-check " + quoted(obj) + " --resolution 64");
+    ASSERT_EQ(overlapping.status, 0) << overlapping.err;
+    EXPECT_NE(overlapping.out.find("overlapping uvs  100% of the covered uv area"),
+              std::string::npos) << overlapping.out;
+    EXPECT_NE(overlapping.out.find("patina-texgen unwrap MESH -o OUT.glb"), std::string::npos);
+    EXPECT_NE(overlapping.out.find("mirrored uvs     2 triangles"), std::string::npos)
+        << overlapping.out;
+
+    const fs::path unwrapped = dir_ / "mirrored_unwrapped.glb";
+    const Result unwrap = texgen_run("unwrap " + quoted(obj) + " -o " + quoted(unwrapped) +
+                                     " --resolution 256");
+    ASSERT_EQ(unwrap.status, 0) << unwrap.err << unwrap.out;
+    EXPECT_NE(unwrap.out.find("uv set           1 (bake with --uv-set 1)"), std::string::npos)
+        << unwrap.out;
+    EXPECT_NE(unwrap.out.find("overlapping uvs  0% of the covered area"), std::string::npos)
+        << unwrap.out;
+    const Result check = texgen_run("uv-check " + quoted(unwrapped) + " --uv-set 1");
+    ASSERT_EQ(check.status, 0) << check.err;
+    EXPECT_NE(check.out.find("uvs              set 1 of 2"), std::string::npos) << check.out;
+    EXPECT_NE(check.out.find("overlapping uvs  none"), std::string::npos) << check.out;
+
+    // Baked into the new set; the growth and the export follow the stack's record.
+    const Result baked = texgen_run("ao --mesh " + quoted(unwrapped) + " --uv-set 1 -o " +
+                                    quoted(dir_ / "maps") + " --resolution 32 --rays 8 --quiet");
+    ASSERT_EQ(baked.status, 0) << baked.err;
+    std::ofstream(dir_ / "grow.patina") << "new copper\nmap ao = \"maps/ao.exr\" \"ao\"\n"
+                                           "coat tarnish 1.0 0.5 * ao\nrender maps\n";
+    const Result grown = texgen_run("patina " + quoted(dir_ / "grow.patina") + " --mesh " +
+                                    quoted(unwrapped) + " -o " + quoted(dir_ / "stack") +
+                                    " --resolution 32 --quiet --no-preview");
+    ASSERT_EQ(grown.status, 0) << grown.err;
+    const fs::path glb = dir_ / "mirrored.glb";
+    const Result exported = texgen_run("export " + quoted(dir_ / "stack") + " -o " +
+                                       quoted(glb) + " --quiet");
+    ASSERT_EQ(exported.status, 0) << exported.err;
+    const nlohmann::json gltf = glb_json(glb);
+    const auto& attributes = gltf["meshes"][0]["primitives"][0]["attributes"];
+    EXPECT_TRUE(attributes.contains("TEXCOORD_0"));
+    EXPECT_TRUE(attributes.contains("TEXCOORD_1"));
+    const auto& material = gltf["materials"][0];
+    EXPECT_EQ(material["pbrMetallicRoughness"]["baseColorTexture"]["texCoord"], 1);
+    EXPECT_EQ(material["normalTexture"]["texCoord"], 1);
+    const Result valid = run("node '" + kSource + "/tests/clients/validate_gltf.mjs' " +
+                                 quoted(glb), dir_);
+    EXPECT_EQ(valid.status, 0) << valid.out << valid.err;
+    const fs::path report = dir_ / "blender.json";
+    const Result opened = run("blender -b --factory-startup --python-exit-code 1 --python '" +
+                                  kSource + "/tests/clients/blender_gltf_check.py' -- " +
+                                  quoted(glb) + " " + quoted(report), dir_);
+    ASSERT_EQ(opened.status, 0) << opened.out.substr(0, 4000);
+    const nlohmann::json blender = nlohmann::json::parse(slurp(report));
+    EXPECT_EQ(blender["uv_maps"].size(), 2u) << blender.dump();
+}
+
+TEST_F(OwnAsset, AMeshWithoutUvsGetsThereInOneCommand)
+{
+    const fs::path obj = dir_ / "no_uvs.obj";
+    std::ofstream(obj) << "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\n"
+                          "v 0 1 1\nf 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\n"
+                          "f 4 1 5 8\n";
+    const Result refused = texgen_run("ao --mesh " + quoted(obj) + " -o " + quoted(dir_ / "x") +
+                                      " --resolution 16 --quiet");
+    EXPECT_EQ(refused.status, 1);
+    const fs::path unwrapped = dir_ / "cube.glb";
+    const Result unwrap = texgen_run("unwrap " + quoted(obj) + " -o " + quoted(unwrapped) +
+                                     " --method lightmap --quiet");
+    ASSERT_EQ(unwrap.status, 0) << unwrap.err;
+    const Result baked = texgen_run("ao --mesh " + quoted(unwrapped) + " -o " +
+                                    quoted(dir_ / "maps") + " --resolution 32 --rays 8 --quiet");
+    ASSERT_EQ(baked.status, 0) << baked.err;
+    // A closed cube seen from outside: every face is open to the sky it faces.
+    EXPECT_NEAR(covered_mean(dir_ / "maps" / "ao.exr", "ao"), 1.0, 1e-6);
+
+    // Blender missing: one message naming what to install, nothing written.
+    const Result missing = texgen_run("unwrap " + quoted(obj) + " -o " +
+                                      quoted(dir_ / "none.glb") + " --blender /nonexistent/blender");
+    EXPECT_EQ(missing.status, 1);
+    EXPECT_NE(missing.err.find("install Debian's blender"), std::string::npos) << missing.err;
+    EXPECT_FALSE(fs::exists(dir_ / "none.glb"));
 }
 
 TEST_F(OwnAsset, BadAxisAndUnitOptionsGetOneClearMessage)
