@@ -357,8 +357,15 @@ std::vector<TriangleMesh> load_meshes(const std::filesystem::path& path,
     // Check the raw data before post-processing: JoinIdenticalVertices merges NaN
     // vertices into others, which would hide them.
     check_raw_scene(path, *scene);
-    scene = importer.ApplyPostProcessing(aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
-                                         aiProcess_SortByPType | aiProcess_ValidateDataStructure);
+    // Assimp 5.2's JoinIdenticalVertices merges vertices that differ only in their second or
+    // later uv set (a Blender glTF with two sets: set 1's uv area grew from 0.57 to 9.8 of the
+    // tile): files with several sets are left as they are indexed.
+    bool several_uv_sets = false;
+    for (unsigned m = 0; m < scene->mNumMeshes; ++m)
+        several_uv_sets = several_uv_sets || scene->mMeshes[m]->GetNumUVChannels() > 1;
+    scene = importer.ApplyPostProcessing(
+        aiProcess_Triangulate | (several_uv_sets ? 0u : unsigned{aiProcess_JoinIdenticalVertices}) |
+        aiProcess_SortByPType | aiProcess_ValidateDataStructure);
     if (!scene || !scene->mRootNode)
         throw std::runtime_error(fmt::format("mesh file '{}': {}", path.string(),
                                              importer.GetErrorString()));

@@ -4,6 +4,11 @@
 #include "texgen/cli/mesh_options.h"
 #include "texgen/unwrap/unwrap.h"
 
+#include "core/progress.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
 #include <cstdio>
 #include <memory>
 
@@ -56,6 +61,13 @@ void register_unwrap_command(CLI::App& app)
         const UnwrapReport report = unwrap_mesh(a->mesh, a->convention, a->output, a->options);
         if (!a->quiet)
             std::fputs(format_unwrap_report(report).c_str(), stdout);
+        if (report.overlap_fraction > 0.0)
+            print_warning("patina-texgen",
+                          fmt::format("unwrap: {:.3g}% of the new layout's covered area still "
+                                      "overlaps (islands folding over themselves): try "
+                                      "--angle-limit {:g}, or --method lightmap",
+                                      100.0 * report.overlap_fraction,
+                                      std::floor(a->options.angle_limit_deg * 0.66)));
     });
 }
 

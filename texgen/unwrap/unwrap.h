@@ -15,7 +15,10 @@ namespace patina::texgen {
 
 struct UnwrapOptions {
     std::string method = "smart";  ///< "smart" (Smart UV Project) or "lightmap" (Lightmap Pack)
-    double angle_limit_deg = 66.0; ///< smart: faces meeting at more than this start new islands
+    /// smart: faces meeting at more than this start new islands. Blender's default, 66, leaves
+    /// islands that fold over themselves on fluted shapes (0.16 % of the project's statue
+    /// overlaps); 45 leaves none there.
+    double angle_limit_deg = 45.0;
     double margin = 0.005;         ///< space between islands, a fraction of the tile
     int resolution = 1024;         ///< texels per side the report's utilisation is for
     std::string blender = "blender";  ///< the Blender to run

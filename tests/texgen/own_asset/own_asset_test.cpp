@@ -6,6 +6,8 @@
 // outside the tiles (refused, naming --uv-wrap; folded with it), the ground plane placed
 // under the asset, an occluder that cuts through it, and bad options.
 #include "core/image_io.h"
+#include "core/mesh.h"
+#include "texgen/export/gltf_document.h"
 
 #include <Imath/ImathVec.h>
 
@@ -15,6 +17,7 @@
 
 #include <cstdint>
 #include <cstdio>
+#include <cmath>
 #include <cstring>
 #include <cstdlib>
 #include <fstream>
@@ -27,6 +30,7 @@ namespace patina {
 namespace {
 
 namespace fs = std::filesystem;
+namespace gltf = texgen::gltf;
 
 const std::string kBin = PATINA_TEST_BIN_DIR;
 const std::string kSource = PATINA_SOURCE_DIR;
@@ -436,6 +440,52 @@ TEST_F(OwnAsset, MirroredHalvesGetAUniqueLayoutAndExportKeepsTheArtistsUvs)
     ASSERT_EQ(opened.status, 0) << opened.out.substr(0, 4000);
     const nlohmann::json blender = nlohmann::json::parse(slurp(report));
     EXPECT_EQ(blender["uv_maps"].size(), 2u) << blender.dump();
+}
+
+TEST_F(OwnAsset, ASecondUvSetIsReadAsTheFileHasIt)
+{
+    // Two triangles of a square: vertices 0 and 2 are written twice, equal in position and
+    // first uv set but not in the second (an island seam of a new layout). Assimp 5.2's
+    // vertex joining merged such vertices, moving set 1's uvs (core/mesh.cpp).
+    gltf::Document doc;
+    const std::vector<Imath::V3f> positions{{0, 0, 0}, {1, 0, 0}, {1, 0, -1}, {0, 0, 0}, {1, 0, -1}, {0, 0, -1}};
+    const std::vector<Imath::V2f> first{{0, 1}, {1, 1}, {1, 0}, {0, 1}, {1, 0}, {0, 0}};
+    const std::vector<Imath::V2f> second{{0, 1}, {0.4f, 1}, {0.4f, 0.6f}, {0.5f, 0.5f}, {0.9f, 0.1f}, {0.5f, 0.1f}};
+    const std::vector<uint32_t> indices{0, 1, 2, 3, 4, 5};
+    const auto accessor = [&](const auto& values, int target, int component, const char* type,
+                              std::vector<float> lo = {}, std::vector<float> hi = {}) {
+        const int view = doc.add_view(values.data(), values.size() * sizeof(values[0]), target);
+        return doc.add_accessor(view, component, values.size(), type, lo, hi);
+    };
+    const nlohmann::json primitive = {
+        {"attributes",
+         {{"POSITION", accessor(positions, gltf::kArrayBuffer, gltf::kFloat, "VEC3", {0, 0, -1}, {1, 0, 0})},
+          {"TEXCOORD_0", accessor(first, gltf::kArrayBuffer, gltf::kFloat, "VEC2")},
+          {"TEXCOORD_1", accessor(second, gltf::kArrayBuffer, gltf::kFloat, "VEC2")}}},
+        {"indices", accessor(indices, gltf::kElementArrayBuffer, gltf::kUnsignedInt, "SCALAR")}};
+    const int mesh = doc.add("meshes", {{"primitives", {primitive}}});
+    doc.add("scenes", {{"nodes", {doc.add("nodes", {{"mesh", mesh}})}}});
+    const fs::path glb = dir_ / "two_sets.glb";
+    std::ofstream(glb, std::ios::binary) << doc.glb();
+
+    MeshConventionOptions set1;
+    set1.uv_set = 1;
+    const std::vector<TriangleMesh> meshes = load_meshes(glb, set1);
+    ASSERT_EQ(meshes.size(), 1u);
+    const TriangleMesh& m = meshes[0];
+    ASSERT_EQ(m.uvs.size(), m.source_uvs.size());
+    EXPECT_EQ(m.uv_set, 1);
+    EXPECT_EQ(m.uv_set_count, 2);
+    // Every corner keeps its own second-set uv: triangle 0's corner at (0, 0, 0) reads
+    // (0, 1), triangle 1's reads (0.5, 0.5) (glTF's v down; Patina's v up: 1 - v).
+    for (size_t t = 0; t < m.triangle_count(); ++t)
+        for (int k = 0; k < 3; ++k) {
+            const uint32_t v = m.indices[3 * t + k];
+            const size_t written = 3 * t + static_cast<size_t>(k);
+            EXPECT_EQ(m.positions[v], positions[written]) << "triangle " << t << " corner " << k;
+            EXPECT_EQ(m.uvs[v], Imath::V2f(second[written].x, 1.0f - second[written].y))
+                << "triangle " << t << " corner " << k;
+        }
 }
 
 TEST_F(OwnAsset, AMeshWithoutUvsGetsThereInOneCommand)
