@@ -22,7 +22,7 @@ expect_failure("--threads: must be a number >= 0, got '-1'"
 expect_failure("--strip-size: must be a number > 0, got 'nan'"
   "${PATINA_TEXGEN}" patina "${CMAKE_CURRENT_LIST_FILE}" --strip-size nan)
 # An unknown sub-command is named, with the known ones (was "A subcommand is required").
-expect_failure("unknown command 'bakee' (the commands are mesh, uv-check, ao"
+expect_failure("unknown command 'bakee' (the commands are mesh, uv-check, unwrap, ao"
   "${PATINA_TEXGEN}" bakee --mesh x.obj)
 expect_exit_code(2 "${PATINA_TEXGEN}" bakee)
 # --help still prints and succeeds.
