@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # bench/unwrap_vs_bake.sh [BUILD_DIR]: the cost of giving a mesh a layout of its own.
-# A uv sphere of about 500k triangles (`patina-texgen mesh sphere --resolution 500`) is baked
-# with `ao` at SIZE² texels (default 1024, RAYS rays per texel, default 16) on its own uvs;
+# A uv sphere of 500k triangles (`patina-texgen mesh sphere --resolution 354`) is baked
+# with `ao` at SIZE² texels (default 1024, RAYS rays per texel, default 64 as the bakers) on its own uvs;
 # then `patina-texgen unwrap` (Blender's Smart UV Project, headless) gives it a second set and
 # the same bake runs on that set. Prints the wall times (best of RUNS, default 1) and the
 # ratio (unwrap + bake on the new set) / (bake alone): the target is <= 1.5.
@@ -15,7 +15,7 @@ here="$(cd "$(dirname "$0")" && pwd)"
 root="$(cd "$here/.." && pwd)"
 build="$(cd "${1:-$root/build}" && pwd)"
 size="${SIZE:-1024}"
-rays="${RAYS:-16}"
+rays="${RAYS:-64}"
 runs="${RUNS:-1}"
 texgen="$build/bin/patina-texgen"
 tmp=$(mktemp -d "${TMPDIR:-/tmp}/unwrap_vs_bake.XXXXXX")
@@ -33,7 +33,7 @@ best() {  # best wall time of $runs runs of "$@", in seconds
   echo "$best_s"
 }
 
-"$texgen" mesh sphere --resolution 500 -o "$tmp/sphere.obj" >/dev/null 2>&1
+"$texgen" mesh sphere --resolution 354 -o "$tmp/sphere.obj" >/dev/null 2>&1
 triangles=$("$texgen" uv-check "$tmp/sphere.obj" --resolution 64 | awk '/^triangles/ {print $2}')
 bake=$(best "$texgen" ao --mesh "$tmp/sphere.obj" -o "$tmp/maps" --resolution "$size" \
        --rays "$rays" --seed 1 --quiet)

@@ -1,56 +1,49 @@
 # The uv unwrap `patina-texgen unwrap` runs in Blender (Debian 12's 3.4), headless:
 #   blender -b --factory-startup --python-exit-code 1 --python unwrap.py -- \
-#       IN.glb OUT.glb METHOD MARGIN ANGLE_DEG
-# IN.glb is the user's mesh as Patina read it (+Y up, metres, the artist's uvs as
-# TEXCOORD_0 where it has them, its materials by name). Every mesh gets a new uv map,
-# "patina", made by Blender's Smart UV Project (METHOD smart: islands split where faces
-# meet at more than ANGLE_DEG) or Lightmap Pack (METHOD lightmap: one island per face, for
-# lightmaps), with all meshes packed together into one unit tile, MARGIN (a fraction of the
-# tile) between islands. OUT.glb holds the meshes with their uv maps in order (the
-# artist's first, "patina" last) and their materials. The last line printed is
-# "patina-unwrap: uv set N": the index of "patina" among the uv sets.
+#       FOLDER METHOD MARGIN ANGLE_DEG
+# FOLDER holds the surface as Patina welded it (texgen/unwrap/unwrap.cpp), as raw
+# little-endian arrays: positions.f32 (x, y, z per vertex), triangles.u32 (three vertex
+# indices per triangle). This script builds one Blender mesh of them, adds a uv map made by
+# Smart UV Project (METHOD smart: islands split where faces meet at more than ANGLE_DEG) or
+# Lightmap Pack (METHOD lightmap: a square per face, for lightmaps), packed into the unit
+# tile with MARGIN (a fraction of the tile) between islands, and writes uvs.f32: the uv of
+# every triangle corner in the triangles' order (u, v with v up). Raw arrays keep the
+# triangles in their order and spare the glTF importer and exporter (seconds on a large
+# mesh). Its last line is "patina-unwrap: done".
 import math
+import os
 import sys
 
+import bpy
 import numpy
-
-# Blender 3.4's glTF importer calls numpy.bool, which numpy 1.24 (Debian 12) removed after
-# deprecating it; the builtin bool is what the alias meant.
-if not hasattr(numpy, "bool"):
-    numpy.bool = bool
-
-import bpy  # noqa: E402
 
 
 def main():
     args = sys.argv[sys.argv.index("--") + 1:]
-    source, target, method = args[0], args[1], args[2]
-    margin, angle = float(args[3]), float(args[4])
-    bpy.ops.wm.read_factory_settings(use_empty=True)
-    bpy.ops.import_scene.gltf(filepath=source)
-    objects = [o for o in bpy.data.objects if o.type == "MESH"]
-    if not objects:
-        raise RuntimeError("the mesh file holds no mesh")
-    # Meshes shared by several objects get a copy each: each object's uvs are its own.
-    for o in objects:
-        if o.data.users > 1:
-            o.data = o.data.copy()
-    index = None
-    for o in objects:
-        layer = o.data.uv_layers.new(name="patina")
-        if layer is None:
-            raise RuntimeError(f"mesh '{o.name}' already has the most uv sets Blender keeps (8)")
-        o.data.uv_layers.active = layer
-        here = len(o.data.uv_layers) - 1
-        if index is not None and here != index:
-            raise RuntimeError("some meshes have uvs and others none: give them all uvs, or "
-                               "none")
-        index = here
+    folder, method = args[0], args[1]
+    margin, angle = float(args[2]), float(args[3])
+    positions = numpy.fromfile(os.path.join(folder, "positions.f32"), dtype="<f4")
+    triangles = numpy.fromfile(os.path.join(folder, "triangles.u32"), dtype="<u4")
+    vertex_count, triangle_count = positions.size // 3, triangles.size // 3
 
-    bpy.ops.object.select_all(action="DESELECT")
-    for o in objects:
-        o.select_set(True)
-    bpy.context.view_layer.objects.active = objects[0]
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    mesh = bpy.data.meshes.new("surface")
+    mesh.vertices.add(vertex_count)
+    mesh.vertices.foreach_set("co", positions)
+    mesh.loops.add(3 * triangle_count)
+    mesh.loops.foreach_set("vertex_index", triangles)
+    mesh.polygons.add(triangle_count)
+    mesh.polygons.foreach_set("loop_start", numpy.arange(0, 3 * triangle_count, 3, dtype="<i4"))
+    mesh.polygons.foreach_set("loop_total", numpy.full(triangle_count, 3, dtype="<i4"))
+    mesh.update(calc_edges=True)
+    if len(mesh.polygons) != triangle_count or len(mesh.loops) != 3 * triangle_count:
+        raise RuntimeError("Blender changed the triangles it was given")
+    layer = mesh.uv_layers.new(name="patina")
+    obj = bpy.data.objects.new("surface", mesh)
+    bpy.context.scene.collection.objects.link(obj)
+    bpy.context.view_layer.objects.active = obj
+    obj.select_set(True)
+
     bpy.ops.object.mode_set(mode="EDIT")
     bpy.ops.mesh.select_all(action="SELECT")
     if method == "smart":
@@ -63,10 +56,11 @@ def main():
     else:
         raise RuntimeError(f"unknown method '{method}'")
     bpy.ops.object.mode_set(mode="OBJECT")
-    bpy.ops.export_scene.gltf(filepath=target, export_format="GLB", export_texcoords=True,
-                              export_normals=True, export_materials="EXPORT", export_yup=True,
-                              export_apply=False)
-    print(f"patina-unwrap: uv set {index}")
+
+    uvs = numpy.empty(2 * len(mesh.loops), dtype="<f4")
+    mesh.uv_layers["patina"].data.foreach_get("uv", uvs)
+    uvs.tofile(os.path.join(folder, "uvs.f32"))
+    print("patina-unwrap: done")
 
 
 main()

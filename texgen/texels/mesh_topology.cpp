@@ -8,11 +8,8 @@
 
 namespace patina::texgen {
 
-namespace {
-
-    /// Per vertex, the lowest index of a vertex at the same position.
-    std::vector<uint32_t> welded_vertices(const TriangleMesh& mesh)
-    {
+std::vector<uint32_t> welded_vertices(const TriangleMesh& mesh)
+{
         const size_t n = mesh.positions.size();
         std::vector<uint32_t> order(n);
         std::iota(order.begin(), order.end(), 0u);
@@ -27,7 +24,9 @@ namespace {
                                    ? welded[order[i - 1]]
                                    : order[i];
         return welded;
-    }
+}
+
+namespace {
 
     /// Union-find that keeps each element's parity relative to its root (0: wound like the
     /// root, 1: against it).

@@ -6,6 +6,8 @@
 #include "core/mesh.h"
 
 #include <cstddef>
+#include <cstdint>
+#include <vector>
 
 namespace patina::texgen {
 
@@ -22,6 +24,10 @@ struct MeshTopology {
     /// Connected pieces (through any shared edge).
     size_t pieces = 0;
 };
+
+/// Per vertex, the lowest index of a vertex at exactly the same position: the surface's own
+/// vertices, whatever seams of uvs or normals split them in the file.
+std::vector<uint32_t> welded_vertices(const TriangleMesh& mesh);
 
 /// The topology of `mesh`, its vertices welded by exact position (loaders split vertices
 /// at uv seams and hard edges; that is no border of the surface).
