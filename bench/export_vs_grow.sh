@@ -10,22 +10,12 @@ here="$(cd "$(dirname "$0")" && pwd)"
 root="$(cd "$here/.." && pwd)"
 build="$(cd "${1:-$root/build}" && pwd)"
 size="${SIZE:-2048}"
-runs="${RUNS:-1}"
 texgen="$build/bin/patina-texgen"
 tmp=$(mktemp -d "${TMPDIR:-/tmp}/export_vs_grow.XXXXXX")
 trap 'rm -rf "$tmp"' EXIT
 
-best() {  # best wall time of $runs runs of "$@", in seconds
-  local best_s=""
-  for _ in $(seq "$runs"); do
-    local t0 t1
-    t0=$(date +%s.%N)
-    "$@" >/dev/null
-    t1=$(date +%s.%N)
-    best_s=$(echo "$t0 $t1 ${best_s:-1e9}" | awk '{d = $2 - $1; print (d < $3 ? d : $3)}')
-  done
-  echo "$best_s"
-}
+# shellcheck source=lib/best_time.sh
+source "$here/lib/best_time.sh"
 
 grow=$(best "$texgen" patina "$root/samples/copper_strips/urban.patina" -o "$tmp/urban" \
        --resolution "$size" --times 0,6,12,18,24,30 --seed 1 --quiet --no-preview)

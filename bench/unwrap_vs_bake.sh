@@ -16,22 +16,12 @@ root="$(cd "$here/.." && pwd)"
 build="$(cd "${1:-$root/build}" && pwd)"
 size="${SIZE:-1024}"
 rays="${RAYS:-64}"
-runs="${RUNS:-1}"
 texgen="$build/bin/patina-texgen"
 tmp=$(mktemp -d "${TMPDIR:-/tmp}/unwrap_vs_bake.XXXXXX")
 trap 'rm -rf "$tmp"' EXIT
 
-best() {  # best wall time of $runs runs of "$@", in seconds
-  local best_s=""
-  for _ in $(seq "$runs"); do
-    local t0 t1
-    t0=$(date +%s.%N)
-    "$@" >/dev/null
-    t1=$(date +%s.%N)
-    best_s=$(echo "$t0 $t1 ${best_s:-1e9}" | awk '{d = $2 - $1; print (d < $3 ? d : $3)}')
-  done
-  echo "$best_s"
-}
+# shellcheck source=lib/best_time.sh
+source "$here/lib/best_time.sh"
 
 "$texgen" mesh sphere --resolution 354 -o "$tmp/sphere.obj" >/dev/null 2>&1
 triangles=$("$texgen" uv-check "$tmp/sphere.obj" --resolution 64 | awk '/^triangles/ {print $2}')

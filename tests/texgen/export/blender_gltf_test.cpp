@@ -10,6 +10,8 @@
 #include "core/image_io.h"
 
 #include <gtest/gtest.h>
+
+#include "test_util.h"
 #include <nlohmann/json.hpp>
 
 #include <cstdio>
@@ -24,11 +26,7 @@ namespace fs = std::filesystem;
 const std::string kBin = PATINA_TEST_BIN_DIR;
 const std::string kSource = PATINA_SOURCE_DIR;
 
-int run(const std::string& command)
-{
-    const int rc = std::system(command.c_str());
-    return WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
-}
+int run(const std::string& command) { return test::shell_status(command); }
 
 /// The mean linear RGB of an image's first three channels.
 Imath::V3d mean_rgb(const fs::path& file)

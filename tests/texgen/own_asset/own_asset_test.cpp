@@ -12,6 +12,8 @@
 #include <Imath/ImathVec.h>
 
 #include <gtest/gtest.h>
+
+#include "test_util.h"
 #include <nlohmann/json.hpp>
 #include <toml++/toml.h>
 
@@ -40,13 +42,7 @@ struct Result {
     std::string out, err;
 };
 
-std::string slurp(const fs::path& file)
-{
-    std::ifstream in(file, std::ios::binary);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
+using patina::test::read_text;
 
 /// Run `command` through the shell, capturing stdout and stderr.
 Result run(const std::string& command, const fs::path& dir)
@@ -54,7 +50,7 @@ Result run(const std::string& command, const fs::path& dir)
     const fs::path out = dir / "last.out", err = dir / "last.err";
     const int rc = std::system((command + " > '" + out.string() + "' 2> '" + err.string() + "'")
                                    .c_str());
-    return {WIFEXITED(rc) ? WEXITSTATUS(rc) : -1, slurp(out), slurp(err)};
+    return {WIFEXITED(rc) ? WEXITSTATUS(rc) : -1, read_text(out), read_text(err)};
 }
 
 std::string texgen() { return "'" + kBin + "/patina-texgen'"; }
@@ -148,13 +144,20 @@ protected:
         const Result exported = texgen_run("export " + quoted(dir_ / "stack") + " -o " +
                                         quoted(glb) + " --quiet");
         EXPECT_EQ(exported.status, 0) << exported.err;
+        return validate_and_open(glb);
+    }
+
+    /// The Khronos validator on `glb` (0 errors, 0 warnings), then Blender's importer
+    /// (tests/clients/blender_gltf_check.py): its report.
+    nlohmann::json validate_and_open(const fs::path& glb)
+    {
         const Result valid = run("node '" + kSource + "/tests/clients/validate_gltf.mjs' " +
-                                  quoted(glb), dir_);
+                                     quoted(glb), dir_);
         EXPECT_EQ(valid.status, 0) << valid.out << valid.err;
         const fs::path report = dir_ / "blender.json";
         const Result opened = run("blender -b --factory-startup --python-exit-code 1 --python '" +
-                                   kSource + "/tests/clients/blender_gltf_check.py' -- " +
-                                   quoted(glb) + " " + quoted(report), dir_);
+                                      kSource + "/tests/clients/blender_gltf_check.py' -- " +
+                                      quoted(glb) + " " + quoted(report), dir_);
         EXPECT_EQ(opened.status, 0) << opened.out.substr(0, 4000);
         std::ifstream in(report);
         return in ? nlohmann::json::parse(in) : nlohmann::json();
@@ -371,7 +374,7 @@ TEST_F(OwnAsset, AUdimStackRendersEveryTileWithLayeredKm)
 /// The JSON chunk of a .glb (glTF 2.0 §4.4.3).
 nlohmann::json glb_json(const fs::path& glb)
 {
-    const std::string bytes = slurp(glb);
+    const std::string bytes = read_text(glb);
     if (bytes.size() < 20)
         return {};
     uint32_t length = 0;
@@ -430,15 +433,8 @@ TEST_F(OwnAsset, MirroredHalvesGetAUniqueLayoutAndExportKeepsTheArtistsUvs)
     const auto& material = gltf["materials"][0];
     EXPECT_EQ(material["pbrMetallicRoughness"]["baseColorTexture"]["texCoord"], 1);
     EXPECT_EQ(material["normalTexture"]["texCoord"], 1);
-    const Result valid = run("node '" + kSource + "/tests/clients/validate_gltf.mjs' " +
-                                 quoted(glb), dir_);
-    EXPECT_EQ(valid.status, 0) << valid.out << valid.err;
-    const fs::path report = dir_ / "blender.json";
-    const Result opened = run("blender -b --factory-startup --python-exit-code 1 --python '" +
-                                  kSource + "/tests/clients/blender_gltf_check.py' -- " +
-                                  quoted(glb) + " " + quoted(report), dir_);
-    ASSERT_EQ(opened.status, 0) << opened.out.substr(0, 4000);
-    const nlohmann::json blender = nlohmann::json::parse(slurp(report));
+    const nlohmann::json blender = validate_and_open(glb);
+    ASSERT_FALSE(blender.is_null());
     EXPECT_EQ(blender["uv_maps"].size(), 2u) << blender.dump();
 }
 

@@ -12,6 +12,8 @@
 
 #include <gtest/gtest.h>
 
+#include "test_util.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -29,19 +31,9 @@ namespace fs = std::filesystem;
 const std::string kBin = PATINA_TEST_BIN_DIR;
 const std::string kSource = PATINA_SOURCE_DIR;
 
-int run(const std::string& command)
-{
-    const int rc = std::system(command.c_str());
-    return WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
-}
+int run(const std::string& command) { return test::shell_status(command); }
 
-std::string slurp(const fs::path& file)
-{
-    std::ifstream in(file);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
+using patina::test::read_text;
 
 /// Per texel, the summed thickness of the stack's wet-driven layers: those made by a
 /// statement of `script` whose line reads `wet` (a layer's `made_by` names its line).
@@ -116,7 +108,7 @@ void check_exposure_dries(const Sample& s)
                   " --sky clear --sun-bins-deg 5 --sky-samples 64"), 0);
 
     // The script as shipped, and the same with the sun taken away.
-    const std::string script = slurp(fs::path(kSource) / "samples" / s.name / (s.name + ".patina"));
+    const std::string script = read_text(fs::path(kSource) / "samples" / s.name / (s.name + ".patina"));
     const std::string map_line = "map exposure = \"maps/exposure.exr\" \"relative\"";
     const size_t at = script.find(map_line);
     ASSERT_NE(at, std::string::npos) << s.name << ": the script reads its exposure as '"
