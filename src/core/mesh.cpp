@@ -6,6 +6,7 @@
 #include <assimp/scene.h>
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
@@ -414,6 +415,13 @@ void validate_mesh(const TriangleMesh& mesh, const std::string& context)
         throw std::runtime_error(fmt::format("{}: {} normals for {} vertices", context, mesh.normals.size(), n));
     if (!mesh.uvs.empty() && mesh.uvs.size() != n)
         throw std::runtime_error(fmt::format("{}: {} uvs for {} vertices", context, mesh.uvs.size(), n));
+    if (!mesh.triangle_material.empty() &&
+        (mesh.triangle_material.size() != mesh.indices.size() / 3 ||
+         std::any_of(mesh.triangle_material.begin(), mesh.triangle_material.end(),
+                     [&](uint16_t k) { return k >= mesh.materials.size(); })))
+        throw std::runtime_error(fmt::format("{}: {} triangle materials for {} triangles of {} "
+                                             "materials", context, mesh.triangle_material.size(),
+                                             mesh.indices.size() / 3, mesh.materials.size()));
     if (!mesh.source_uvs.empty() && mesh.source_uvs.size() != n)
         throw std::runtime_error(fmt::format("{}: {} source uvs for {} vertices", context,
                                              mesh.source_uvs.size(), n));

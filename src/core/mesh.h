@@ -31,6 +31,17 @@ struct TriangleMesh {
     int uv_set = 0;        ///< which of the file's uv sets `uvs` holds
     int uv_set_count = 0;  ///< how many the file has for this mesh
     std::vector<uint32_t> indices; ///< 3 per triangle
+    /// When meshes of several materials are merged (texgen's merge_meshes): the source
+    /// material of each triangle, an index into `materials`. Empty: every triangle is
+    /// `material_name`'s.
+    std::vector<uint16_t> triangle_material;
+    std::vector<std::string> materials;
+
+    /// The source material of triangle `t`.
+    const std::string& material_of(size_t t) const
+    {
+        return triangle_material.empty() ? material_name : materials[triangle_material[t]];
+    }
 
     size_t triangle_count() const { return indices.size() / 3; }
     bool has_normals() const { return !normals.empty(); }

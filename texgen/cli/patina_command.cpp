@@ -19,8 +19,10 @@
 #include "texgen/texels/uv_wrap.h"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <tbb/global_control.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -39,6 +41,7 @@ struct PatinaOptions {
     fs::path mesh;
     MeshConventionOptions convention;
     bool uv_wrap = false;
+    std::vector<std::string> keep_off;  ///< source materials that grow nothing
     fs::path out_dir = "patina";
     std::vector<double> times{30.0};
     double end_time = 0;
@@ -74,7 +77,7 @@ MeshConventionOptions convention_with_maps(const Script& script, const fs::path&
     MeshConventionOptions options = user;
     for (const Statement& statement : script.statements) {
         const auto* map = std::get_if<MapStatement>(&statement);
-        if (!map)
+        if (!map || !map->material.empty())  // a material mask reads no file
             continue;
         const fs::path file = fs::path(map->path).is_relative() ? script_dir / map->path
                                                                 : fs::path(map->path);
@@ -143,8 +146,34 @@ void run_patina(const PatinaOptions& o)
     run.script_dir = o.script.parent_path();
     Progress progress(patina_work_units(script, run), o.quiet, "patina");
     run.progress = &progress;
-    const std::vector<PatinaStep> steps = run_patina_script(script, library, domain, run);
+    // Nothing grows on the --keep-off materials (glass, rubber): every layer is scaled by the
+    // share of each texel that lies on other materials. A name the mesh lacks fails here,
+    // before the run.
+    std::vector<float> keep;
+    if (!o.keep_off.empty()) {
+        keep.assign(domain.size(), 1.0f);
+        for (const std::string& material : o.keep_off) {
+            std::vector<float> fraction;
+            try {
+                fraction = material_fraction(domain, material);
+            } catch (const std::exception& e) {
+                throw std::runtime_error(fmt::format("--keep-off: {}", e.what()));
+            }
+            for (size_t i = 0; i < keep.size(); ++i)
+                keep[i] = std::max(0.0f, keep[i] - fraction[i]);
+        }
+    }
+    std::vector<PatinaStep> steps = run_patina_script(script, library, domain, run);
     progress.finish();
+    if (!keep.empty()) {
+        for (PatinaStep& step : steps) {
+            for (ResultLayer& layer : step.layers)
+                for (size_t i = 0; i < keep.size(); ++i)
+                    layer.thickness_um[i] *= keep[i];
+            for (size_t i = 0; i < keep.size(); ++i)
+                step.total_um[i] *= keep[i];
+        }
+    }
 
     PatinaOutputOptions out;
     out.maps.padding = o.padding;
@@ -157,6 +186,8 @@ void run_patina(const PatinaOptions& o)
                        static_cast<float>(o.end_time > 0 ? o.end_time : o.times.back())},
                       {"patina:domain", o.mesh.empty() ? std::string("strip")
                                                        : o.mesh.filename().string()}};
+    if (!o.keep_off.empty())
+        out.parameters.emplace_back("patina:keep_off", fmt::format("{}", fmt::join(o.keep_off, ",")));
     if (o.mesh.empty()) {
         out.parameters.emplace_back("patina:strip_size_m", static_cast<float>(o.strip_size));
         out.parameters.emplace_back("patina:strip_boundary", o.strip_boundary);
@@ -243,6 +274,11 @@ void register_patina_command(CLI::App& app)
     cmd->add_option("--mesh", o->mesh, "the uv-mapped mesh (any Assimp format); without it, "
                                        "a flat strip")->check(CLI::ExistingFile);
     add_mesh_convention_options(*cmd, o->convention);
+    cmd->add_option("--keep-off", o->keep_off,
+                    "source materials of the mesh on which nothing grows (glass, rubber; "
+                    "repeatable or comma-separated): every layer is zero on their texels")
+        ->delimiter(',')
+        ->needs("--mesh");
     cmd->add_flag("--uv-wrap", o->uv_wrap,
                   "fold triangles whose uvs lie outside the UDIM tiles into tile 1001, as a "
                   "renderer's repeat wrapping reads them (as the bakers' --uv-wrap)");

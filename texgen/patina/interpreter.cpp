@@ -260,6 +260,13 @@ namespace {
             auto it = maps_.find(&m);
             if (it != maps_.end())
                 return it->second;
+            if (!m.material.empty()) {
+                try {
+                    return maps_.emplace(&m, material_fraction(domain_, m.material)).first->second;
+                } catch (const std::exception& err) {
+                    fail(m.location, fmt::format("map '{}': {}", m.name, err.what()));
+                }
+            }
             fs::path path = m.path;
             if (path.is_relative())
                 path = options_.script_dir / path;

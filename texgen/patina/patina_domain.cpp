@@ -2,6 +2,11 @@
 
 #include "texgen/growth/surface_lattice.h"
 
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <algorithm>
+
 #include <stdexcept>
 
 namespace patina::texgen {
@@ -67,6 +72,33 @@ PatinaDomain make_strip_domain(int width, int height, double size_m, GridBoundar
     }
     d.grids.push_back(std::move(grid));
     return d;
+}
+
+std::vector<float> material_fraction(const PatinaDomain& domain, const std::string& material)
+{
+    if (!domain.mesh)
+        throw std::runtime_error(fmt::format("material '{}': a strip has no source materials "
+                                             "(grow on a mesh with --mesh)", material));
+    const TriangleMesh& mesh = *domain.mesh;
+    std::vector<std::string> names = mesh.materials;
+    if (names.empty())
+        names.push_back(mesh.material_name);
+    const auto found = std::find(names.begin(), names.end(), material);
+    if (found == names.end())
+        throw std::runtime_error(fmt::format("the mesh has no material '{}' (its materials: "
+                                             "'{}')", material, fmt::join(names, "', '")));
+    std::vector<float> fraction;
+    fraction.reserve(domain.size());
+    for (const TexelGrid& grid : domain.grids)
+        for (size_t g = 0; g < grid.groups.group_count(); ++g) {
+            size_t inside = 0;
+            const size_t size = grid.groups.group_size(g);
+            for (size_t k = 0; k < size; ++k)
+                inside += mesh.material_of(grid.groups.samples[grid.groups.offsets[g] + k].triangle) ==
+                          material;
+            fraction.push_back(size ? static_cast<float>(inside) / static_cast<float>(size) : 0.0f);
+        }
+    return fraction;
 }
 
 PatinaDomain make_mesh_domain(const TriangleMesh& mesh, const RasterOptions& options)

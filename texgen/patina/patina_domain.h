@@ -50,4 +50,10 @@ PatinaDomain make_strip_domain(int width, int height, double size_m,
 /// lattice continued across uv seams (surface_lattice.h). `mesh` must outlive the domain.
 PatinaDomain make_mesh_domain(const TriangleMesh& mesh, const RasterOptions& options);
 
+/// Per node: the share of its samples that lie on triangles of the source material
+/// `material` (1 inside a part of that material, between 0 and 1 on a texel its border
+/// crosses). Throws std::runtime_error naming the materials the mesh has when it has none
+/// of that name, and for a strip (which has no source materials).
+std::vector<float> material_fraction(const PatinaDomain& domain, const std::string& material);
+
 }  // namespace patina::texgen

@@ -149,11 +149,14 @@ struct RenderStatement {
 /// map NAME = "FILE" ["CHANNEL"]: a baked map (accessibility, exposure, ...) named in
 /// expressions. The path is as written; relative paths are for the interpreter to resolve
 /// (against the script's folder). An empty channel means the file's first channel.
+/// map NAME = material "SOURCE": the mesh's source material SOURCE as a mask, 1 on its
+/// texels and 0 elsewhere (`path` empty).
 struct MapStatement {
     SourceLocation location;
     std::string name;
     std::string path;
     std::string channel;
+    std::string material;
 };
 
 /// curve NAME = (t0 v0, t1 v1, ...): a piecewise-linear function of time (years), times

@@ -356,6 +356,16 @@ private:
         if (!at(TokenKind::Equals))
             fail_unexpected("'=' after 'map " + s.name + "'");
         next();
+        if (at(TokenKind::Word) && peek().text == "material") {
+            next();
+            if (!at(TokenKind::String))
+                fail_unexpected("the mesh material of map '" + s.name + "' (a \"quoted\" name)");
+            s.material = next().text;
+            if (s.material.empty())
+                fail(s.location, "empty material name for map '" + s.name + "'");
+            declare(name, NameKind::Map);
+            return s;
+        }
         if (!at(TokenKind::String))
             fail_unexpected("the file of map '" + s.name + "' (a \"quoted\" path)");
         const Token path = next();

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <limits>
 #include <stdexcept>
 
@@ -48,7 +49,25 @@ TriangleMesh merge_meshes(const std::vector<TriangleMesh>& meshes,
     // The artist's own uv set travels along when every mesh has it (--uv-set > 0).
     const bool sources = std::all_of(meshes.begin(), meshes.end(),
                                      [](const TriangleMesh& m) { return !m.source_uvs.empty(); });
+    merged.triangle_material.reserve(index_count / 3);
+    const auto material_index = [&](const std::string& name) {
+        auto it = std::find(merged.materials.begin(), merged.materials.end(), name);
+        if (it != merged.materials.end())
+            return static_cast<uint16_t>(it - merged.materials.begin());
+        if (merged.materials.size() > UINT16_MAX)
+            throw std::runtime_error(fmt::format("mesh file '{}': more than {} materials",
+                                                 file.string(), UINT16_MAX + 1));
+        merged.materials.push_back(name);
+        return static_cast<uint16_t>(merged.materials.size() - 1);
+    };
     for (const TriangleMesh& m : meshes) {
+        if (m.triangle_material.empty()) {
+            merged.triangle_material.insert(merged.triangle_material.end(), m.triangle_count(),
+                                            material_index(m.material_name));
+        } else {
+            for (const uint16_t k : m.triangle_material)
+                merged.triangle_material.push_back(material_index(m.materials[k]));
+        }
         const uint32_t base = static_cast<uint32_t>(merged.positions.size());
         merged.positions.insert(merged.positions.end(), m.positions.begin(), m.positions.end());
         merged.uvs.insert(merged.uvs.end(), m.uvs.begin(), m.uvs.end());

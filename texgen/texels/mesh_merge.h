@@ -9,7 +9,9 @@
 
 namespace patina::texgen {
 
-/// Concatenate `meshes` (as load_meshes returns them from `file`) into one mesh. A mesh
+/// Concatenate `meshes` (as load_meshes returns them from `file`) into one mesh, each
+/// triangle keeping its source material (triangle_material, materials: names in order of
+/// first appearance). A mesh
 /// without normals gets area-weighted vertex normals (compute_vertex_normals) when any mesh
 /// has normals, so the merged normals stay per vertex; uvs are kept. The result is named
 /// after the only mesh, or after the file's stem when there are several. Throws

@@ -511,6 +511,61 @@ TEST_F(OwnAsset, AMeshWithoutUvsGetsThereInOneCommand)
     EXPECT_FALSE(fs::exists(dir_ / "none.glb"));
 }
 
+TEST_F(OwnAsset, SourceMaterialsMaskTheScriptAndKeepPatinaOff)
+{
+    // Three 1 m squares of three materials side by side (bronze, glass, rubber), each on its
+    // own third of tile 1001, as an OBJ with its material file.
+    std::ofstream(dir_ / "parts.mtl") << "newmtl Bronze\nKd 0.6 0.4 0.2\nnewmtl Glass\nKd 0.9 0.9 0.9\n"
+                                         "newmtl Rubber\nKd 0.05 0.05 0.05\n";
+    std::ofstream obj(dir_ / "parts.obj");
+    obj << "mtllib parts.mtl\nvn 0 1 0\n";
+    const char* names[] = {"Bronze", "Glass", "Rubber"};
+    for (int k = 0; k < 3; ++k) {
+        const float x = 1.5f * k, u = 0.35f * k;
+        obj << "v " << x << " 0 0\nv " << x + 1 << " 0 0\nv " << x + 1 << " 0 -1\nv " << x
+            << " 0 -1\nvt " << u << " 0\nvt " << u + 0.3f << " 0\nvt " << u + 0.3f << " 1\nvt "
+            << u << " 1\nusemtl " << names[k] << "\nf " << 4 * k + 1 << "/" << 4 * k + 1 << "/1 "
+            << 4 * k + 2 << "/" << 4 * k + 2 << "/1 " << 4 * k + 3 << "/" << 4 * k + 3 << "/1\nf "
+            << 4 * k + 1 << "/" << 4 * k + 1 << "/1 " << 4 * k + 3 << "/" << 4 * k + 3 << "/1 "
+            << 4 * k + 4 << "/" << 4 * k + 4 << "/1\n";
+    }
+    obj.close();
+    std::ofstream(dir_ / "masked.patina") << "new copper\nmap glass = material \"Glass\"\n"
+                                             "coat tarnish 1.0 2 * (1 - glass)\nrender maps\n";
+    const Result grown = texgen_run("patina " + quoted(dir_ / "masked.patina") + " --mesh " +
+                                    quoted(dir_ / "parts.obj") + " --keep-off Rubber -o " +
+                                    quoted(dir_ / "stack") + " --resolution 40 --quiet --no-preview");
+    ASSERT_EQ(grown.status, 0) << grown.err;
+    const ImageData total = read_image(dir_ / "stack" / "total_thickness.exr");
+    const int c = total.channel("thickness");
+    ASSERT_GE(c, 0);
+    // The middle row of each part's third of the tile: 40 texels, 12 to a part.
+    const auto at_u = [&](float u) { return total.at(static_cast<int>(u * 40), 20, c); };
+    EXPECT_NEAR(at_u(0.15f), 2.0f, 1e-5f);  // bronze: the script's 2 um
+    EXPECT_EQ(at_u(0.50f), 0.0f);           // glass: masked by the script
+    EXPECT_EQ(at_u(0.85f), 0.0f);           // rubber: --keep-off
+    const toml::table stack = toml::parse_file((dir_ / "stack" / "stack.toml").string());
+    EXPECT_EQ(stack["maps"]["total_thickness"]["parameters"]["keep_off"].value_or(std::string()),
+              "Rubber");
+
+    // A material the mesh does not have is named, with the ones it has.
+    std::ofstream(dir_ / "typo.patina") << "new copper\nmap glass = material \"Glas\"\n"
+                                           "coat tarnish 1.0 2 * glass\nrender maps\n";
+    const Result typo = texgen_run("patina " + quoted(dir_ / "typo.patina") + " --mesh " +
+                                   quoted(dir_ / "parts.obj") + " -o " + quoted(dir_ / "bad") +
+                                   " --resolution 16 --quiet");
+    EXPECT_EQ(typo.status, 1);
+    EXPECT_NE(typo.err.find("no material 'Glas' (its materials: 'Bronze', 'Glass', 'Rubber')"),
+              std::string::npos) << typo.err;
+    const Result keep_typo = texgen_run("patina " + quoted(dir_ / "masked.patina") + " --mesh " +
+                                        quoted(dir_ / "parts.obj") + " --keep-off Rubbr -o " +
+                                        quoted(dir_ / "bad") + " --resolution 16 --quiet");
+    EXPECT_EQ(keep_typo.status, 1);
+    EXPECT_NE(keep_typo.err.find("--keep-off: the mesh has no material 'Rubbr'"),
+              std::string::npos) << keep_typo.err;
+    EXPECT_FALSE(fs::exists(dir_ / "bad" / "stack.toml"));
+}
+
 TEST_F(OwnAsset, BadAxisAndUnitOptionsGetOneClearMessage)
 {
     const fs::path fbx = corpus_ / "figure_zup_cm.fbx";
