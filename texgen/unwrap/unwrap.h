@@ -16,7 +16,7 @@ namespace patina::texgen {
 struct UnwrapOptions {
     std::string method = "smart";  ///< "smart" (Smart UV Project) or "lightmap" (Lightmap Pack)
     /// smart: faces meeting at more than this start new islands. Blender's default, 66, leaves
-    /// islands that fold over themselves on fluted shapes (0.16 % of the project's statue
+    /// islands that fold over themselves on fluted shapes (0.19 % of the project's statue
     /// overlaps); 45 leaves none there.
     double angle_limit_deg = 45.0;
     double margin = 0.005;         ///< space between islands, a fraction of the tile
