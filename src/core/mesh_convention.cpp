@@ -40,7 +40,7 @@ namespace {
         return s;
     }
 
-}  // namespace
+} // namespace
 
 std::string Axis::name() const
 {
@@ -57,8 +57,8 @@ Axis parse_axis(std::string_view text, std::string_view what)
         letter.remove_prefix(1);
     }
     if (letter.size() != 1 || letter[0] < 'x' || letter[0] > 'z')
-        throw std::invalid_argument(fmt::format(
-            "{}: '{}' is not an axis (expected x, y, z, -x, -y or -z)", what, text));
+        throw std::invalid_argument(
+            fmt::format("{}: '{}' is not an axis (expected x, y, z, -x, -y or -z)", what, text));
     a.index = letter[0] - 'x';
     return a;
 }
@@ -78,7 +78,8 @@ double parse_unit(std::string_view text, std::string_view what)
         known += (known.empty() ? "" : ", ") + std::string(u.name);
     throw std::invalid_argument(
         fmt::format("{}: '{}' is not a unit (expected one of {}; or give --scale with the metres "
-                    "per unit)", what, text, known));
+                    "per unit)",
+                    what, text, known));
 }
 
 std::string unit_name(double metres_per_unit)
@@ -100,13 +101,13 @@ Imath::M44f convention_matrix(Axis up, double metres_per_unit)
     // Row vectors: row i is where the file's axis i goes.
     Imath::V3f rows[3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
     const float s = static_cast<float>(up.sign);
-    if (up.index == 2) {  // +z: (x, y, z) -> (x, z, -y); -z: (x, y, z) -> (x, -z, y)
+    if (up.index == 2) { // +z: (x, y, z) -> (x, z, -y); -z: (x, y, z) -> (x, -z, y)
         rows[1] = Imath::V3f(0, 0, -s);
         rows[2] = Imath::V3f(0, s, 0);
-    } else if (up.index == 0) {  // +x: (x, y, z) -> (-y, x, z); -x: (x, y, z) -> (y, -x, z)
+    } else if (up.index == 0) { // +x: (x, y, z) -> (-y, x, z); -x: (x, y, z) -> (y, -x, z)
         rows[0] = Imath::V3f(0, s, 0);
         rows[1] = Imath::V3f(-s, 0, 0);
-    } else if (up.sign < 0) {  // -y: a half turn about x
+    } else if (up.sign < 0) { // -y: a half turn about x
         rows[1] = Imath::V3f(0, -1, 0);
         rows[2] = Imath::V3f(0, 0, -1);
     }
@@ -129,8 +130,7 @@ MeshConvention resolve_convention(const DeclaredConvention& declared,
         if (declared.up && *declared.up != *options.up)
             c.warnings.push_back(fmt::format("the file declares {} up ({}); {} up is used as "
                                              "the option says",
-                                             declared.up->name(), source,
-                                             options.up->name()));
+                                             declared.up->name(), source, options.up->name()));
     } else if (declared.up) {
         c.up = *declared.up;
         c.up_from = source;
@@ -159,7 +159,7 @@ std::string implausible_size_warning(const Imath::Box3f& bounds, const MeshConve
         return {};
     const Imath::V3f size = bounds.size();
     const double longest = std::max({size.x, size.y, size.z});
-    constexpr double kLargest = 100.0, kSmallest = 0.005;  // metres
+    constexpr double kLargest = 100.0, kSmallest = 0.005; // metres
     if (!(longest > kLargest || longest < kSmallest) || !(longest > 0.0))
         return {};
     // The unit that brings the file's longest side within 0.05-20 m and nearest to 1 m on
@@ -178,14 +178,14 @@ std::string implausible_size_warning(const Imath::Box3f& bounds, const MeshConve
             best_distance = distance;
         }
     }
-    std::string remedy = best ? fmt::format("; if its unit is {}, say so with --unit {} (it "
-                                            "would be {:.3g} m)",
-                                            best->aliases[1], best->name,
-                                            in_file_units * best->metres)
-                              : std::string("; give its unit with --unit or --scale");
+    std::string remedy =
+        best ? fmt::format("; if its unit is {}, say so with --unit {} (it "
+                           "would be {:.3g} m)",
+                           best->aliases[1], best->name, in_file_units * best->metres)
+             : std::string("; give its unit with --unit or --scale");
     return fmt::format("the mesh is {:.4g} m along its longest side ({}), {} for a real "
-                       "object{}", longest, applied.describe(),
-                       longest > kLargest ? "large" : "small", remedy);
+                       "object{}",
+                       longest, applied.describe(), longest > kLargest ? "large" : "small", remedy);
 }
 
-}  // namespace patina
+} // namespace patina

@@ -43,7 +43,7 @@ std::string unit_name(double metres_per_unit);
 struct MeshConventionOptions {
     std::optional<Axis> up;
     std::optional<double> metres_per_unit;
-    int uv_set = 0;  ///< --uv-set: 0 is the file's first
+    int uv_set = 0; ///< --uv-set: 0 is the file's first
 
     bool empty() const { return !up && !metres_per_unit && uv_set == 0; }
 };
@@ -65,8 +65,8 @@ struct DeclaredConvention {
 struct MeshConvention {
     Axis up;
     double metres_per_unit = 1.0;
-    std::string up_from = "Patina's default";    ///< "--up", "FBX GlobalSettings", ...
-    std::string unit_from = "Patina's default";  ///< "--unit", "COLLADA <asset>", ...
+    std::string up_from = "Patina's default";   ///< "--up", "FBX GlobalSettings", ...
+    std::string unit_from = "Patina's default"; ///< "--unit", "COLLADA <asset>", ...
     /// Row vectors (Imath): p_world = p_file * file_to_world.
     Imath::M44f file_to_world;
     /// Where the options contradict the file ("the file declares +z up; --up y is used").
@@ -93,4 +93,4 @@ MeshConvention resolve_convention(const DeclaredConvention& declared,
 /// make it 0.05-20 m and the option that says so. Empty when the size looks plausible.
 std::string implausible_size_warning(const Imath::Box3f& bounds, const MeshConvention& applied);
 
-}  // namespace patina
+} // namespace patina

@@ -11,8 +11,7 @@ namespace patina::texgen {
 namespace {
 
     /// A CLI11 validator from a parser that throws std::invalid_argument.
-    template <typename Parse>
-    CLI::Validator parsed_by(Parse parse, std::string description)
+    template <typename Parse> CLI::Validator parsed_by(Parse parse, std::string description)
     {
         return CLI::Validator(
             [parse](std::string& text) -> std::string {
@@ -26,7 +25,7 @@ namespace {
             std::move(description));
     }
 
-}  // namespace
+} // namespace
 
 void add_mesh_convention_options(CLI::App& command, MeshConventionOptions& o)
 {
@@ -59,4 +58,4 @@ void add_mesh_convention_options(CLI::App& command, MeshConventionOptions& o)
         ->check(CLI::Range(0, 7));
 }
 
-}  // namespace patina::texgen
+} // namespace patina::texgen

@@ -12,4 +12,4 @@ namespace patina::texgen {
 /// `command`.
 void add_mesh_convention_options(CLI::App& command, MeshConventionOptions& options);
 
-}  // namespace patina::texgen
+} // namespace patina::texgen

@@ -24,7 +24,7 @@ namespace {
         bool quiet = false;
     };
 
-}  // namespace
+} // namespace
 
 void register_unwrap_command(CLI::App& app)
 {
@@ -71,4 +71,4 @@ void register_unwrap_command(CLI::App& app)
     });
 }
 
-}  // namespace patina::texgen
+} // namespace patina::texgen

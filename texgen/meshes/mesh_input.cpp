@@ -13,9 +13,12 @@ namespace patina::texgen {
 
 namespace {
 
-    bool same_unit(double a, double b) { return std::abs(a - b) <= 1e-6 * std::max(a, b); }
+    bool same_unit(double a, double b)
+    {
+        return std::abs(a - b) <= 1e-6 * std::max(a, b);
+    }
 
-}  // namespace
+} // namespace
 
 TriangleMesh load_mesh_with_warnings(const std::filesystem::path& file,
                                      const MeshConventionOptions& convention,
@@ -47,7 +50,10 @@ void record_uv_set(Metadata& parameters, int uv_set)
         parameters.emplace_back("uv_set", uv_set);
 }
 
-void record_uv_wrap(Metadata& parameters) { parameters.emplace_back("uv_wrap", 1); }
+void record_uv_wrap(Metadata& parameters)
+{
+    parameters.emplace_back("uv_wrap", 1);
+}
 
 bool recorded_uv_wrap(const toml::table& parameters)
 {
@@ -78,7 +84,8 @@ MeshConventionOptions convention_for_stack(const MeshConventionOptions& user,
         o.up = user.up;
     }
     if (user.metres_per_unit) {
-        if (recorded.metres_per_unit && !same_unit(*recorded.metres_per_unit, *user.metres_per_unit))
+        if (recorded.metres_per_unit &&
+            !same_unit(*recorded.metres_per_unit, *user.metres_per_unit))
             throw std::runtime_error(fmt::format(
                 "{} was made with the mesh in {}, not {}: give --unit {} or leave it out", what,
                 unit_name(*recorded.metres_per_unit), unit_name(*user.metres_per_unit),
@@ -88,10 +95,9 @@ MeshConventionOptions convention_for_stack(const MeshConventionOptions& user,
     if (user.uv_set != 0 && recorded.uv_set != 0 && user.uv_set != recorded.uv_set)
         throw std::runtime_error(fmt::format("{} was made in the mesh's uv set {}, not {}: give "
                                              "--uv-set {} or leave it out",
-                                             what, recorded.uv_set, user.uv_set,
-                                             recorded.uv_set));
+                                             what, recorded.uv_set, user.uv_set, recorded.uv_set));
     o.uv_set = user.uv_set != 0 ? user.uv_set : recorded.uv_set;
     return o;
 }
 
-}  // namespace patina::texgen
+} // namespace patina::texgen

@@ -44,4 +44,4 @@ MeshConventionOptions convention_for_stack(const MeshConventionOptions& user,
                                            const MeshConventionOptions& recorded,
                                            const std::string& what);
 
-}  // namespace patina::texgen
+} // namespace patina::texgen

@@ -50,7 +50,8 @@ std::string occluder_crossing(const TriangleMesh& target, const std::vector<Tria
     const auto first = std::find(crosses.begin(), crosses.end(), uint8_t{1});
     if (first == crosses.end())
         return {};
-    const size_t count = static_cast<size_t>(std::count(crosses.begin(), crosses.end(), uint8_t{1}));
+    const size_t count =
+        static_cast<size_t>(std::count(crosses.begin(), crosses.end(), uint8_t{1}));
     const size_t e = static_cast<size_t>(first - crosses.begin());
     const Imath::V3f& p = target.positions[target.indices[e]];
     Imath::Box3f box;
@@ -62,4 +63,4 @@ std::string occluder_crossing(const TriangleMesh& target, const std::vector<Tria
                        count, edges, p.x, p.y, p.z, box.min.y);
 }
 
-}  // namespace patina::texgen
+} // namespace patina::texgen

@@ -22,4 +22,4 @@ TriangleMesh ground_under(const TriangleMesh& mesh);
 std::string occluder_crossing(const TriangleMesh& target,
                               const std::vector<TriangleMesh>& occluder);
 
-}  // namespace patina::texgen
+} // namespace patina::texgen

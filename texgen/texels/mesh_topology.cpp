@@ -10,20 +10,20 @@ namespace patina::texgen {
 
 std::vector<uint32_t> welded_vertices(const TriangleMesh& mesh)
 {
-        const size_t n = mesh.positions.size();
-        std::vector<uint32_t> order(n);
-        std::iota(order.begin(), order.end(), 0u);
-        const auto key = [&](uint32_t v) {
-            const Imath::V3f& p = mesh.positions[v];
-            return std::make_tuple(p.x, p.y, p.z, v);
-        };
-        std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) { return key(a) < key(b); });
-        std::vector<uint32_t> welded(n);
-        for (size_t i = 0; i < n; ++i)
-            welded[order[i]] = i > 0 && mesh.positions[order[i]] == mesh.positions[order[i - 1]]
-                                   ? welded[order[i - 1]]
-                                   : order[i];
-        return welded;
+    const size_t n = mesh.positions.size();
+    std::vector<uint32_t> order(n);
+    std::iota(order.begin(), order.end(), 0u);
+    const auto key = [&](uint32_t v) {
+        const Imath::V3f& p = mesh.positions[v];
+        return std::make_tuple(p.x, p.y, p.z, v);
+    };
+    std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) { return key(a) < key(b); });
+    std::vector<uint32_t> welded(n);
+    for (size_t i = 0; i < n; ++i)
+        welded[order[i]] = i > 0 && mesh.positions[order[i]] == mesh.positions[order[i - 1]]
+                               ? welded[order[i - 1]]
+                               : order[i];
+    return welded;
 }
 
 namespace {
@@ -32,7 +32,7 @@ namespace {
     /// root, 1: against it).
     struct ParitySets {
         std::vector<uint32_t> parent;
-        std::vector<uint8_t> parity;  // relative to parent
+        std::vector<uint8_t> parity; // relative to parent
         explicit ParitySets(size_t n) : parent(n), parity(n, 0)
         {
             std::iota(parent.begin(), parent.end(), 0u);
@@ -72,7 +72,7 @@ namespace {
         }
     };
 
-}  // namespace
+} // namespace
 
 MeshTopology mesh_topology(const TriangleMesh& mesh)
 {
@@ -116,7 +116,7 @@ MeshTopology mesh_topology(const TriangleMesh& mesh)
             ++topology.boundary_edges;
         else if (count > 2)
             ++topology.non_manifold_edges;
-        else  // Consistent winding runs a shared edge in opposite directions.
+        else // Consistent winding runs a shared edge in opposite directions.
             winding.join(uses[i].triangle, uses[i + 1].triangle,
                          uses[i].forward == uses[i + 1].forward ? 1 : 0);
         for (size_t k = i + 1; k < end; ++k) {
@@ -139,4 +139,4 @@ MeshTopology mesh_topology(const TriangleMesh& mesh)
     return topology;
 }
 
-}  // namespace patina::texgen
+} // namespace patina::texgen

@@ -33,4 +33,4 @@ std::vector<uint32_t> welded_vertices(const TriangleMesh& mesh);
 /// at uv seams and hard edges; that is no border of the surface).
 MeshTopology mesh_topology(const TriangleMesh& mesh);
 
-}  // namespace patina::texgen
+} // namespace patina::texgen

@@ -16,7 +16,7 @@ namespace {
         return c.x >= 0.0f && c.x < 10.0f && c.y >= 0.0f && c.y < 100.0f;
     }
 
-}  // namespace
+} // namespace
 
 size_t wrap_uvs_outside_udims(TriangleMesh& mesh)
 {
@@ -58,4 +58,4 @@ size_t wrap_uvs_outside_udims(TriangleMesh& mesh)
     return moved;
 }
 
-}  // namespace patina::texgen
+} // namespace patina::texgen

@@ -16,4 +16,4 @@ namespace patina::texgen {
 /// of triangles moved. A mesh without uvs is left alone.
 size_t wrap_uvs_outside_udims(TriangleMesh& mesh);
 
-}  // namespace patina::texgen
+} // namespace patina::texgen

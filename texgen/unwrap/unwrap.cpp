@@ -101,12 +101,13 @@ namespace {
                     uv.y = 1.0f - uv.y;
                 return accessor(uvs, gltf::kArrayBuffer, gltf::kFloat, "VEC2");
             };
-            nlohmann::json attributes = {
-                {"POSITION", accessor(m.positions, gltf::kArrayBuffer, gltf::kFloat, "VEC3", lo, hi)}};
+            nlohmann::json attributes = {{"POSITION", accessor(m.positions, gltf::kArrayBuffer,
+                                                               gltf::kFloat, "VEC3", lo, hi)}};
             // Normals as the file has them; none where it has none (a glTF reader then makes
             // flat ones, glTF 2.0 §3.7.2.1).
             if (m.has_normals())
-                attributes["NORMAL"] = accessor(m.normals, gltf::kArrayBuffer, gltf::kFloat, "VEC3");
+                attributes["NORMAL"] =
+                    accessor(m.normals, gltf::kArrayBuffer, gltf::kFloat, "VEC3");
             if (m.source_uvs.empty()) {
                 attributes["TEXCOORD_0"] = gltf_uvs(m.uvs);
             } else {
@@ -119,8 +120,8 @@ namespace {
                 found->second = doc.add("materials", {{"name", material_name}});
             const nlohmann::json primitive = {
                 {"attributes", attributes},
-                {"indices", accessor(m.indices, gltf::kElementArrayBuffer, gltf::kUnsignedInt,
-                                     "SCALAR")},
+                {"indices",
+                 accessor(m.indices, gltf::kElementArrayBuffer, gltf::kUnsignedInt, "SCALAR")},
                 {"material", found->second}};
             const int mesh = doc.add("meshes", {{"name", m.name}, {"primitives", {primitive}}});
             nodes.push_back(doc.add("nodes", {{"name", m.name}, {"mesh", mesh}}));
@@ -129,8 +130,7 @@ namespace {
         return doc.glb();
     }
 
-    template <typename T>
-    void write_raw(const fs::path& file, const std::vector<T>& values)
+    template <typename T> void write_raw(const fs::path& file, const std::vector<T>& values)
     {
         std::ofstream out(file, std::ios::binary);
         out.write(reinterpret_cast<const char*>(values.data()),
@@ -185,17 +185,18 @@ namespace {
         return text.substr(at == std::string::npos ? 0 : at + 1);
     }
 
-}  // namespace
+} // namespace
 
 UnwrapReport unwrap_mesh(const fs::path& input, const MeshConventionOptions& convention,
                          const fs::path& output, const UnwrapOptions& options)
 {
     if (options.method != "smart" && options.method != "lightmap")
-        throw std::runtime_error(fmt::format("unwrap: --method '{}' is not smart or lightmap",
-                                             options.method));
+        throw std::runtime_error(
+            fmt::format("unwrap: --method '{}' is not smart or lightmap", options.method));
     if (output.extension() != ".glb")
         throw std::runtime_error(fmt::format("unwrap: the output '{}' must be a .glb (glTF "
-                                             "keeps every uv set)", output.string()));
+                                             "keeps every uv set)",
+                                             output.string()));
     const fs::path script = find_data_file("blender/unwrap.py");
     reserve_output(output);
 
@@ -205,7 +206,8 @@ UnwrapReport unwrap_mesh(const fs::path& input, const MeshConventionOptions& con
     const std::vector<TriangleMesh> meshes = load_meshes(input, read_with, &applied);
     for (const std::string& warning : applied.warnings)
         print_warning("patina-texgen", fmt::format("mesh file '{}': {}", input.string(), warning));
-    if (const std::string size = implausible_size_warning(bounds_of(meshes), applied); !size.empty())
+    if (const std::string size = implausible_size_warning(bounds_of(meshes), applied);
+        !size.empty())
         print_warning("patina-texgen", fmt::format("mesh file '{}': {}", input.string(), size));
     const bool some_uvs = std::any_of(meshes.begin(), meshes.end(),
                                       [](const TriangleMesh& m) { return m.has_uvs(); });
@@ -226,8 +228,8 @@ UnwrapReport unwrap_mesh(const fs::path& input, const MeshConventionOptions& con
     for (size_t v = 0; v < all.positions.size(); ++v)
         if (welded[v] == v) {
             compact[v] = static_cast<uint32_t>(positions.size() / 3);
-            positions.insert(positions.end(), {all.positions[v].x, all.positions[v].y,
-                                               all.positions[v].z});
+            positions.insert(positions.end(),
+                             {all.positions[v].x, all.positions[v].y, all.positions[v].z});
         }
     std::vector<uint32_t> triangles, sent;
     for (size_t t = 0; t < all.triangle_count(); ++t) {
@@ -241,7 +243,8 @@ UnwrapReport unwrap_mesh(const fs::path& input, const MeshConventionOptions& con
     }
     if (sent.empty())
         throw std::runtime_error(fmt::format("unwrap: mesh file '{}' has no triangle of three "
-                                             "distinct vertices", input.string()));
+                                             "distinct vertices",
+                                             input.string()));
 
     const TemporaryFolder temporary;
     write_raw(temporary.path() / "positions.f32", positions);
@@ -264,7 +267,8 @@ UnwrapReport unwrap_mesh(const fs::path& input, const MeshConventionOptions& con
     if (code == 127)
         throw std::runtime_error(fmt::format("unwrap: Blender ('{}') was not found: install "
                                              "Debian's blender and python3-numpy (apt-get "
-                                             "install blender python3-numpy)", options.blender));
+                                             "install blender python3-numpy)",
+                                             options.blender));
     const fs::path uv_file = temporary.path() / "uvs.f32";
     std::error_code ec;
     if (code != 0 || printed.find("patina-unwrap: done") == std::string::npos ||
@@ -340,4 +344,4 @@ std::string format_unwrap_report(const UnwrapReport& r)
         r.stretch_rms_log2, r.blender_seconds);
 }
 
-}  // namespace patina::texgen
+} // namespace patina::texgen
