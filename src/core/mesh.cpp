@@ -2,6 +2,7 @@
 
 #include <assimp/Importer.hpp>
 #include <assimp/config.h>
+#include <assimp/material.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 #include <fmt/format.h>
@@ -58,8 +59,26 @@ namespace {
 
             TriangleMesh m;
             m.name = in.mName.length ? in.mName.C_Str() : node_name;
-            if (in.mMaterialIndex < scene.mNumMaterials)
-                m.material_name = scene.mMaterials[in.mMaterialIndex]->GetName().C_Str();
+            if (in.mMaterialIndex < scene.mNumMaterials) {
+                const aiMaterial& material = *scene.mMaterials[in.mMaterialIndex];
+                m.material_name = material.GetName().C_Str();
+                aiColor4D c;
+                if (material.Get(AI_MATKEY_BASE_COLOR, c) == AI_SUCCESS ||
+                    material.Get(AI_MATKEY_COLOR_DIFFUSE, c) == AI_SUCCESS)
+                    m.base_colour = Imath::V4f(c.r, c.g, c.b, c.a);
+                aiString texture;
+                if (material.GetTexture(aiTextureType_BASE_COLOR, 0, &texture) == AI_SUCCESS ||
+                    material.GetTexture(aiTextureType_DIFFUSE, 0, &texture) == AI_SUCCESS) {
+                    // "*N" names a texture embedded in the file: not kept.
+                    const std::string name = texture.C_Str();
+                    const std::filesystem::path file =
+                        std::filesystem::path(name).is_absolute() ? std::filesystem::path(name)
+                                                                  : path.parent_path() / name;
+                    std::error_code ec;
+                    if (!name.empty() && name[0] != '*' && std::filesystem::is_regular_file(file, ec))
+                        m.base_colour_texture = file;
+                }
+            }
             const std::string what = fmt::format("{}: mesh '{}'", where(), m.name);
 
             m.positions.resize(in.mNumVertices);

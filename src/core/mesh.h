@@ -22,6 +22,11 @@ namespace patina {
 struct TriangleMesh {
     std::string name;
     std::string material_name;
+    /// The source material's base colour (glTF baseColorFactor, else the diffuse colour;
+    /// linear RGBA as the file stores it) and its base colour texture when that is a file
+    /// beside the mesh (empty when embedded or absent).
+    Imath::V4f base_colour{0.8f, 0.8f, 0.8f, 1.0f};
+    std::filesystem::path base_colour_texture;
     std::vector<Imath::V3f> positions;
     std::vector<Imath::V3f> normals;
     std::vector<Imath::V2f> uvs;   ///< the uv set Patina bakes into (the file's first, or --uv-set)
@@ -36,6 +41,8 @@ struct TriangleMesh {
     /// `material_name`'s.
     std::vector<uint16_t> triangle_material;
     std::vector<std::string> materials;
+    std::vector<Imath::V4f> material_base_colours;                ///< per entry of `materials`
+    std::vector<std::filesystem::path> material_base_textures;  ///< per entry of `materials`
 
     /// The source material of triangle `t`.
     const std::string& material_of(size_t t) const

@@ -49,6 +49,30 @@ using nlohmann::json;
 
 namespace {
 
+    /// A source material kept free of patina: its base colour and, when it is a file beside the
+    /// mesh, its base colour texture on the artist's uvs (TEXCOORD_0), glTF's defaults else.
+    int plain_material(gltf::Document& doc, const std::string& mesh_name, const TriangleMesh& mesh,
+                       size_t s)
+    {
+        const Imath::V4f c = mesh.material_base_colours[s];
+        json pbr = {{"baseColorFactor", {c.x, c.y, c.z, c.w}}, {"metallicFactor", 0.0}};
+        if (const std::filesystem::path& file = mesh.material_base_textures[s]; !file.empty()) {
+            const ImageData image = read_image(file);
+            const int channels = std::min(image.channels, 4);
+            std::vector<float> pixels(static_cast<size_t>(image.width) * image.height * channels);
+            for (size_t i = 0; i < static_cast<size_t>(image.width) * image.height; ++i)
+                for (int k = 0; k < channels; ++k)
+                    pixels[i * channels + k] = image.pixels[i * image.channels + k];
+            const int png =
+                doc.add_png(mesh.materials[s], file.filename().replace_extension(".png").string(),
+                            encode_png(pixels.data(), image.width, image.height, channels, 8));
+            pbr["baseColorTexture"] = {
+                {"index", doc.add_texture(png, doc.add_sampler(gltf::kRepeat))}};
+        }
+        return doc.add("materials", {{"name", fmt::format("{} {}", mesh_name, mesh.materials[s])},
+                                     {"pbrMetallicRoughness", pbr}});
+    }
+
     /// The largest UDIM tile a glTF export takes: the ten columns of the first 10 rows.
     constexpr int kMaxUdim = 1099;
 
@@ -278,9 +302,18 @@ ExportResult write_export(std::vector<ExportStep>& steps, const ExportGeometry& 
         return t;
     };
 
-    // A material per step and tile: materials[step][tile]. Its textures read the uv set the
-    // maps were baked into.
+    // A material per step, tile and source material: materials[step][tile * sources + s].
+    // Its textures read the uv set the maps were baked into. A mesh of one source material
+    // keeps the names without it. Kept-off source materials get one plain material each.
     const bool tiled = udims.size() > 1;
+    const TriangleMesh& source = geometry.mesh;
+    const size_t sources = std::max<size_t>(1, source.materials.size());
+    const bool by_source = source.materials.size() > 1 || !geometry.keep_off.empty();
+    std::vector<int> kept(sources, -1);
+    for (size_t s = 0; s < source.materials.size(); ++s)
+        if (std::find(geometry.keep_off.begin(), geometry.keep_off.end(), source.materials[s]) !=
+            geometry.keep_off.end())
+            kept[s] = plain_material(doc, mesh_name, source, s);
     const int tex_coord = weathering_tex_coord(geometry.mesh);
     const auto info = [tex_coord](int texture) {
         json i = {{"index", texture}};
@@ -303,21 +336,29 @@ ExportResult write_export(std::vector<ExportStep>& steps, const ExportGeometry& 
             json patina = step.extras;
             if (tiled)
                 patina["udim"] = udims[tile];
-            json material = {
-                {"name", tiled ? fmt::format("{} {} {}", mesh_name, step.variant, udims[tile])
-                               : fmt::format("{} {}", mesh_name, step.variant)},
-                {"pbrMetallicRoughness",
-                 {{"baseColorTexture", info(base_tex)},
-                  {"metallicRoughnessTexture", info(mr_tex)}}},
-                {"normalTexture", info(normal_tex)},
-                {"extensions",
-                 {{"KHR_materials_clearcoat",
-                   {{"clearcoatFactor", 1.0},
-                    {"clearcoatTexture", info(coat_tex)},
-                    {"clearcoatRoughnessFactor", 1.0},
-                    {"clearcoatRoughnessTexture", info(coat_tex)}}}}},
-                {"extras", {{"patina", patina}}}};
-            materials[k].push_back(doc.add("materials", std::move(material)));
+            for (size_t s = 0; s < sources; ++s) {
+                if (kept[s] >= 0) {
+                    materials[k].push_back(kept[s]);
+                    continue;
+                }
+                const std::string name =
+                    by_source ? fmt::format("{} {}", mesh_name, source.materials[s]) : mesh_name;
+                json material = {
+                    {"name", tiled ? fmt::format("{} {} {}", name, step.variant, udims[tile])
+                                   : fmt::format("{} {}", name, step.variant)},
+                    {"pbrMetallicRoughness",
+                     {{"baseColorTexture", info(base_tex)},
+                      {"metallicRoughnessTexture", info(mr_tex)}}},
+                    {"normalTexture", info(normal_tex)},
+                    {"extensions",
+                     {{"KHR_materials_clearcoat",
+                       {{"clearcoatFactor", 1.0},
+                        {"clearcoatTexture", info(coat_tex)},
+                        {"clearcoatRoughnessFactor", 1.0},
+                        {"clearcoatRoughnessTexture", info(coat_tex)}}}}},
+                    {"extras", {{"patina", patina}}}};
+                materials[k].push_back(doc.add("materials", std::move(material)));
+            }
         }
     }
 
@@ -331,11 +372,12 @@ ExportResult write_export(std::vector<ExportStep>& steps, const ExportGeometry& 
     for (const TilePrimitive& part : parts) {
         // The default material is the last step (the age the script describes).
         json primitive = {{"attributes", part.attributes}, {"indices", part.indices},
-                          {"material", materials.back()[part.tile]}};
+                          {"material", materials.back()[part.tile * sources + part.material]}};
         if (steps.size() > 1) {
             json mappings = json::array();
             for (size_t k = 0; k < steps.size(); ++k)
-                mappings.push_back({{"material", materials[k][part.tile]}, {"variants", {k}}});
+                mappings.push_back({{"material", materials[k][part.tile * sources + part.material]},
+                                    {"variants", {k}}});
             primitive["extensions"]["KHR_materials_variants"] = {{"mappings", mappings}};
         }
         primitives.push_back(std::move(primitive));

@@ -36,6 +36,9 @@ struct ExportStep {
 struct ExportGeometry {
     TriangleMesh mesh;
     double width_m = 0.0, height_m = 0.0;
+    /// Source materials of the mesh on which nothing grew (patina --keep-off): exported with
+    /// their own base colour and base colour texture, the same at every age.
+    std::vector<std::string> keep_off;
 };
 
 /// The maps of a rough dielectric with the base colour `base` (linear Rec.709, 3 floats per

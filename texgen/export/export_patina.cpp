@@ -125,6 +125,7 @@ ExportResult export_patina(const fs::path& input, const fs::path& output,
 
     ExportGeometry geometry;
     geometry.mesh = std::move(mesh);
+    geometry.keep_off = first_stack.keep_off;
     geometry.width_m = first_stack.strip_size_m;
     geometry.height_m = first_stack.strip_size_m * exported.front().flat.height /
                         std::max(1, exported.front().flat.width);

@@ -134,9 +134,11 @@ std::vector<TileGeometry> split_by_tile(const TriangleMesh& given, const std::ve
         mesh = &normals_source;
     }
 
-    std::vector<TileGeometry> tiles(udims.size());
-    // Per tile: the mesh's vertex -> the tile's.
-    std::vector<std::unordered_map<uint32_t, uint32_t>> vertex_of(udims.size());
+    // One part per tile and source material: part k * materials + m.
+    const size_t materials = std::max<size_t>(1, mesh->materials.size());
+    std::vector<TileGeometry> tiles(udims.size() * materials);
+    // Per part: the mesh's vertex -> the part's.
+    std::vector<std::unordered_map<uint32_t, uint32_t>> vertex_of(tiles.size());
     const size_t count = mesh->triangle_count();
     for (size_t t = 0; t < count; ++t) {
         const uint32_t* v = &mesh->indices[3 * t];
@@ -158,7 +160,8 @@ std::vector<TileGeometry> split_by_tile(const TriangleMesh& given, const std::ve
                 context, t, cu, cv, udim < 0 ? "outside" : fmt::format("on tile {}, not one of", udim),
                 fmt::join(udims, ", ")));
         }
-        const size_t k = static_cast<size_t>(found - udims.begin());
+        const size_t material = mesh->triangle_material.empty() ? 0 : mesh->triangle_material[t];
+        const size_t k = static_cast<size_t>(found - udims.begin()) * materials + material;
         TileGeometry& tile = tiles[k];
         for (int i = 0; i < 3; ++i) {
             const auto [at, added] =
@@ -186,7 +189,8 @@ std::vector<TileGeometry> split_by_tile(const TriangleMesh& given, const std::ve
         TileGeometry& tile = tiles[k];
         if (tile.indices.empty())
             continue;
-        tile.tile = k;
+        tile.tile = k / materials;
+        tile.material = k % materials;
         tile.tangents = vertex_tangents(tile.positions, tile.normals, tile.uvs, tile.indices);
         out.push_back(std::move(tile));
     }
@@ -200,9 +204,11 @@ std::vector<TilePrimitive> add_mesh_primitives(gltf::Document& doc, const Triang
                                                const std::string& context)
 {
     std::vector<TilePrimitive> out;
-    for (const TileGeometry& tile : split_by_tile(mesh, udims, context))
+    for (const TileGeometry& tile : split_by_tile(mesh, udims, context)) {
         out.push_back(add_primitive(doc, tile.tile, tile.positions, tile.normals, tile.tangents,
                                     tile.uvs, tile.indices, tile.source_uvs));
+        out.back().material = tile.material;
+    }
     return out;
 }
 

@@ -17,6 +17,7 @@ namespace patina::texgen {
 /// udims) whose material it takes.
 struct TilePrimitive {
     size_t tile = 0;
+    size_t material = 0;  ///< the mesh's source material (index into its `materials`), or 0
     nlohmann::json attributes;
     int indices = -1;
 };
@@ -29,6 +30,7 @@ TilePrimitive add_strip_plane(gltf::Document& doc, double width_m, double height
 /// The vertices and triangles of one UDIM tile of a mesh, as glTF stores them.
 struct TileGeometry {
     size_t tile = 0;  ///< index into the stack's udims
+    size_t material = 0;  ///< the source material of its triangles (index into `materials`)
     std::vector<Imath::V3f> positions, normals;
     std::vector<Imath::V4f> tangents;  ///< xyz, w = ±1 (glTF's bitangent = cross(N, T) w)
     std::vector<Imath::V2f> uvs;       ///< glTF's: (0, 0) at the image's top-left
@@ -37,8 +39,9 @@ struct TileGeometry {
     std::vector<uint32_t> indices;
 };
 
-/// `mesh` (with uvs) split into the tiles of `udims` that hold triangles: a triangle
-/// belongs to the tile of its uv centroid, and its uvs become glTF's, (u − u0, v0 + 1 − v)
+/// `mesh` (with uvs) split into the tiles of `udims` that hold triangles, and within a tile
+/// by source material (a mesh of several keeps them apart): a triangle belongs to the tile
+/// of its uv centroid, and its uvs become glTF's, (u − u0, v0 + 1 − v)
 /// (Patina's uvs have v up, glTF's first image row at v = 0). Normals are the mesh's
 /// (area-weighted vertex normals when it has none, the face normal where those vanish);
 /// tangents follow the uv gradients (a normal map's green up the image, as flatten makes

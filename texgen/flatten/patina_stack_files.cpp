@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include <sstream>
 #include <stdexcept>
 
 namespace patina::texgen {
@@ -34,6 +35,12 @@ PatinaStackFiles read_patina_stack(const fs::path& stack)
         if (const MeshConventionOptions c = recorded_convention(map.parameters); !c.empty())
             out.mesh_convention = c;
         out.uv_wrap = out.uv_wrap || recorded_uv_wrap(map.parameters);
+        if (const auto names = map.parameters["keep_off"].value<std::string>(); names && out.keep_off.empty()) {
+            std::stringstream list(*names);
+            for (std::string name; std::getline(list, name, ',');)
+                if (!name.empty())
+                    out.keep_off.push_back(name);
+        }
     };
     for (const formats::PatinaLayer& layer : patina.layers) {
         const formats::StackMap& map = file.map(layer.map);

@@ -42,6 +42,8 @@ struct PatinaStackFiles {
     /// Whether its uvs outside the UDIM tiles were folded into tile 1001 (the maps'
     /// `uv_wrap`; texels/uv_wrap.h).
     bool uv_wrap = false;
+    /// The source materials nothing grew on (the maps' `keep_off`, patina --keep-off).
+    std::vector<std::string> keep_off;
     /// The maps' parameter `domain`: "strip", or the file name of the mesh.
     std::string domain;
     /// The optics the stack records for its base and layers ([patina.materials]).

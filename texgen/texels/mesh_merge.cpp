@@ -50,7 +50,10 @@ TriangleMesh merge_meshes(const std::vector<TriangleMesh>& meshes,
     const bool sources = std::all_of(meshes.begin(), meshes.end(),
                                      [](const TriangleMesh& m) { return !m.source_uvs.empty(); });
     merged.triangle_material.reserve(index_count / 3);
-    const auto material_index = [&](const std::string& name) {
+    merged.base_colour = meshes.front().base_colour;
+    merged.base_colour_texture = meshes.front().base_colour_texture;
+    const auto material_index = [&](const std::string& name, const Imath::V4f& colour,
+                                    const std::filesystem::path& texture) {
         auto it = std::find(merged.materials.begin(), merged.materials.end(), name);
         if (it != merged.materials.end())
             return static_cast<uint16_t>(it - merged.materials.begin());
@@ -58,15 +61,19 @@ TriangleMesh merge_meshes(const std::vector<TriangleMesh>& meshes,
             throw std::runtime_error(fmt::format("mesh file '{}': more than {} materials",
                                                  file.string(), UINT16_MAX + 1));
         merged.materials.push_back(name);
+        merged.material_base_colours.push_back(colour);
+        merged.material_base_textures.push_back(texture);
         return static_cast<uint16_t>(merged.materials.size() - 1);
     };
     for (const TriangleMesh& m : meshes) {
         if (m.triangle_material.empty()) {
-            merged.triangle_material.insert(merged.triangle_material.end(), m.triangle_count(),
-                                            material_index(m.material_name));
+            merged.triangle_material.insert(
+                merged.triangle_material.end(), m.triangle_count(),
+                material_index(m.material_name, m.base_colour, m.base_colour_texture));
         } else {
             for (const uint16_t k : m.triangle_material)
-                merged.triangle_material.push_back(material_index(m.materials[k]));
+                merged.triangle_material.push_back(material_index(
+                    m.materials[k], m.material_base_colours[k], m.material_base_textures[k]));
         }
         const uint32_t base = static_cast<uint32_t>(merged.positions.size());
         merged.positions.insert(merged.positions.end(), m.positions.begin(), m.positions.end());

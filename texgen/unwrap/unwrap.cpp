@@ -117,7 +117,12 @@ namespace {
             const std::string material_name = m.material_name.empty() ? "default" : m.material_name;
             auto [found, added] = materials.try_emplace(material_name, 0);
             if (added)
-                found->second = doc.add("materials", {{"name", material_name}});
+                found->second = doc.add(
+                    "materials",
+                    {{"name", material_name},
+                     {"pbrMetallicRoughness",
+                      {{"baseColorFactor",
+                        {m.base_colour.x, m.base_colour.y, m.base_colour.z, m.base_colour.w}}}}});
             const nlohmann::json primitive = {
                 {"attributes", attributes},
                 {"indices",

@@ -23,6 +23,7 @@
 #include <cstring>
 #include <cstdlib>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <string>
 
@@ -564,6 +565,36 @@ TEST_F(OwnAsset, SourceMaterialsMaskTheScriptAndKeepPatinaOff)
     EXPECT_NE(keep_typo.err.find("--keep-off: the mesh has no material 'Rubbr'"),
               std::string::npos) << keep_typo.err;
     EXPECT_FALSE(fs::exists(dir_ / "bad" / "stack.toml"));
+
+    // Export: a material per source material and age; glass and rubber kept off keep their
+    // own base colour (the OBJ's Kd) and no weathering maps, at every age.
+    const Result kept = texgen_run("patina " + quoted(dir_ / "masked.patina") + " --mesh " +
+                                   quoted(dir_ / "parts.obj") + " --keep-off Glass,Rubber -o " +
+                                   quoted(dir_ / "series") + " --times 0,30 --resolution 32 "
+                                   "--quiet --no-preview");
+    ASSERT_EQ(kept.status, 0) << kept.err;
+    const fs::path glb = dir_ / "parts.glb";
+    const Result exported = texgen_run("export " + quoted(dir_ / "series") + " -o " +
+                                       quoted(glb) + " --quiet");
+    ASSERT_EQ(exported.status, 0) << exported.err;
+    const nlohmann::json gltf = glb_json(glb);
+    std::map<std::string, nlohmann::json> by_name;
+    for (const auto& m : gltf["materials"])
+        by_name[m["name"].get<std::string>()] = m;
+    ASSERT_TRUE(by_name.count("parts Bronze 30 y")) << gltf["materials"].dump();
+    ASSERT_TRUE(by_name.count("parts Bronze 0 y"));
+    ASSERT_TRUE(by_name.count("parts Glass"));
+    ASSERT_TRUE(by_name.count("parts Rubber"));
+    EXPECT_FALSE(by_name.count("parts Glass 30 y"));
+    EXPECT_TRUE(by_name["parts Bronze 30 y"]["pbrMetallicRoughness"].contains("baseColorTexture"));
+    const auto& glass = by_name["parts Glass"]["pbrMetallicRoughness"];
+    EXPECT_FALSE(glass.contains("baseColorTexture"));
+    EXPECT_NEAR(glass["baseColorFactor"][0].get<double>(), 0.9, 1e-6);  // Kd 0.9 0.9 0.9
+    EXPECT_EQ(gltf["meshes"][0]["primitives"].size(), 3u);
+    const nlohmann::json blender = validate_and_open(glb);
+    ASSERT_FALSE(blender.is_null());
+    EXPECT_TRUE(blender["materials"]["parts Glass"].empty()) << blender["materials"].dump();
+    EXPECT_TRUE(blender["materials"]["parts Bronze 30 y"].contains("Base Color"));
 }
 
 TEST_F(OwnAsset, BadAxisAndUnitOptionsGetOneClearMessage)
