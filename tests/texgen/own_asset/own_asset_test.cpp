@@ -517,7 +517,10 @@ TEST_F(OwnAsset, SourceMaterialsMaskTheScriptAndKeepPatinaOff)
     // Three 1 m squares of three materials side by side (bronze, glass, rubber), each on its
     // own third of tile 1001, as an OBJ with its material file.
     std::ofstream(dir_ / "parts.mtl") << "newmtl Bronze\nKd 0.6 0.4 0.2\nnewmtl Glass\nKd 0.9 0.9 0.9\n"
-                                         "newmtl Rubber\nKd 0.05 0.05 0.05\n";
+                                         "newmtl Rubber\nKd 1 1 1\nmap_Kd tread.png\n";
+    // The rubber's own texture: a 4 x 4 grey tread.
+    const std::vector<float> tread(4 * 4 * 3, 0.2f);
+    write_image_atomic(dir_ / "tread.png", tread.data(), 4, 4, 3, {}, OIIO::TypeDesc::UINT8);
     std::ofstream obj(dir_ / "parts.obj");
     obj << "mtllib parts.mtl\nvn 0 1 0\n";
     const char* names[] = {"Bronze", "Glass", "Rubber"};
@@ -594,6 +597,12 @@ TEST_F(OwnAsset, SourceMaterialsMaskTheScriptAndKeepPatinaOff)
     const nlohmann::json blender = validate_and_open(glb);
     ASSERT_FALSE(blender.is_null());
     EXPECT_TRUE(blender["materials"]["parts Glass"].empty()) << blender["materials"].dump();
+    // The rubber keeps its own texture, on the artist's uvs.
+    const auto& rubber = by_name["parts Rubber"]["pbrMetallicRoughness"];
+    ASSERT_TRUE(rubber.contains("baseColorTexture")) << rubber.dump();
+    EXPECT_FALSE(rubber["baseColorTexture"].contains("texCoord"));
+    EXPECT_TRUE(blender["materials"]["parts Rubber"].contains("Base Color"))
+        << blender["materials"].dump();
     EXPECT_TRUE(blender["materials"]["parts Bronze 30 y"].contains("Base Color"));
 }
 
