@@ -178,6 +178,44 @@ protected:
         EXPECT_NEAR(lo[2].get<double>(), 0.0, 1e-4);
     }
 
+    /// patina-render reads the mesh by its declaration (and `object_keys`, e.g. unit = "mm")
+    /// too: the grown stack (grow_export_open's) on the figure, lit by a sun, seen from the
+    /// front against a black sky (no environment). The figure's pixels (any that are not
+    /// black) span 1.5 m up and 0.4 m across.
+    void expect_rendered_upright(const fs::path& mesh, const std::string& object_keys)
+    {
+        const fs::path scene = dir_ / "figure.toml";
+        std::ofstream(scene) << "[film]\nwidth = 64\nheight = 64\nspp = 4\nseed = 1\n"
+                                "[camera]\nfrom = [0.0, 0.75, 6.0]\nto = [0.0, 0.75, 0.0]\n"
+                                "fov_deg = 20\n[sun]\nelevation_deg = 30\nazimuth_deg = 180\n"
+                                "irradiance = 3.0\n[[shader]]\nname = \"patina\"\n"
+                                "type = \"layered_km\"\nstack = \""
+                             << (dir_ / "stack" / "stack.toml").string()
+                             << "\"\n[[object]]\nmesh = \"" << mesh.string()
+                             << "\"\nbsdf = \"patina\"\n"
+                             << object_keys;
+        const fs::path exr = dir_ / "figure.exr";
+        const Result rendered =
+            run("'" + kBin + "/patina-render' " + quoted(scene) + " -o " + quoted(exr) + " --quiet",
+                dir_);
+        ASSERT_EQ(rendered.status, 0) << rendered.err;
+        const ImageData image = read_image(exr);
+        int rows_lo = image.height, rows_hi = -1, cols_lo = image.width, cols_hi = -1;
+        for (int y = 0; y < image.height; ++y)
+            for (int x = 0; x < image.width; ++x)
+                if (image.at(x, y, 0) + image.at(x, y, 1) + image.at(x, y, 2) > 0.0f) {
+                    rows_lo = std::min(rows_lo, y);
+                    rows_hi = std::max(rows_hi, y);
+                    cols_lo = std::min(cols_lo, x);
+                    cols_hi = std::max(cols_hi, x);
+                }
+        ASSERT_GE(rows_hi, 0) << "the figure is not in the picture";
+        // 20 degrees at 6 m: 2.12 m over 64 rows, 30 px a metre: 1.5 m is 45 rows, 0.4 m 12
+        // columns.
+        EXPECT_NEAR(rows_hi - rows_lo + 1, 45, 3);
+        EXPECT_NEAR(cols_hi - cols_lo + 1, 12, 3);
+    }
+
     fs::path dir_;
 };
 
@@ -216,36 +254,7 @@ TEST_F(OwnAsset, ZUpFbxInCentimetresBakesUprightAndExportsInMetres)
     // patina reads the unit from the maps' stack; export writes +Y-up metres.
     expect_upright_figure(grow_export_open(fbx, dir_ / "maps", ""));
 
-    // patina-render reads the FBX by its declaration too: the grown stack on the figure, lit
-    // by a sun, seen from the front against a black sky (no environment). The figure's
-    // pixels (any that are not black) span 1.5 m up and 0.4 m across.
-    const fs::path scene = dir_ / "figure.toml";
-    std::ofstream(scene) << "[film]\nwidth = 64\nheight = 64\nspp = 4\nseed = 1\n"
-                            "[camera]\nfrom = [0.0, 0.75, 6.0]\nto = [0.0, 0.75, 0.0]\n"
-                            "fov_deg = 20\n[sun]\nelevation_deg = 30\nazimuth_deg = 180\n"
-                            "irradiance = 3.0\n[[shader]]\nname = \"patina\"\n"
-                            "type = \"layered_km\"\nstack = \""
-                         << (dir_ / "stack" / "stack.toml").string()
-                         << "\"\n[[object]]\nmesh = \"" << fbx.string()
-                         << "\"\nbsdf = \"patina\"\n";
-    const fs::path exr = dir_ / "figure.exr";
-    const Result rendered = run("'" + kBin + "/patina-render' " + quoted(scene) + " -o " +
-                                    quoted(exr) + " --quiet", dir_);
-    ASSERT_EQ(rendered.status, 0) << rendered.err;
-    const ImageData image = read_image(exr);
-    int rows_lo = image.height, rows_hi = -1, cols_lo = image.width, cols_hi = -1;
-    for (int y = 0; y < image.height; ++y)
-        for (int x = 0; x < image.width; ++x)
-            if (image.at(x, y, 0) + image.at(x, y, 1) + image.at(x, y, 2) > 0.0f) {
-                rows_lo = std::min(rows_lo, y);
-                rows_hi = std::max(rows_hi, y);
-                cols_lo = std::min(cols_lo, x);
-                cols_hi = std::max(cols_hi, x);
-            }
-    ASSERT_GE(rows_hi, 0) << "the figure is not in the picture";
-    // 20 degrees at 6 m: 2.12 m over 64 rows, 30 px a metre: 1.5 m is 45 rows, 0.4 m 12 columns.
-    EXPECT_NEAR(rows_hi - rows_lo + 1, 45, 3);
-    EXPECT_NEAR(cols_hi - cols_lo + 1, 12, 3);
+    expect_rendered_upright(fbx, "");
 }
 
 TEST_F(OwnAsset, ColladaUnitAndUpAxisAreHonoured)
@@ -257,6 +266,7 @@ TEST_F(OwnAsset, ColladaUnitAndUpAxisAreHonoured)
               std::string::npos) << check.out;
     ASSERT_EQ(bake_accessibility(dae, dir_ / "maps", "--ground").status, 0);
     expect_upright_figure(grow_export_open(dae, dir_ / "maps", ""));
+    expect_rendered_upright(dae, "");
 }
 
 TEST_F(OwnAsset, AGltfInMillimetresIsNamedAndTheUnitOptionFixesIt)
@@ -282,6 +292,7 @@ TEST_F(OwnAsset, AGltfInMillimetresIsNamedAndTheUnitOptionFixesIt)
     EXPECT_NE(contradicted.err.find("was made with the mesh in mm, not cm"), std::string::npos)
         << contradicted.err;
     expect_upright_figure(grow_export_open(glb, dir_ / "maps", ""));
+    expect_rendered_upright(glb, "unit = \"mm\"\n");
 }
 
 TEST_F(OwnAsset, UvsOutsideTheTilesAreRefusedNamingUvWrapAndFoldedWithIt)
