@@ -5,8 +5,9 @@
 # axes and unit from the file: uv-check says so; accessibility is baked with a ground plane
 # under it (--ground), and once more with the unit wrongly given as metres (a 200 m statue,
 # whose every crevice a 10 cm sphere reaches); the statue's patina script grows on it; the
-# series is exported as a glTF (+Y up, metres); and out/own_asset/units.png shows the two
-# accessibility maps side by side on the statue.
+# series is exported as a glTF (+Y up, metres); out/own_asset/units.png shows the two
+# accessibility maps side by side on the statue; and unwrap gives the statue a uv set of its
+# own, into which accessibility is baked (out/own_asset/unwrapped_accessibility.png).
 #   samples/own_asset/own_asset.sh [BUILD_DIR]
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
@@ -34,6 +35,14 @@ cp "$root/samples/statue/statue.patina" "$out/statue.patina"
 "$texgen" patina "$out/statue.patina" --mesh "$out/statue_zup_cm.fbx" -o "$out/patina" \
     --resolution 256 --times 0,30 --seed 1 --quiet
 "$texgen" export "$out/patina" -o "$out/statue.glb" --quiet
+
+# A layout of its own for weathering: Blender's Smart UV Project, headless, as a second uv
+# set; the accessibility baked into it, shown as the texture it is.
+"$texgen" unwrap "$out/statue_zup_cm.fbx" -o "$out/statue_unwrapped.glb" --quiet
+"$texgen" accessibility --mesh "$out/statue_unwrapped.glb" --uv-set 1 --ground --resolution 512 \
+    --seed 1 --quiet -o "$out/maps_unwrapped" --max-radius 0.1 --padding 2
+oiiotool "$out/maps_unwrapped/accessibility.exr" --ch accessibility --ch 0,0,0 \
+    -o "$out/unwrapped_accessibility.png"
 
 sed -e "s|@MESH@|$out/statue_zup_cm.fbx|g" -e "s|@RIGHT@|$out/maps/accessibility.exr|" \
     -e "s|@WRONG@|$out/maps_in_metres/accessibility.exr|" "$here/units.toml.in" > "$out/units.toml"
