@@ -416,12 +416,19 @@ std::vector<TriangleMesh> load_meshes(const std::filesystem::path& path,
     return std::move(loader.meshes);
 }
 
+Imath::Box3f bounds_of(const TriangleMesh& mesh)
+{
+    Imath::Box3f box;
+    for (const Imath::V3f& p : mesh.positions)
+        box.extendBy(p);
+    return box;
+}
+
 Imath::Box3f bounds_of(const std::vector<TriangleMesh>& meshes)
 {
     Imath::Box3f box;
     for (const TriangleMesh& m : meshes)
-        for (const Imath::V3f& p : m.positions)
-            box.extendBy(p);
+        box.extendBy(bounds_of(m));
     return box;
 }
 

@@ -69,8 +69,9 @@ std::vector<TriangleMesh> load_meshes(const std::filesystem::path& path,
                                       MeshConvention* applied = nullptr,
                                       const Imath::M44f& transform = Imath::M44f());
 
-/// The world bounds of `meshes`.
+/// The world bounds of `meshes`, or of one mesh.
 Imath::Box3f bounds_of(const std::vector<TriangleMesh>& meshes);
+Imath::Box3f bounds_of(const TriangleMesh& mesh);
 
 /// Check the invariants above (sizes, index range, finite values); throws
 /// std::runtime_error starting with `context` (e.g. the file name).

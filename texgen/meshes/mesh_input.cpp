@@ -28,10 +28,7 @@ TriangleMesh load_mesh_with_warnings(const std::filesystem::path& file,
     TriangleMesh mesh = load_merged_mesh(file, convention, &used);
     for (const std::string& warning : used.warnings)
         print_warning("patina-texgen", fmt::format("mesh file '{}': {}", file.string(), warning));
-    Imath::Box3f bounds;
-    for (const Imath::V3f& p : mesh.positions)
-        bounds.extendBy(p);
-    if (const std::string size = implausible_size_warning(bounds, used); !size.empty())
+    if (const std::string size = implausible_size_warning(bounds_of(mesh), used); !size.empty())
         print_warning("patina-texgen", fmt::format("mesh file '{}': {}", file.string(), size));
     if (applied)
         *applied = std::move(used);

@@ -13,9 +13,7 @@ namespace patina::texgen {
 
 TriangleMesh ground_under(const TriangleMesh& mesh)
 {
-    Imath::Box3f box;
-    for (const Imath::V3f& p : mesh.positions)
-        box.extendBy(p);
+    const Imath::Box3f box = bounds_of(mesh);
     if (box.isEmpty())
         throw std::runtime_error("--ground: the mesh has no vertices");
     const Imath::V3f size = box.size();
@@ -54,9 +52,7 @@ std::string occluder_crossing(const TriangleMesh& target, const std::vector<Tria
         static_cast<size_t>(std::count(crosses.begin(), crosses.end(), uint8_t{1}));
     const size_t e = static_cast<size_t>(first - crosses.begin());
     const Imath::V3f& p = target.positions[target.indices[e]];
-    Imath::Box3f box;
-    for (const Imath::V3f& q : target.positions)
-        box.extendBy(q);
+    const Imath::Box3f box = bounds_of(target);
     return fmt::format("{} of {} triangle edges cross it (the first from ({:.4g}, {:.4g}, "
                        "{:.4g})); the occluder hides parts of the mesh from the sky. The mesh "
                        "reaches down to y = {:.4g} m: --ground places a ground plane there",

@@ -141,6 +141,7 @@ UvCheck check_uvs(const TriangleMesh& mesh, const UvCheckOptions& options)
     // Texel density: each triangle's uv area in texels over its surface area.
     const double texels_per_uv_area = double(options.width) * options.height;
     double texels = 0.0, area = 0.0;
+    std::vector<std::pair<double, double>> densities;  // (density, surface) per triangle
     check.texel_density_min = std::numeric_limits<double>::infinity();
     check.texel_density_max = 0.0;
     for (size_t t = 0; t < mesh.triangle_count(); ++t) {
@@ -162,11 +163,19 @@ UvCheck check_uvs(const TriangleMesh& mesh, const UvCheckOptions& options)
         area += surface;
         check.texel_density_min = std::min(check.texel_density_min, density);
         check.texel_density_max = std::max(check.texel_density_max, density);
+        densities.emplace_back(density, surface);
     }
-    if (area > 0.0)
+    if (area > 0.0) {
         check.texel_density_mean = texels / area;
-    else
+        double weighted = 0.0;
+        for (const auto& [density, surface] : densities) {
+            const double l = std::log2(density / check.texel_density_mean);
+            weighted += surface * l * l;
+        }
+        check.stretch_rms_log2 = std::sqrt(weighted / area);
+    } else {
         check.texel_density_min = 0.0;
+    }
 
     // Overlaps: per band of texel rows, sub-samples that two or more triangles claim, and
     // the triangle pairs that claim the same sub-sample.

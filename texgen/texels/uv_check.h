@@ -45,6 +45,9 @@ struct UvCheck {
     double texel_density_mean = 0.0;
     double texel_density_min = 0.0;
     double texel_density_max = 0.0;
+    /// The area-weighted RMS of log2(density / mean) over triangles: 0 when every triangle
+    /// gets the same texels per square metre, 1 when they typically differ by a factor of 2.
+    double stretch_rms_log2 = 0.0;
 
     std::vector<int> udims;              ///< tiles used, ascending
     size_t vertices_outside_udims = 0;   ///< uv outside 0 <= u < 10, 0 <= v < 100

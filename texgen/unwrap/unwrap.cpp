@@ -312,24 +312,7 @@ UnwrapReport unwrap_mesh(const fs::path& input, const MeshConventionOptions& con
     report.overlap_fraction = check.overlap_fraction();
     report.density_min_over_mean = check.texel_density_min / check.texel_density_mean;
     report.density_max_over_mean = check.texel_density_max / check.texel_density_mean;
-    double weighted = 0.0, area = 0.0;
-    for (size_t t = 0; t < mesh.triangle_count(); ++t) {
-        const uint32_t* v = &mesh.indices[3 * t];
-        const Imath::V2d e1 = Imath::V2d(mesh.uvs[v[1]]) - Imath::V2d(mesh.uvs[v[0]]);
-        const Imath::V2d e2 = Imath::V2d(mesh.uvs[v[2]]) - Imath::V2d(mesh.uvs[v[0]]);
-        const double uv_area = 0.5 * std::abs(e1.x * e2.y - e1.y * e2.x);
-        const Imath::V3d p0(mesh.positions[v[0]]);
-        const double surface = 0.5 * (Imath::V3d(mesh.positions[v[1]]) - p0)
-                                         .cross(Imath::V3d(mesh.positions[v[2]]) - p0)
-                                         .length();
-        if (!(uv_area > 0.0 && surface > 0.0))
-            continue;
-        const double density = uv_area * options.resolution * options.resolution / surface;
-        const double l = std::log2(density / check.texel_density_mean);
-        weighted += surface * l * l;
-        area += surface;
-    }
-    report.stretch_rms_log2 = area > 0.0 ? std::sqrt(weighted / area) : 0.0;
+    report.stretch_rms_log2 = check.stretch_rms_log2;
     return report;
 }
 
