@@ -5,6 +5,7 @@
 #include <fstream>
 
 #include <OpenImageIO/imagebufalgo.h>
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 #include <fmt/format.h>
 
@@ -190,6 +191,27 @@ void make_texture_atomic(const std::filesystem::path& path, const float* pixels,
     make_texture_atomic(path, buf, options);
 }
 
+namespace {
+
+    /// Every pixel of the first subimage of `in` as float; errors begin with `what`.
+    ImageData read_all(OIIO::ImageInput& in, const std::string& what)
+    {
+        const OIIO::ImageSpec& spec = in.spec();
+        ImageData image;
+        image.width = spec.width;
+        image.height = spec.height;
+        image.channels = spec.nchannels;
+        image.channel_names = spec.channelnames;
+        for (const OIIO::ParamValue& p : spec.extra_attribs)
+            image.metadata.emplace_back(p.name().string(), p.get_string());
+        image.pixels.resize(static_cast<size_t>(spec.width) * spec.height * spec.nchannels);
+        if (!in.read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, image.pixels.data()))
+            throw std::runtime_error(fmt::format("{}: {}", what, oiio_error(in.geterror())));
+        return image;
+    }
+
+}  // namespace
+
 ImageData read_image(const std::filesystem::path& path)
 {
     std::error_code ec;
@@ -198,19 +220,22 @@ ImageData read_image(const std::filesystem::path& path)
     auto in = OIIO::ImageInput::open(path.string());
     if (!in)
         throw std::runtime_error(fmt::format("cannot read image '{}': {}", path.string(), oiio_error("")));
-    const OIIO::ImageSpec& spec = in->spec();
-    ImageData image;
-    image.width = spec.width;
-    image.height = spec.height;
-    image.channels = spec.nchannels;
-    image.channel_names = spec.channelnames;
-    for (const OIIO::ParamValue& p : spec.extra_attribs)
-        image.metadata.emplace_back(p.name().string(), p.get_string());
-    image.pixels.resize(static_cast<size_t>(spec.width) * spec.height * spec.nchannels);
-    if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, image.pixels.data()))
-        throw std::runtime_error(fmt::format("cannot read image '{}': {}", path.string(),
-                                             oiio_error(in->geterror())));
-    return image;
+    return read_all(*in, fmt::format("cannot read image '{}'", path.string()));
+}
+
+ImageData read_image(std::span<const unsigned char> bytes, const std::string& format,
+                     const std::string& name)
+{
+    const std::string what = fmt::format("cannot read image '{}'", name);
+    OIIO::Filesystem::IOMemReader proxy(bytes.data(), bytes.size());
+    // OIIO picks the reader by the name's extension and, when that one does not know the
+    // bytes, asks the others (ImageInput::create): an empty or wrong hint still reads.
+    auto in = OIIO::ImageInput::open("embedded." + (format.empty() ? std::string("png") : format),
+                                     nullptr, &proxy);
+    if (!in)
+        throw std::runtime_error(fmt::format("{} ({} bytes, format '{}'): {}", what, bytes.size(),
+                                             format, oiio_error("")));
+    return read_all(*in, what);
 }
 
 void check_finite_texels(const std::filesystem::path& path, const char* what)

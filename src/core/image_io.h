@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <initializer_list>
+#include <span>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -117,5 +118,9 @@ void check_finite_texels(const std::filesystem::path& path, const char* what = "
 /// Read the first subimage (top mip level) of any OIIO-readable file as floats. Throws
 /// std::runtime_error naming the file when it is missing or unreadable.
 ImageData read_image(const std::filesystem::path& path);
+/// An image file held in memory (e.g. embedded in a mesh file): `format` is its extension
+/// ("png", "jpg"), `name` names it in errors.
+ImageData read_image(std::span<const unsigned char> bytes, const std::string& format,
+                     const std::string& name);
 
 }  // namespace patina

@@ -1,5 +1,7 @@
 #include "core/mesh.h"
 
+#include "core/image_io.h"
+
 #include <assimp/Importer.hpp>
 #include <assimp/config.h>
 #include <assimp/material.h>
@@ -41,6 +43,36 @@ namespace {
                m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
     }
 
+    /// An image Assimp holds in memory: compressed (mHeight 0: mWidth bytes of a file whose
+    /// extension is achFormatHint) or mWidth x mHeight BGRA texels (assimp/texture.h).
+    MaterialTexture embedded_texture(const aiTexture& image, const std::string& name)
+    {
+        MaterialTexture texture;
+        texture.name = image.mFilename.length > 0
+                           ? std::filesystem::path(image.mFilename.C_Str()).filename().string()
+                           : name;
+        if (image.mHeight == 0) {
+            const auto* bytes = reinterpret_cast<const unsigned char*>(image.pcData);
+            texture.encoded =
+                std::make_shared<const std::vector<unsigned char>>(bytes, bytes + image.mWidth);
+            texture.format = image.achFormatHint;
+            return texture;
+        }
+        auto texels = std::make_shared<ImageData>();
+        texels->width = static_cast<int>(image.mWidth);
+        texels->height = static_cast<int>(image.mHeight);
+        texels->channels = 4;
+        texels->channel_names = {"R", "G", "B", "A"};
+        texels->pixels.resize(static_cast<size_t>(image.mWidth) * image.mHeight * 4);
+        for (size_t i = 0; i < static_cast<size_t>(image.mWidth) * image.mHeight; ++i) {
+            const aiTexel& t = image.pcData[i];
+            const float rgba[4] = {t.r / 255.0f, t.g / 255.0f, t.b / 255.0f, t.a / 255.0f};
+            std::copy(rgba, rgba + 4, texels->pixels.begin() + static_cast<std::ptrdiff_t>(4 * i));
+        }
+        texture.texels = std::move(texels);
+        return texture;
+    }
+
     struct Loader {
         const std::filesystem::path& path;
         const aiScene& scene;
@@ -48,6 +80,38 @@ namespace {
         std::vector<TriangleMesh> meshes;
 
         std::string where() const { return fmt::format("mesh file '{}'", path.string()); }
+
+        /// Embedded images already copied, by their index in the scene: a texture shared by
+        /// many meshes is held once.
+        std::vector<MaterialTexture> embedded = std::vector<MaterialTexture>(scene.mNumTextures);
+
+        /// A material's texture `name`: an image embedded in the file (Assimp names those
+        /// "*N", or by the file name an FBX stored them under), or a file beside the mesh.
+        /// Empty when neither exists.
+        MaterialTexture base_colour_texture(const std::string& name)
+        {
+            if (name.empty())
+                return {};
+            if (const auto [image, index] = scene.GetEmbeddedTextureAndIndex(name.c_str());
+                image != nullptr && index >= 0) {
+                MaterialTexture& held = embedded[static_cast<size_t>(index)];
+                if (held.empty()) {
+                    held = embedded_texture(*image, name);
+                    held.container = path;
+                }
+                return held;
+            }
+            const std::filesystem::path file = std::filesystem::path(name).is_absolute()
+                                                   ? std::filesystem::path(name)
+                                                   : path.parent_path() / name;
+            std::error_code ec;
+            if (!std::filesystem::is_regular_file(file, ec))
+                return {};
+            MaterialTexture texture;
+            texture.file = file;
+            texture.name = file.filename().string();
+            return texture;
+        }
 
         void convert(const aiMesh& in, const std::string& node_name, const Imath::M44f& to_world)
         {
@@ -68,16 +132,8 @@ namespace {
                     m.base_colour = Imath::V4f(c.r, c.g, c.b, c.a);
                 aiString texture;
                 if (material.GetTexture(aiTextureType_BASE_COLOR, 0, &texture) == AI_SUCCESS ||
-                    material.GetTexture(aiTextureType_DIFFUSE, 0, &texture) == AI_SUCCESS) {
-                    // "*N" names a texture embedded in the file: not kept.
-                    const std::string name = texture.C_Str();
-                    const std::filesystem::path file =
-                        std::filesystem::path(name).is_absolute() ? std::filesystem::path(name)
-                                                                  : path.parent_path() / name;
-                    std::error_code ec;
-                    if (!name.empty() && name[0] != '*' && std::filesystem::is_regular_file(file, ec))
-                        m.base_colour_texture = file;
-                }
+                    material.GetTexture(aiTextureType_DIFFUSE, 0, &texture) == AI_SUCCESS)
+                    m.base_colour_texture = base_colour_texture(texture.C_Str());
             }
             const std::string what = fmt::format("{}: mesh '{}'", where(), m.name);
 
@@ -355,6 +411,19 @@ namespace {
     }
 
 }  // namespace
+
+ImageData read_material_texture(const MaterialTexture& texture)
+{
+    if (texture.texels)
+        return *texture.texels;
+    if (texture.encoded)
+        return read_image(*texture.encoded, texture.format,
+                          fmt::format("{}' embedded in '{}", texture.name,
+                                      texture.container.string()));
+    if (texture.file.empty())
+        throw std::invalid_argument("read_material_texture: the material has no texture");
+    return read_image(texture.file);
+}
 
 std::vector<TriangleMesh> load_meshes(const std::filesystem::path& path,
                                       const MeshConventionOptions& options,

@@ -10,10 +10,33 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
 namespace patina {
+
+struct ImageData;
+
+/// A source material's base colour texture: an image file beside the mesh, or an image
+/// embedded in the mesh file (a .glb's buffer, an FBX's embedded media) as the file stores
+/// it. Read with read_material_texture.
+struct MaterialTexture {
+    std::filesystem::path file;  ///< an image file; empty when embedded
+    std::string name;            ///< the image's name as the mesh file gives it
+    std::filesystem::path container;  ///< the mesh file an embedded image is in
+    /// An embedded image's bytes as stored (PNG, JPEG, ...), `format` its extension ("png")...
+    std::shared_ptr<const std::vector<unsigned char>> encoded;
+    std::string format;
+    /// ... or, for the uncompressed kind (Assimp's aiTexture with a height), its texels.
+    std::shared_ptr<const ImageData> texels;
+
+    bool empty() const { return file.empty() && !encoded && !texels; }
+};
+
+/// The texels of `texture`: read from its file, or decoded from the bytes embedded in the
+/// mesh file. Errors name the image (and the mesh file that holds it).
+ImageData read_material_texture(const MaterialTexture& texture);
 
 /// An indexed triangle mesh in world space. `normals` and `uvs` are per vertex and either
 /// empty or as long as `positions`. Triangles wind counter-clockwise seen from the side
@@ -23,10 +46,10 @@ struct TriangleMesh {
     std::string name;
     std::string material_name;
     /// The source material's base colour (glTF baseColorFactor, else the diffuse colour;
-    /// linear RGBA as the file stores it) and its base colour texture when that is a file
-    /// beside the mesh (empty when embedded or absent).
+    /// linear RGBA as the file stores it) and its base colour texture, a file beside the
+    /// mesh or embedded in it (empty when absent).
     Imath::V4f base_colour{0.8f, 0.8f, 0.8f, 1.0f};
-    std::filesystem::path base_colour_texture;
+    MaterialTexture base_colour_texture;
     std::vector<Imath::V3f> positions;
     std::vector<Imath::V3f> normals;
     std::vector<Imath::V2f> uvs;   ///< the uv set Patina bakes into (the file's first, or --uv-set)
@@ -42,7 +65,7 @@ struct TriangleMesh {
     std::vector<uint16_t> triangle_material;
     std::vector<std::string> materials;
     std::vector<Imath::V4f> material_base_colours;                ///< per entry of `materials`
-    std::vector<std::filesystem::path> material_base_textures;  ///< per entry of `materials`
+    std::vector<MaterialTexture> material_base_textures;        ///< per entry of `materials`
 
     /// The source material of triangle `t`.
     const std::string& material_of(size_t t) const

@@ -196,6 +196,27 @@ TEST(ImageIo, UnknownFormatAndMissingFileNameTheFile)
     EXPECT_NE(g.find(garbage.string()), std::string::npos) << g;
 }
 
+TEST(ImageIo, AnImageHeldInMemoryReadsWhateverItsFormatHintSays)
+{
+    // The bytes of a PNG (as a mesh file embeds them), read with the right hint, a wrong
+    // one (OIIO then asks its other readers) and none.
+    const auto path = scratch("embedded.png");
+    const auto pixels = gradient(5, 3, 3);
+    write_image_atomic(path, pixels.data(), 5, 3, 3, {}, OIIO::TypeDesc::UINT8);
+    const std::string text = patina::test::read_text(path);
+    const std::vector<unsigned char> bytes(text.begin(), text.end());
+    for (const char* hint : {"png", "jpg", ""}) {
+        const ImageData image = read_image(bytes, hint, "tread.png");
+        ASSERT_EQ(image.width, 5) << hint;
+        ASSERT_EQ(image.height, 3) << hint;
+        for (size_t i = 0; i < pixels.size(); ++i)
+            EXPECT_NEAR(image.pixels[i], pixels[i], 0.5f / 255.0f + 1e-6f) << hint << " " << i;
+    }
+    const std::vector<unsigned char> garbage{'n', 'o', 't', ' ', 'a', 'n', ' ', 'i', 'm', 'g'};
+    const std::string g = message_of([&] { (void)read_image(garbage, "png", "tread.png"); });
+    EXPECT_NE(g.find("cannot read image 'tread.png'"), std::string::npos) << g;
+}
+
 TEST(ImageIo, MakeTextureWritesTiledMipmappedExr)
 {
     const auto path = scratch("tex.exr");

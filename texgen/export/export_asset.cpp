@@ -49,23 +49,29 @@ using nlohmann::json;
 
 namespace {
 
-    /// A source material kept free of patina: its base colour and, when it is a file beside the
-    /// mesh, its base colour texture on the artist's uvs (TEXCOORD_0), glTF's defaults else.
+    /// A source material kept free of patina: its base colour and its base colour texture (a
+    /// file beside the mesh or an image embedded in it) on the artist's uvs (TEXCOORD_0).
     int plain_material(gltf::Document& doc, const std::string& mesh_name, const TriangleMesh& mesh,
                        size_t s)
     {
         const Imath::V4f c = mesh.material_base_colours[s];
         json pbr = {{"baseColorFactor", {c.x, c.y, c.z, c.w}}, {"metallicFactor", 0.0}};
-        if (const std::filesystem::path& file = mesh.material_base_textures[s]; !file.empty()) {
-            const ImageData image = read_image(file);
+        if (const MaterialTexture& texture = mesh.material_base_textures[s]; !texture.empty()) {
+            const ImageData image = read_material_texture(texture);
             const int channels = std::min(image.channels, 4);
             std::vector<float> pixels(static_cast<size_t>(image.width) * image.height * channels);
             for (size_t i = 0; i < static_cast<size_t>(image.width) * image.height; ++i)
                 for (int k = 0; k < channels; ++k)
                     pixels[i * channels + k] = image.pixels[i * image.channels + k];
-            const int png =
-                doc.add_png(mesh.materials[s], file.filename().replace_extension(".png").string(),
-                            encode_png(pixels.data(), image.width, image.height, channels, 8));
+            // Written beside a .gltf under the image's own name; Assimp's "*N" of an unnamed
+            // embedded image is no file name: the material's then.
+            const std::string file_stem =
+                texture.name.empty() || texture.name[0] == '*'
+                    ? mesh.materials[s] + "_base_color"
+                    : std::filesystem::path(texture.name).stem().string();
+            const int png = doc.add_png(mesh.materials[s], file_stem + ".png",
+                                        encode_png(pixels.data(), image.width, image.height,
+                                                   channels, 8));
             pbr["baseColorTexture"] = {
                 {"index", doc.add_texture(png, doc.add_sampler(gltf::kRepeat))}};
         }

@@ -53,7 +53,7 @@ TriangleMesh merge_meshes(const std::vector<TriangleMesh>& meshes,
     merged.base_colour = meshes.front().base_colour;
     merged.base_colour_texture = meshes.front().base_colour_texture;
     const auto material_index = [&](const std::string& name, const Imath::V4f& colour,
-                                    const std::filesystem::path& texture) {
+                                    const MaterialTexture& texture) {
         auto it = std::find(merged.materials.begin(), merged.materials.end(), name);
         if (it != merged.materials.end())
             return static_cast<uint16_t>(it - merged.materials.begin());

@@ -4,7 +4,9 @@
 // each goes through uv-check, a bake, a patina script and export, and the exported glb is
 // checked by the Khronos validator and opened by Blender: upright and in metres. Also uvs
 // outside the tiles (refused, naming --uv-wrap; folded with it), the ground plane placed
-// under the asset, an occluder that cuts through it, and bad options.
+// under the asset, an occluder that cuts through it, overlapping and missing uvs, a second
+// uv set, three materials with an embedded texture (glb and FBX), a UDIM mesh, and bad
+// options.
 #include "core/image_io.h"
 #include "core/mesh.h"
 #include "texgen/export/gltf_document.h"
@@ -81,6 +83,8 @@ double covered_mean(const fs::path& exr, const std::string& channel)
 
 class OwnAsset : public ::testing::Test {
 protected:
+    /// The file blender_asset_corpus.py writes last.
+    static constexpr const char* kLastOfCorpus = "two_tiles.glb";
     static fs::path corpus_;
 
     // The corpus once for all the tests: Blender takes seconds to start. CTest runs each
@@ -90,7 +94,7 @@ protected:
     {
         const fs::path root = fs::path(PATINA_TEST_BUILD_DIR) / "own_asset_test";
         corpus_ = root / "corpus";
-        if (fs::exists(corpus_ / "figure_mm.glb"))
+        if (fs::exists(corpus_ / kLastOfCorpus))
             return;
         const fs::path mine = root / ("corpus." + std::to_string(::getpid()));
         fs::create_directories(mine);
@@ -103,7 +107,11 @@ protected:
             return;
         }
         std::error_code ec;
-        fs::rename(mine, corpus_, ec);  // fails when another process was first: use theirs
+        // A corpus of an older version of the script (without its last file) is replaced;
+        // the rename fails when another process was first: then theirs is used.
+        if (fs::exists(corpus_) && !fs::exists(corpus_ / kLastOfCorpus))
+            fs::remove_all(corpus_, ec);
+        fs::rename(mine, corpus_, ec);
         if (ec)
             fs::remove_all(mine, ec);
     }
@@ -111,7 +119,7 @@ protected:
     void SetUp() override
     {
         // Never skipped: without Blender the corpus is missing and the test says what to install.
-        ASSERT_TRUE(fs::exists(corpus_ / "figure_mm.glb"))
+        ASSERT_TRUE(fs::exists(corpus_ / kLastOfCorpus))
             << "Blender could not write the corpus (see " << (corpus_ / "blender.log").string()
             << "): install Debian 12's blender and python3-numpy (scripts/bootstrap.sh does)";
         dir_ = fs::path(PATINA_TEST_BUILD_DIR) / "own_asset_test" /
@@ -352,6 +360,34 @@ TEST_F(OwnAsset, TheGroundGoesUnderTheAssetAndAnOccluderThroughItIsReported)
 }
 
 /// The mean linear RGB of the pixels in columns [x0, x1) and rows [y0, y1) of an image.
+/// The JSON chunk of a .glb (glTF 2.0 §4.4.3).
+nlohmann::json glb_json(const fs::path& glb)
+{
+    const std::string bytes = read_text(glb);
+    if (bytes.size() < 20)
+        return {};
+    uint32_t length = 0;
+    std::memcpy(&length, bytes.data() + 12, 4);
+    return nlohmann::json::parse(bytes.substr(20, length));
+}
+
+/// The bytes of image `index` of a .glb: its buffer view in the BIN chunk (glTF 2.0 §4.4.3.3).
+std::vector<unsigned char> glb_image(const fs::path& glb, int index)
+{
+    const std::string bytes = read_text(glb);
+    const nlohmann::json gltf = glb_json(glb);
+    uint32_t json_length = 0;
+    std::memcpy(&json_length, bytes.data() + 12, 4);
+    const size_t bin = 20 + json_length + 8;  // past the JSON chunk and the BIN chunk's header
+    const auto& view = gltf["bufferViews"][gltf["images"][index]["bufferView"].get<int>()];
+    const size_t offset = bin + view.value("byteOffset", size_t(0));
+    const size_t length = view["byteLength"].get<size_t>();
+    if (offset + length > bytes.size())
+        return {};
+    return std::vector<unsigned char>(bytes.begin() + static_cast<std::ptrdiff_t>(offset),
+                                      bytes.begin() + static_cast<std::ptrdiff_t>(offset + length));
+}
+
 Imath::V3d mean_rgb(const ImageData& image, int x0, int x1, int y0, int y1)
 {
     Imath::V3d sum(0.0);
@@ -364,15 +400,12 @@ Imath::V3d mean_rgb(const ImageData& image, int x0, int x1, int y0, int y1)
 
 TEST_F(OwnAsset, AUdimStackRendersEveryTileWithLayeredKm)
 {
-    // Two 1 m quads side by side facing up, the left on tile 1001, the right on 1002, under
-    // a uniform layer of Dorsey & Hanrahan 1996 §5.1's rural patina, 20 um: both must look
-    // alike, and unlike bare copper. Were tile 1002 not read, the right quad would render as
-    // bare copper (a thickness of 0).
-    const fs::path obj = dir_ / "two_tiles.obj";
-    std::ofstream(obj) << "v 0 0 0\nv 1 0 0\nv 1 0 -1\nv 0 0 -1\nv 1.5 0 0\nv 2.5 0 0\n"
-                          "v 2.5 0 -1\nv 1.5 0 -1\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvt 1 0\n"
-                          "vt 2 0\nvt 2 1\nvt 1 1\nvn 0 1 0\nf 1/1/1 2/2/1 3/3/1\n"
-                          "f 1/1/1 3/3/1 4/4/1\nf 5/5/1 6/6/1 7/7/1\nf 5/5/1 7/7/1 8/8/1\n";
+    // Blender's two 1 m squares side by side facing up (x from 0 and from 1.5 m, z from 0 to
+    // -1 m in Patina's axes), the left on tile 1001, the right on 1002, under a uniform layer
+    // of Dorsey & Hanrahan 1996 §5.1's rural patina, 20 um: both must look alike, and unlike
+    // bare copper. Were tile 1002 not read, the right quad would render as bare copper (a
+    // thickness of 0).
+    const fs::path obj = corpus_ / "two_tiles.glb";
     const auto render_grown = [&](const std::string& name, const std::string& script) {
         std::ofstream(dir_ / (name + ".patina")) << script;
         const Result grown = texgen_run("patina " + quoted(dir_ / (name + ".patina")) +
@@ -413,17 +446,20 @@ TEST_F(OwnAsset, AUdimStackRendersEveryTileWithLayeredKm)
                 left.x, left.y, left.z, right.x, right.y, right.z, bare.x, bare.y, bare.z);
     EXPECT_LT((right - left).length(), 0.05 * left.length());
     EXPECT_GT((right - bare).length(), 0.3 * bare.length());
-}
 
-/// The JSON chunk of a .glb (glTF 2.0 §4.4.3).
-nlohmann::json glb_json(const fs::path& glb)
-{
-    const std::string bytes = read_text(glb);
-    if (bytes.size() < 20)
-        return {};
-    uint32_t length = 0;
-    std::memcpy(&length, bytes.data() + 12, 4);
-    return nlohmann::json::parse(bytes.substr(20, length));
+    // Exported: a material per tile, each square on its own; valid, and Blender opens it
+    // 2.5 m wide, flat.
+    const fs::path glb = dir_ / "two_tiles.glb";
+    const Result exported = texgen_run("export " + quoted(dir_ / "patina") + " -o " +
+                                       quoted(glb) + " --quiet");
+    ASSERT_EQ(exported.status, 0) << exported.err;
+    const nlohmann::json gltf = glb_json(glb);
+    EXPECT_EQ(gltf["meshes"][0]["primitives"].size(), 2u);
+    EXPECT_EQ(gltf["materials"].size(), 2u) << gltf["materials"].dump();
+    const nlohmann::json blender = validate_and_open(glb);
+    ASSERT_FALSE(blender.is_null());
+    EXPECT_NEAR(blender["dimensions"][0].get<double>(), 2.5, 1e-4);
+    EXPECT_NEAR(blender["dimensions"][2].get<double>(), 0.0, 1e-4);
 }
 
 TEST_F(OwnAsset, MirroredHalvesGetAUniqueLayoutAndExportKeepsTheArtistsUvs)
@@ -647,6 +683,73 @@ TEST_F(OwnAsset, SourceMaterialsMaskTheScriptAndKeepPatinaOff)
     EXPECT_TRUE(blender["materials"]["parts Rubber"].contains("Base Color"))
         << blender["materials"].dump();
     EXPECT_TRUE(blender["materials"]["parts Bronze 30 y"].contains("Base Color"));
+}
+
+TEST_F(OwnAsset, ThreeMaterialsFromBlenderKeepTheirOwnEmbeddedTexture)
+{
+    // Blender's three squares of Bronze, Glass and Rubber (blender_asset_corpus.py), the
+    // rubber's tread embedded in the file (the glb's buffer; the FBX's media, Z up in cm):
+    // the script masks the glass, --keep-off keeps patina off glass and rubber, and the
+    // exported rubber carries the tread itself.
+    std::ofstream(dir_ / "masked.patina") << "new copper\nmap glass = material \"Glass\"\n"
+                                             "coat tarnish 1.0 2 * (1 - glass)\nrender maps\n";
+    for (const char* file : {"parts.glb", "parts_zup_cm.fbx"}) {
+        SCOPED_TRACE(file);
+        const fs::path stack = dir_ / (std::string(file) + ".stack");
+        const Result grown = texgen_run("patina " + quoted(dir_ / "masked.patina") + " --mesh " +
+                                        quoted(corpus_ / file) + " --keep-off Glass,Rubber -o " +
+                                        quoted(stack) + " --times 0,30 --resolution 40 --quiet "
+                                        "--no-preview");
+        ASSERT_EQ(grown.status, 0) << grown.err;
+        const ImageData total = read_image(stack / "t30" / "total_thickness.exr");
+        const int c = total.channel("thickness");
+        ASSERT_GE(c, 0);
+        // Each square holds a third of tile 1001's width (0.3 of it, from u = 0, 0.35, 0.70).
+        const auto at_u = [&](float u) { return total.at(static_cast<int>(u * 40), 20, c); };
+        EXPECT_NEAR(at_u(0.15f), 2.0f, 1e-5f);  // bronze: the script's 2 um
+        EXPECT_EQ(at_u(0.50f), 0.0f);           // glass
+        EXPECT_EQ(at_u(0.85f), 0.0f);           // rubber
+
+        const fs::path glb = dir_ / (std::string(file) + ".glb");
+        const Result exported = texgen_run("export " + quoted(stack) + " -o " + quoted(glb) +
+                                           " --quiet");
+        ASSERT_EQ(exported.status, 0) << exported.err;
+        const nlohmann::json gltf = glb_json(glb);
+        const std::string stem = glb.stem().string();
+        nlohmann::json glass, rubber;
+        for (const auto& m : gltf["materials"]) {
+            if (m["name"] == stem + " Glass")
+                glass = m["pbrMetallicRoughness"];
+            if (m["name"] == stem + " Rubber")
+                rubber = m["pbrMetallicRoughness"];
+        }
+        ASSERT_FALSE(glass.is_null()) << gltf["materials"].dump();
+        ASSERT_FALSE(rubber.is_null()) << gltf["materials"].dump();
+        EXPECT_FALSE(glass.contains("baseColorTexture"));
+        EXPECT_NEAR(glass["baseColorFactor"][0].get<double>(), 0.9, 1e-6);
+        ASSERT_TRUE(rubber.contains("baseColorTexture")) << rubber.dump();
+        // The tread as Blender made it: 8 x 8, 8-bit codes 51 (0.2) with a cross of 204 (0.8)
+        // on column 3 and row 3 from the bottom (Blender counts rows up): row 4 of the PNG.
+        const int texture = rubber["baseColorTexture"]["index"].get<int>();
+        const std::vector<unsigned char> png =
+            glb_image(glb, gltf["textures"][texture]["source"].get<int>());
+        const ImageData tread = read_image(png, "png", "the exported tread");
+        ASSERT_EQ(tread.width, 8);
+        ASSERT_EQ(tread.height, 8);
+        for (int y = 0; y < 8; ++y)
+            for (int x = 0; x < 8; ++x)
+                EXPECT_EQ(std::lround(tread.at(x, y, 0) * 255.0f), x == 3 || y == 4 ? 204 : 51)
+                    << "texel (" << x << ", " << y << ")";
+
+        const nlohmann::json blender = validate_and_open(glb);
+        ASSERT_FALSE(blender.is_null());
+        EXPECT_TRUE(blender["materials"][stem + " Glass"].empty()) << blender["materials"].dump();
+        EXPECT_TRUE(blender["materials"][stem + " Rubber"].contains("Base Color"));
+        // Lying flat, 4 m along x, 1 m deep, in metres.
+        EXPECT_NEAR(blender["dimensions"][0].get<double>(), 4.0, 1e-4);
+        EXPECT_NEAR(blender["dimensions"][1].get<double>(), 1.0, 1e-4);
+        EXPECT_NEAR(blender["dimensions"][2].get<double>(), 0.0, 1e-4);
+    }
 }
 
 TEST_F(OwnAsset, BadAxisAndUnitOptionsGetOneClearMessage)
