@@ -17,7 +17,7 @@ echo "wrote out/bake/maps/ (texture stack + stack.toml) and out/bake.png (the ma
 samples/statue/statue.sh "$build"
 echo "wrote out/statue/ (the §5.2 statue's maps, stacks and a frame per year), out/statue/frames.png and out/export/statue.glb (the series as glTF, a variant per year)"
 samples/own_asset/own_asset.sh "$build"
-echo "wrote out/own_asset/ (the statue as a Z-up FBX in centimetres, read by its declaration: its maps, patina, statue.glb in +Y-up metres, and units.png: accessibility baked in the right unit and in metres)"
+echo "wrote out/own_asset/ (the statue as a Z-up FBX in centimetres, read by its declaration: its maps, patina, statue.glb in +Y-up metres, in_blender.png: Blender's render of it, and units.png: accessibility baked in the right unit and in metres)"
 samples/copper_strips/strips.sh "$build"
 echo "wrote out/copper_strips/ (patina stacks of the three §5.1 strips, 0-30 years), out/copper_strips.png (rendered with layered_km, laid out as figure 8) and out/export/*_strip.glb (each series as glTF, a variant per age)"
 samples/fading/fading.sh "$build"

@@ -8,6 +8,7 @@
 # series is exported as a glTF (+Y up, metres); out/own_asset/units.png shows the two
 # accessibility maps side by side on the statue; and unwrap gives the statue a uv set of its
 # own, into which accessibility is baked (out/own_asset/unwrapped_accessibility.png).
+# Blender opens the exported glb and renders its ages (out/own_asset/in_blender.png).
 #   samples/own_asset/own_asset.sh [BUILD_DIR]
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
@@ -35,6 +36,9 @@ cp "$root/samples/statue/statue.patina" "$out/statue.patina"
 "$texgen" patina "$out/statue.patina" --mesh "$out/statue_zup_cm.fbx" -o "$out/patina" \
     --resolution 256 --times 0,30 --seed 1 --quiet
 "$texgen" export "$out/patina" -o "$out/statue.glb" --quiet
+# What the user sees in Blender: its importer, each age variant displayed, Cycles.
+blender -b --factory-startup --python-exit-code 1 --python "$here/in_blender.py" -- \
+    "$out/statue.glb" "$out/in_blender.png" 320 32 >> "$out/blender.log" 2>&1
 
 # A layout of its own for weathering: Blender's Smart UV Project, headless, as a second uv
 # set; the accessibility baked into it, shown as the texture it is.

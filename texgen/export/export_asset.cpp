@@ -5,6 +5,7 @@
 #include "texgen/export/gltf_document.h"
 #include "texgen/export/gltf_geometry.h"
 #include "texgen/export/png_encode.h"
+#include "texgen/export/source_material.h"
 #include "texgen/export/presets.h"
 
 #include "core/cancel.h"
@@ -48,36 +49,6 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 namespace {
-
-    /// A source material kept free of patina: its base colour and its base colour texture (a
-    /// file beside the mesh or an image embedded in it) on the artist's uvs (TEXCOORD_0).
-    int plain_material(gltf::Document& doc, const std::string& mesh_name, const TriangleMesh& mesh,
-                       size_t s)
-    {
-        const Imath::V4f c = mesh.material_base_colours[s];
-        json pbr = {{"baseColorFactor", {c.x, c.y, c.z, c.w}}, {"metallicFactor", 0.0}};
-        if (const MaterialTexture& texture = mesh.material_base_textures[s]; !texture.empty()) {
-            const ImageData image = read_material_texture(texture);
-            const int channels = std::min(image.channels, 4);
-            std::vector<float> pixels(static_cast<size_t>(image.width) * image.height * channels);
-            for (size_t i = 0; i < static_cast<size_t>(image.width) * image.height; ++i)
-                for (int k = 0; k < channels; ++k)
-                    pixels[i * channels + k] = image.pixels[i * image.channels + k];
-            // Written beside a .gltf under the image's own name; Assimp's "*N" of an unnamed
-            // embedded image is no file name: the material's then.
-            const std::string file_stem =
-                texture.name.empty() || texture.name[0] == '*'
-                    ? mesh.materials[s] + "_base_color"
-                    : std::filesystem::path(texture.name).stem().string();
-            const int png = doc.add_png(mesh.materials[s], file_stem + ".png",
-                                        encode_png(pixels.data(), image.width, image.height,
-                                                   channels, 8));
-            pbr["baseColorTexture"] = {
-                {"index", doc.add_texture(png, doc.add_sampler(gltf::kRepeat))}};
-        }
-        return doc.add("materials", {{"name", fmt::format("{} {}", mesh_name, mesh.materials[s])},
-                                     {"pbrMetallicRoughness", pbr}});
-    }
 
     /// The largest UDIM tile a glTF export takes: the ten columns of the first 10 rows.
     constexpr int kMaxUdim = 1099;
@@ -319,7 +290,9 @@ ExportResult write_export(std::vector<ExportStep>& steps, const ExportGeometry& 
     for (size_t s = 0; s < source.materials.size(); ++s)
         if (std::find(geometry.keep_off.begin(), geometry.keep_off.end(), source.materials[s]) !=
             geometry.keep_off.end())
-            kept[s] = plain_material(doc, mesh_name, source, s);
+            kept[s] = add_source_material(doc, fmt::format("{} {}", mesh_name, source.materials[s]),
+                                          source.material_base_colours[s],
+                                          source.material_base_textures[s]);
     const int tex_coord = weathering_tex_coord(geometry.mesh);
     const auto info = [tex_coord](int texture) {
         json i = {{"index", texture}};

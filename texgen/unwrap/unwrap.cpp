@@ -2,10 +2,11 @@
 
 #include "core/data_files.h"
 #include "core/mesh.h"
+#include "core/image_io.h"
 #include "core/output_transaction.h"
 #include "core/progress.h"
 #include "texgen/export/gltf_document.h"
-#include "core/image_io.h"
+#include "texgen/export/source_material.h"
 #include "texgen/texels/mesh_merge.h"
 #include "texgen/texels/mesh_topology.h"
 #include "texgen/texels/uv_check.h"
@@ -72,8 +73,8 @@ namespace {
         return out;
     }
 
-    /// The meshes as a .glb: +Y up metres (glTF's own), one material per name, the
-    /// artist's uvs (source_uvs) as TEXCOORD_0 and the new set (uvs) after them; the new set
+    /// The meshes as a .glb: +Y up metres (glTF's own), one material per name with its base
+    /// colour and base colour texture (source_material.h), the artist's uvs (source_uvs) as TEXCOORD_0 and the new set (uvs) after them; the new set
     /// alone as TEXCOORD_0 for meshes that had none. glTF's v runs down the image.
     std::string meshes_as_glb(const std::vector<TriangleMesh>& meshes)
     {
@@ -117,12 +118,8 @@ namespace {
             const std::string material_name = m.material_name.empty() ? "default" : m.material_name;
             auto [found, added] = materials.try_emplace(material_name, 0);
             if (added)
-                found->second = doc.add(
-                    "materials",
-                    {{"name", material_name},
-                     {"pbrMetallicRoughness",
-                      {{"baseColorFactor",
-                        {m.base_colour.x, m.base_colour.y, m.base_colour.z, m.base_colour.w}}}}});
+                found->second = add_source_material(doc, material_name, m.base_colour,
+                                                    m.base_colour_texture);
             const nlohmann::json primitive = {
                 {"attributes", attributes},
                 {"indices",
@@ -164,6 +161,8 @@ namespace {
         TriangleMesh out;
         out.name = mesh.name;
         out.material_name = mesh.material_name;
+        out.base_colour = mesh.base_colour;
+        out.base_colour_texture = mesh.base_colour_texture;
         out.indices.resize(mesh.indices.size());
         for (size_t i = 0; i < corners.size(); ++i) {
             const Corner& c = corners[i];

@@ -685,6 +685,27 @@ TEST_F(OwnAsset, SourceMaterialsMaskTheScriptAndKeepPatinaOff)
     EXPECT_TRUE(blender["materials"]["parts Bronze 30 y"].contains("Base Color"));
 }
 
+/// The base colour texture of `pbr` (a material's pbrMetallicRoughness in `glb`) is the
+/// tread as Blender made it (blender_asset_corpus.py): 8 x 8, 8-bit codes 51 (0.2) with a
+/// cross of 204 (0.8) on column 3 and row 3 from the bottom (Blender counts rows up): row 4
+/// of the PNG. On the artist's uvs (TEXCOORD_0).
+void expect_tread(const fs::path& glb, const nlohmann::json& pbr)
+{
+    ASSERT_TRUE(pbr.contains("baseColorTexture")) << pbr.dump();
+    EXPECT_EQ(pbr["baseColorTexture"].value("texCoord", 0), 0);
+    const nlohmann::json gltf = glb_json(glb);
+    const int texture = pbr["baseColorTexture"]["index"].get<int>();
+    const std::vector<unsigned char> png =
+        glb_image(glb, gltf["textures"][texture]["source"].get<int>());
+    const ImageData tread = read_image(png, "png", "the exported tread");
+    ASSERT_EQ(tread.width, 8);
+    ASSERT_EQ(tread.height, 8);
+    for (int y = 0; y < 8; ++y)
+        for (int x = 0; x < 8; ++x)
+            EXPECT_EQ(std::lround(tread.at(x, y, 0) * 255.0f), x == 3 || y == 4 ? 204 : 51)
+                << "texel (" << x << ", " << y << ")";
+}
+
 TEST_F(OwnAsset, ThreeMaterialsFromBlenderKeepTheirOwnEmbeddedTexture)
 {
     // Blender's three squares of Bronze, Glass and Rubber (blender_asset_corpus.py), the
@@ -728,18 +749,7 @@ TEST_F(OwnAsset, ThreeMaterialsFromBlenderKeepTheirOwnEmbeddedTexture)
         EXPECT_FALSE(glass.contains("baseColorTexture"));
         EXPECT_NEAR(glass["baseColorFactor"][0].get<double>(), 0.9, 1e-6);
         ASSERT_TRUE(rubber.contains("baseColorTexture")) << rubber.dump();
-        // The tread as Blender made it: 8 x 8, 8-bit codes 51 (0.2) with a cross of 204 (0.8)
-        // on column 3 and row 3 from the bottom (Blender counts rows up): row 4 of the PNG.
-        const int texture = rubber["baseColorTexture"]["index"].get<int>();
-        const std::vector<unsigned char> png =
-            glb_image(glb, gltf["textures"][texture]["source"].get<int>());
-        const ImageData tread = read_image(png, "png", "the exported tread");
-        ASSERT_EQ(tread.width, 8);
-        ASSERT_EQ(tread.height, 8);
-        for (int y = 0; y < 8; ++y)
-            for (int x = 0; x < 8; ++x)
-                EXPECT_EQ(std::lround(tread.at(x, y, 0) * 255.0f), x == 3 || y == 4 ? 204 : 51)
-                    << "texel (" << x << ", " << y << ")";
+        expect_tread(glb, rubber);
 
         const nlohmann::json blender = validate_and_open(glb);
         ASSERT_FALSE(blender.is_null());
@@ -750,6 +760,44 @@ TEST_F(OwnAsset, ThreeMaterialsFromBlenderKeepTheirOwnEmbeddedTexture)
         EXPECT_NEAR(blender["dimensions"][1].get<double>(), 1.0, 1e-4);
         EXPECT_NEAR(blender["dimensions"][2].get<double>(), 0.0, 1e-4);
     }
+
+    // unwrap keeps every material's colour and texture; grown in the new set, the kept-off
+    // rubber still wears its tread on the artist's uvs while the bronze's maps read set 1.
+    const fs::path unwrapped = dir_ / "parts_unwrapped.glb";
+    const Result unwrap = texgen_run("unwrap " + quoted(corpus_ / "parts_zup_cm.fbx") + " -o " +
+                                     quoted(unwrapped) + " --quiet");
+    ASSERT_EQ(unwrap.status, 0) << unwrap.err;
+    const nlohmann::json unwrapped_gltf = glb_json(unwrapped);
+    int rubbers = 0;
+    for (const auto& m : unwrapped_gltf["materials"])
+        if (m["name"] == "Rubber") {
+            expect_tread(unwrapped, m["pbrMetallicRoughness"]);
+            ++rubbers;
+        }
+    EXPECT_EQ(rubbers, 1) << unwrapped_gltf["materials"].dump();
+    const Result grown = texgen_run("patina " + quoted(dir_ / "masked.patina") + " --mesh " +
+                                    quoted(unwrapped) + " --uv-set 1 --keep-off Glass,Rubber -o " +
+                                    quoted(dir_ / "unwrapped") + " --resolution 40 --quiet "
+                                    "--no-preview");
+    ASSERT_EQ(grown.status, 0) << grown.err;
+    const fs::path glb = dir_ / "unwrapped.glb";
+    const Result exported = texgen_run("export " + quoted(dir_ / "unwrapped") + " -o " +
+                                       quoted(glb) + " --quiet");
+    ASSERT_EQ(exported.status, 0) << exported.err;
+    int checked = 0;
+    const nlohmann::json gltf = glb_json(glb);
+    for (const auto& m : gltf["materials"]) {
+        if (m["name"] == "unwrapped Rubber") {
+            expect_tread(glb, m["pbrMetallicRoughness"]);
+            ++checked;
+        }
+        if (m["name"] == "unwrapped Bronze 30 y") {
+            EXPECT_EQ(m["pbrMetallicRoughness"]["baseColorTexture"]["texCoord"], 1);
+            ++checked;
+        }
+    }
+    EXPECT_EQ(checked, 2) << gltf["materials"].dump();
+    EXPECT_FALSE(validate_and_open(glb).is_null());
 }
 
 TEST_F(OwnAsset, BadAxisAndUnitOptionsGetOneClearMessage)
