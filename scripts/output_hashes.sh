@@ -1,0 +1,34 @@
+#!/usr/bin/env bash
+# The outputs of ./run.sh as one hash per file, to show that a change of the code's layout
+# changed no result: run before and after, then compare.
+#   scripts/output_hashes.sh [OUT_DIR] > before.txt      (after ./run.sh at the old commit)
+#   scripts/output_hashes.sh [OUT_DIR] > after.txt       (after ./run.sh at the new one)
+#   diff before.txt after.txt                            (no output: bitwise the same)
+# Images (EXR, PNG, JPEG, TIFF) are hashed by their pixels (oiiotool --hash: SHA-1 of the
+# pixel data), so a header's software name or a timestamp does not count; every other file
+# by its bytes. Logs and the files that carry a time of day or a run time by design are
+# left out, each named below with why.
+set -euo pipefail
+root="$(cd "$(dirname "$0")/.." && pwd)"
+out="$(cd "${1:-$root/out}" && pwd)"
+
+excluded() {
+    case "$1" in
+        *.log) return 0 ;;            # progress, timings
+        */timing.toml) return 0 ;;    # wall-clock times of a run
+        */.patina-staging-*) return 0 ;;
+    esac
+    return 1
+}
+
+cd "$out"
+find . -type f | LC_ALL=C sort | while IFS= read -r file; do
+    excluded "$file" && continue
+    case "${file,,}" in
+        *.exr | *.png | *.jpg | *.jpeg | *.tif | *.tiff)
+            hash="$(oiiotool --hash "$file" 2>/dev/null | sed -n 's/.*SHA-1: *//p' | tr '\n' ' ')"
+            echo "$file pixels ${hash:-unreadable}" ;;
+        *)
+            echo "$file bytes $(sha256sum "$file" | cut -d' ' -f1)" ;;
+    esac
+done
