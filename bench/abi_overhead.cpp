@@ -2,9 +2,9 @@
 // basic plugin against the same Lambert written inline in the host, in the same run.
 // Prints the ratio ABI / inline (1.0 = free; the indirect call and the uplifted-spectrum
 // evaluation are the expected overhead).
-#include "core/host.h"
-#include "core/plugin_registry.h"
-#include "core/shader_instance.h"
+#include "host/host.h"
+#include "host/plugin_registry.h"
+#include "host/shader_instance.h"
 #include "core/spectrum.h"
 
 #include <patina/shading/frame.h>

@@ -7,10 +7,10 @@
 //   2. the same layered code compiled into this program and called directly (no dlopen, no
 //      function pointers, inlining allowed): target ABI overhead <= 5%.
 // A plain main: prints ns per sample and both ratios (bench/README.md).
-#include "core/host.h"
+#include "host/host.h"
 #include "core/image_io.h"
-#include "core/plugin_registry.h"
-#include "core/shader_instance.h"
+#include "host/plugin_registry.h"
+#include "host/shader_instance.h"
 #include "core/spectrum.h"
 
 // The plugin's sources, compiled in for the direct path: the very functions the plugin's

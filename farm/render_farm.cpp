@@ -11,8 +11,8 @@
 #include "render/renderer.h"
 #include "render/scene.h"
 
-#include "core/host.h"
-#include "core/plugin_registry.h"
+#include "host/host.h"
+#include "host/plugin_registry.h"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>

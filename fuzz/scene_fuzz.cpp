@@ -5,8 +5,8 @@
 #include "render/plugin_setup.h"
 #include "render/scene.h"
 
-#include "core/host.h"
-#include "core/plugin_registry.h"
+#include "host/host.h"
+#include "host/plugin_registry.h"
 
 #include <unistd.h>
 

@@ -7,7 +7,7 @@
 
 #include "core/embree_scene.h"
 #include "core/sampling.h"
-#include "core/shader_instance.h"
+#include "host/shader_instance.h"
 
 #include <memory>
 

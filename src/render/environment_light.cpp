@@ -3,7 +3,7 @@
 #include <patina/shading/fast_trig.h>
 
 #include "core/color_management.h"
-#include "core/host.h"
+#include "host/host.h"
 #include "core/image_io.h"
 #include "core/rgb_spectrum.h"
 

@@ -6,7 +6,7 @@
 #include "core/cli_errors.h"
 #include "core/manual_page.h"
 #include "core/progress.h"
-#include "core/host.h"
+#include "host/host.h"
 
 #include <CLI/CLI.hpp>
 

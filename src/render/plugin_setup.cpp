@@ -4,7 +4,7 @@
 
 #include "core/file_fingerprint.h"
 #include "core/one_line.h"
-#include "core/shader_instance.h"
+#include "host/shader_instance.h"
 
 #include <fmt/format.h>
 #include <toml++/toml.h>

@@ -11,7 +11,7 @@
 //   scene_plugin_dirs = ["/studio/patina/plugins"]
 #pragma once
 
-#include "core/plugin_registry.h"
+#include "host/plugin_registry.h"
 
 #include <toml++/toml.h>
 

@@ -7,7 +7,7 @@
 #include "render/scene.h"
 
 #include "core/cancel.h"
-#include "core/host.h"
+#include "host/host.h"
 #include "core/limits.h"
 #include "core/output_transaction.h"
 

@@ -6,10 +6,10 @@
 #include "render/light_sampler.h"
 
 #include "core/embree_scene.h"
-#include "core/host.h"
+#include "host/host.h"
 #include "core/mesh.h"
-#include "core/plugin_registry.h"
-#include "core/shader_instance.h"
+#include "host/plugin_registry.h"
+#include "host/shader_instance.h"
 
 #include <toml++/toml.h>
 

@@ -4,7 +4,7 @@
 #include "render/scene_parts.h"
 
 #include "core/color_management.h"
-#include "core/host.h"
+#include "host/host.h"
 
 #include <cmath>
 

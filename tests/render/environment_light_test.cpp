@@ -4,7 +4,7 @@
 #include "render/environment_light.h"
 
 #include "core/color_management.h"
-#include "core/host.h"
+#include "host/host.h"
 #include "core/image_io.h"
 #include "core/rgb_spectrum.h"
 #include "core/sampling.h"

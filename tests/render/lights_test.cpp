@@ -5,11 +5,11 @@
 #include "render/environment_light.h"
 #include "render/light_sampler.h"
 
-#include "core/host.h"
-#include "core/plugin_registry.h"
+#include "host/host.h"
+#include "host/plugin_registry.h"
 #include "core/rgb_spectrum.h"
 #include "core/sampling.h"
-#include "core/shader_instance.h"
+#include "host/shader_instance.h"
 
 #include <gtest/gtest.h>
 

@@ -6,7 +6,7 @@
 #include "render/scene.h"
 
 #include "core/color_management.h"
-#include "core/host.h"
+#include "host/host.h"
 
 #include <gtest/gtest.h>
 

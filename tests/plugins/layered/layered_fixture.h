@@ -5,7 +5,7 @@
 #pragma once
 
 #include "core/color_management.h"
-#include "core/host.h"
+#include "host/host.h"
 #include "core/image_io.h"
 
 #include <patina/abi.h>

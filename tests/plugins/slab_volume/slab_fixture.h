@@ -4,9 +4,9 @@
 // a scene binds them, and thin wrappers that call the ABI functions.
 #pragma once
 
-#include "core/host.h"
-#include "core/plugin_registry.h"
-#include "core/shader_instance.h"
+#include "host/host.h"
+#include "host/plugin_registry.h"
+#include "host/shader_instance.h"
 
 #include <patina/shading/vec.h>
 

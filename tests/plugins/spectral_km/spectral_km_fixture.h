@@ -5,7 +5,7 @@
 
 #include "texgen/fade_map/test_material.h"
 
-#include "core/host.h"
+#include "host/host.h"
 #include "texgen/fade/fade_map.h"
 #include "texgen/fade/fade_stack.h"
 

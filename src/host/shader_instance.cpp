@@ -1,11 +1,11 @@
-#include "core/shader_instance.h"
+#include "host/shader_instance.h"
 
 #include <patina/plugin_support.h>
 
 #include "formats/toml_location.h"
 
 #include "core/color_management.h"
-#include "core/host.h"
+#include "host/host.h"
 #include "core/spectrum_csv.h"
 
 #include <fmt/format.h>

@@ -1,7 +1,7 @@
 // Shader instances: parameters bound from TOML with type and range checks, then `create`.
 #pragma once
 
-#include "core/plugin_registry.h"
+#include "host/plugin_registry.h"
 
 #include <toml++/toml.h>
 

@@ -1,7 +1,7 @@
 // Parameter binding from TOML: names, types, ranges, defaults, colour spaces, messages.
-#include "core/host.h"
-#include "core/plugin_registry.h"
-#include "core/shader_instance.h"
+#include "host/host.h"
+#include "host/plugin_registry.h"
+#include "host/shader_instance.h"
 
 #include "core/image_io.h"
 

@@ -1,4 +1,4 @@
-#include "core/host.h"
+#include "host/host.h"
 
 #include "core/color_management.h"
 #include "core/rgb_spectrum.h"

@@ -1,8 +1,8 @@
 // Plugin host: loading, ABI version and symbol checks, duplicate names, discovery paths.
-#include "core/host.h"
-#include "core/plugin_registry.h"
+#include "host/host.h"
+#include "host/plugin_registry.h"
 
-#include "core/elf_symbol.h"
+#include "host/elf_symbol.h"
 
 #include <gtest/gtest.h>
 

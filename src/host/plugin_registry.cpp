@@ -1,6 +1,6 @@
-#include "core/plugin_registry.h"
+#include "host/plugin_registry.h"
 
-#include "core/elf_symbol.h"
+#include "host/elf_symbol.h"
 
 #include <fmt/format.h>
 

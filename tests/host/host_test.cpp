@@ -1,5 +1,5 @@
 // The host services table plugins see (abi.h PatinaHost), exercised through the C table.
-#include "core/host.h"
+#include "host/host.h"
 
 #include "core/spectrum.h"
 

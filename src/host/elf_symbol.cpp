@@ -1,4 +1,4 @@
-#include "core/elf_symbol.h"
+#include "host/elf_symbol.h"
 
 #include <fmt/format.h>
 
