@@ -18,7 +18,7 @@
 //                                    code before the transport had its own step)
 #include "core/mesh.h"
 #include "texgen/stone/quarry.h"
-#include "texgen/stone/slab_lattice.h"
+#include "texgen/slabs/slab_lattice.h"
 #include "texgen/stone/stone_state.h"
 
 #include <tbb/global_control.h>
@@ -166,7 +166,7 @@ static void print_activity(const StoneState& st, const char* when)
         }
     }
     // Rows (along u) of the active layers that hold a moist or surface voxel: the rows the
-    // steps work on (texgen/stone/live_rows.h); the others are only streamed past.
+    // steps work on (texgen/stone_rows/live_rows.h); the others are only streamed past.
     size_t rows = 0, live_rows = 0;
     for (int s = 0; s < g.slab_count; ++s)
         for (int k = 0; k < st.active_depth[size_t(s)]; ++k)

@@ -1,5 +1,5 @@
 // The stone volume (docs/file-formats.md "Stone volume"): the world-grid voxels
-// `patina-texgen stone` writes (texgen/stone/volume_export.cpp) and the slab_volume medium
+// `patina-texgen stone` writes (texgen/stone_export/volume_export.cpp) and the slab_volume medium
 // reads (plugins/slab_volume). A two-part OpenEXR:
 //
 //   part 0 "voxels"  width nx, height ny·nz (z slice k in rows k·ny .. k·ny + ny − 1, row j

@@ -4,6 +4,7 @@
 #include "formats/toml_location.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -12,6 +13,14 @@
 #include <tuple>
 
 namespace patina::formats {
+
+std::string name_part(std::string_view name)
+{
+    std::string s;
+    for (char c : name)
+        s += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
+    return s;
+}
 
 namespace fs = std::filesystem;
 

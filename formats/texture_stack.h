@@ -27,6 +27,10 @@ inline constexpr const char* kStackManifest = "stack.toml";
 /// `A` would be listed before them, after R, G, B only).
 inline constexpr const char* kCoverageChannel = "coverage.A";
 
+/// `name` (a material's) as part of a map's name and its file's: every character but an
+/// ASCII letter or digit becomes '_' ("rural patina" -> "rural_patina").
+std::string name_part(std::string_view name);
+
 /// One map, `[maps.<name>]`: a lone texel map (`file`, tile 1001), a UDIM map (`pattern`
 /// with `<UDIM>` and `tiles`), or a per-vertex PLY (`domain = "vertex"`, `file`).
 struct StackMap {

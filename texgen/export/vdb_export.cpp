@@ -3,7 +3,7 @@
 #include "core/cancel.h"
 #include "core/image_io.h"
 #include "core/output_transaction.h"
-#include "texgen/stone/volume_export.h"
+#include "texgen/stone_export/volume_export.h"
 
 #include <patina/volume/stone_albedo.h>
 

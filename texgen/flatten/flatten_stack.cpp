@@ -1,5 +1,7 @@
 #include "texgen/flatten/flatten_stack.h"
 
+#include "formats/texture_stack.h"
+
 #include "texgen/patina/stack_materials.h"
 
 #include "core/image_io.h"
@@ -21,14 +23,6 @@ namespace patina::texgen {
 namespace fs = std::filesystem;
 
 namespace {
-
-    std::string slug(const std::string& name)
-    {
-        std::string s;
-        for (char c : name)
-            s += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
-        return s;
-    }
 
     /// Channel `channel` of one tile's map (`image`, read from `file`), resampled to width x
     /// height if needed.
@@ -185,7 +179,7 @@ FlattenedStack flatten_stack(const PatinaStackFiles& stack,
         true);
     for (size_t k = 0; k <= n; ++k) {
         const PatinaMaterial& below = *materials[k];
-        const std::string stem = fmt::format("interface{:02}_{}", k, slug(below.name));
+        const std::string stem = fmt::format("interface{:02}_{}", k, formats::name_part(below.name));
         const std::string where =
             k == 0 ? fmt::format("the top of the base ({})", below.name)
                    : fmt::format("the top of layer {} ({})", k, below.name);

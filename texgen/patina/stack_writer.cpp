@@ -1,5 +1,7 @@
 #include "texgen/patina/stack_writer.h"
 
+#include "formats/texture_stack.h"
+
 #include "core/output_transaction.h"
 #include "core/image_io.h"
 #include "texgen/patina/stack_materials.h"
@@ -24,14 +26,6 @@ namespace {
     constexpr const char* kThicknessMap = "thickness";
     /// Largest side of preview.png (texels).
     constexpr int kPreviewSize = 1024;
-
-    std::string slug(const std::string& name)
-    {
-        std::string s;
-        for (char c : name)
-            s += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
-        return s;
-    }
 
     /// Drop the entries (and files) of an earlier patina run from the manifest, so that a
     /// stack of fewer layers does not list stale ones.
@@ -117,13 +111,13 @@ namespace {
 
 std::string layer_map_name(size_t index, const PatinaMaterial& material)
 {
-    return fmt::format("layer{:02}_{}", index, slug(material.name));
+    return fmt::format("layer{:02}_{}", index, formats::name_part(material.name));
 }
 
 std::string layer_channel_name(size_t index, size_t layer_count, const PatinaMaterial& material)
 {
     const int width = std::max(2, static_cast<int>(std::to_string(layer_count).size()));
-    return fmt::format("layer{:0{}}_{}", index, width, slug(material.name));
+    return fmt::format("layer{:0{}}_{}", index, width, formats::name_part(material.name));
 }
 
 std::vector<fs::path> write_patina_step(const fs::path& out_dir, const PatinaStep& step,

@@ -1,4 +1,4 @@
-#include "texgen/stone/slab_lattice.h"
+#include "texgen/slabs/slab_lattice.h"
 
 #include "core/huge_pages.h"
 

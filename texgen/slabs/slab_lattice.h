@@ -9,9 +9,9 @@
 // through the inner face; the outer face lies in the air).
 #pragma once
 
-#include "texgen/stone/slab_mapping.h"
-#include "texgen/stone/slab_shell.h"
-#include "texgen/stone/stencil.h"
+#include "texgen/slabs/slab_mapping.h"
+#include "texgen/slabs/slab_shell.h"
+#include "texgen/slabs/stencil.h"
 
 #include <Imath/ImathVec.h>
 

@@ -1,4 +1,4 @@
-#include "texgen/stone/slab_mapping.h"
+#include "texgen/slabs/slab_mapping.h"
 
 #include <algorithm>
 #include <cmath>

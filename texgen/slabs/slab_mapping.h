@@ -3,7 +3,7 @@
 // inverts the trilinear map by Newton iteration.
 #pragma once
 
-#include "texgen/stone/slab_shell.h"
+#include "texgen/slabs/slab_shell.h"
 
 #include <Imath/ImathBox.h>
 #include <Imath/ImathMatrix.h>

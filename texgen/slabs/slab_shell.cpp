@@ -1,7 +1,7 @@
-#include "texgen/stone/slab_shell.h"
+#include "texgen/slabs/slab_shell.h"
 
 #include "core/embree_scene.h"
-#include "texgen/stone/slab_mapping.h"
+#include "texgen/slabs/slab_mapping.h"
 
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>

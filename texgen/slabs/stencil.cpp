@@ -1,4 +1,4 @@
-#include "texgen/stone/stencil.h"
+#include "texgen/slabs/stencil.h"
 
 #include <Imath/ImathMatrix.h>
 

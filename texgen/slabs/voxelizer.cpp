@@ -1,4 +1,4 @@
-#include "texgen/stone/voxelizer.h"
+#include "texgen/slabs/voxelizer.h"
 
 #include "core/embree_scene.h"
 #include "texgen/accessibility/closest_point.h"

@@ -9,7 +9,7 @@
 #pragma once
 
 #include "core/mesh.h"
-#include "texgen/stone/slab_lattice.h"
+#include "texgen/slabs/slab_lattice.h"
 
 #include <Imath/ImathVec.h>
 

@@ -14,9 +14,9 @@
 // 1/2. In dry phases the surface dries at `evaporation_speed`, and the dry zone spreads
 // inwards down each column (water evaporates from the surface side); dissolved minerals in
 // a voxel that dries recrystallise in place (as crust in a surface voxel).
-#include "texgen/stone/front_rows.h"
-#include "texgen/stone/live_rows.h"
-#include "texgen/stone/pressure_rows.h"
+#include "texgen/stone_rows/front_rows.h"
+#include "texgen/stone_rows/live_rows.h"
+#include "texgen/stone_rows/pressure_rows.h"
 #include "texgen/stone/stone_state.h"
 
 #include <tbb/parallel_for.h>

@@ -12,7 +12,7 @@
 // in granite").
 #pragma once
 
-#include "texgen/stone/slab_lattice.h"
+#include "texgen/slabs/slab_lattice.h"
 
 #include <Imath/ImathVec.h>
 

@@ -8,10 +8,10 @@
 #include "formats/stone_volume.h"
 #include "texgen/meshes/mesh_input.h"
 #include "texgen/stack/surface_map.h"
-#include "texgen/stone/eroded_mesh.h"
+#include "texgen/stone_export/eroded_mesh.h"
 #include "texgen/stone/stone_checkpoint.h"
-#include "texgen/stone/surface_maps.h"
-#include "texgen/stone/volume_export.h"
+#include "texgen/stone_export/surface_maps.h"
+#include "texgen/stone_export/volume_export.h"
 #include "texgen/texels/mesh_merge.h"
 
 #include <fmt/format.h>
@@ -25,6 +25,18 @@ namespace patina::texgen::stone {
 
 namespace fs = std::filesystem;
 using Imath::V3d;
+
+std::vector<int> snapshot_cycles(int cycles, int steps)
+{
+    std::vector<int> at;
+    if (steps > 0)
+        for (int k = 0; k <= steps; ++k)
+            at.push_back(static_cast<int>(static_cast<long long>(cycles) * k / steps));
+    else
+        at.push_back(cycles);
+    at.erase(std::unique(at.begin(), at.end()), at.end());
+    return at;
+}
 
 std::string snapshot_folder(int cycle, int last)
 {
@@ -196,13 +208,7 @@ void run_stone_job(const StoneJobOptions& o)
 
     // Snapshots: the fresh stone, then evenly over the cycles; or only the end. A resumed
     // run wrote the one at its first cycle before it stopped.
-    std::vector<int> at;
-    if (o.snapshots > 0)
-        for (int k = 0; k <= o.snapshots; ++k)
-            at.push_back(int((long long)o.cycles * k / o.snapshots));
-    else
-        at.push_back(o.cycles);
-    at.erase(std::unique(at.begin(), at.end()), at.end());
+    const std::vector<int> at = snapshot_cycles(o.cycles, o.snapshots);
     // A checkpoint and the snapshots before it go into place together: a run stopped later
     // loses only the cycles since.
     auto checkpoint = [&] {

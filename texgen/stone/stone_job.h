@@ -54,6 +54,11 @@ std::string stone_setup_fingerprint(const StoneJobOptions& options);
 /// or option at fault.
 void run_stone_job(const StoneJobOptions& options);
 
+/// The cycles a run of `cycles` cycles writes snapshots at: with `steps` > 0 the fresh stone
+/// and `steps` more evenly over the run (cycles * k / steps, rounded down, each once);
+/// with 0 only the end.
+std::vector<int> snapshot_cycles(int cycles, int steps);
+
 /// The snapshot folder name of cycle `c` in a series ending at `last`: "cycle_0050".
 std::string snapshot_folder(int cycle, int last);
 

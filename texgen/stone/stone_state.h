@@ -5,8 +5,8 @@
 #pragma once
 
 #include "texgen/stone/quarry.h"
-#include "texgen/stone/slab_lattice.h"
-#include "texgen/stone/voxelizer.h"
+#include "texgen/slabs/slab_lattice.h"
+#include "texgen/slabs/voxelizer.h"
 
 #include <Imath/ImathVec.h>
 

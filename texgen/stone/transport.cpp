@@ -32,9 +32,9 @@
 // phases deposits (the deposit map: soot, sulphur) turn the binder at the surface into a
 // black crust, and salt may be brought in from the atmosphere.
 #include "core/huge_pages.h"
-#include "texgen/stone/live_rows.h"
+#include "texgen/stone_rows/live_rows.h"
 #include "texgen/stone/stone_state.h"
-#include "texgen/stone/transport_rows.h"
+#include "texgen/stone_rows/transport_rows.h"
 
 #include <tbb/parallel_for.h>
 

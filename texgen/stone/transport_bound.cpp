@@ -33,7 +33,7 @@
 // spreads them over the layers beside it. Advection is capped per step at a tenth of the
 // smaller water volume (transport_rows.cpp), whatever the span.
 #include "texgen/stone/stone_state.h"
-#include "texgen/stone/transport_rows.h"
+#include "texgen/stone_rows/transport_rows.h"
 
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>

@@ -1,4 +1,4 @@
-#include "texgen/stone/eroded_mesh.h"
+#include "texgen/stone_export/eroded_mesh.h"
 
 #include <stdexcept>
 #include <unordered_map>

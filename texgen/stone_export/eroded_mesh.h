@@ -5,7 +5,7 @@
 #pragma once
 
 #include "core/mesh.h"
-#include "texgen/stone/volume_export.h"
+#include "texgen/stone_export/volume_export.h"
 
 namespace patina::texgen::stone {
 

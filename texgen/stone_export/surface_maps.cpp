@@ -1,6 +1,6 @@
-#include "texgen/stone/surface_maps.h"
+#include "texgen/stone_export/surface_maps.h"
 
-#include "texgen/stone/volume_export.h"
+#include "texgen/stone_export/volume_export.h"
 
 #include <tbb/parallel_for.h>
 

@@ -1,4 +1,4 @@
-#include "texgen/stone/volume_export.h"
+#include "texgen/stone_export/volume_export.h"
 
 #include "formats/stone_volume.h"
 

@@ -1,8 +1,8 @@
 // Row kernel of the moisture front; the model (Darcy's law, §4.3.2) is described at the top of
 // moisture.cpp, which drives it.
-#include "texgen/stone/front_rows.h"
+#include "texgen/stone_rows/front_rows.h"
 
-#include "texgen/stone/lanes.h"
+#include "texgen/stone_rows/lanes.h"
 
 namespace patina::texgen::stone {
 

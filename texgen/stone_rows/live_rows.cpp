@@ -1,4 +1,4 @@
-#include "texgen/stone/live_rows.h"
+#include "texgen/stone_rows/live_rows.h"
 
 namespace patina::texgen::stone {
 

@@ -1,8 +1,8 @@
 // Row kernel of the pressure diffusion; the model (§4.3.2, and the sign of the printed
 // equation) is described at the top of moisture.cpp, which drives it.
-#include "texgen/stone/pressure_rows.h"
+#include "texgen/stone_rows/pressure_rows.h"
 
-#include "texgen/stone/lanes.h"
+#include "texgen/stone_rows/lanes.h"
 
 #include <algorithm>
 

@@ -3,7 +3,7 @@
 // over the row's voxels.
 #pragma once
 
-#include "texgen/stone/row_fields.h"
+#include "texgen/stone_rows/row_fields.h"
 #include "texgen/stone/stone_state.h"
 
 namespace patina::texgen::stone {

@@ -2,9 +2,9 @@
 // of transport.cpp, which drives them. Here only how a row is worked: kLanes voxels at a time,
 // each lane the scalar code of its voxel (std::min, std::max and std::clamp spelled as the
 // selects they are, so that even the sign of a zero is kept).
-#include "texgen/stone/transport_rows.h"
+#include "texgen/stone_rows/transport_rows.h"
 
-#include "texgen/stone/lanes.h"
+#include "texgen/stone_rows/lanes.h"
 
 #include <algorithm>
 #include <bit>

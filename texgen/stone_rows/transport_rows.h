@@ -6,7 +6,7 @@
 // become masks.
 #pragma once
 
-#include "texgen/stone/row_fields.h"
+#include "texgen/stone_rows/row_fields.h"
 #include "texgen/stone/stone_state.h"
 
 #include <array>

@@ -5,7 +5,7 @@
 #include "texgen/export/vdb_export.h"
 
 #include "core/image_io.h"
-#include "texgen/stone/volume_export.h"
+#include "texgen/stone_export/volume_export.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>

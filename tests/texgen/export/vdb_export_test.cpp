@@ -4,7 +4,7 @@
 // a step series as frame-numbered files.
 #include "texgen/export/vdb_export.h"
 
-#include "texgen/stone/volume_export.h"
+#include "texgen/stone_export/volume_export.h"
 #include "test_util.h"
 
 #include <gtest/gtest.h>

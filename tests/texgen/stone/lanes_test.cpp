@@ -1,7 +1,7 @@
-// The lane helpers of the stone row kernels (texgen/stone/lanes.h) against their scalar
+// The lane helpers of the stone row kernels (texgen/stone_rows/lanes.h) against their scalar
 // meaning. This file is compiled for baseline x86-64, so it runs the SSE2 spelling of the
 // helpers, which the kernels' default clones use and an AVX2 machine never executes there.
-#include "texgen/stone/lanes.h"
+#include "texgen/stone_rows/lanes.h"
 
 #include <gtest/gtest.h>
 

@@ -4,9 +4,9 @@
 
 #include "test_util.h"
 #include "core/sampling.h"
-#include "texgen/stone/eroded_mesh.h"
-#include "texgen/stone/live_rows.h"
-#include "texgen/stone/volume_export.h"
+#include "texgen/stone_export/eroded_mesh.h"
+#include "texgen/stone_rows/live_rows.h"
+#include "texgen/stone_export/volume_export.h"
 
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>

@@ -3,7 +3,7 @@
 #include "stone_test_util.h"
 
 #include "core/sampling.h"
-#include "texgen/stone/slab_mapping.h"
+#include "texgen/slabs/slab_mapping.h"
 
 #include <gtest/gtest.h>
 

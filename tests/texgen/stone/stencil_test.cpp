@@ -1,6 +1,6 @@
 // The 13-point Laplacian of Dorsey et al. 1999 §4.3.5: exact for the paper's fourteen test
 // functions on a sheared lattice, and isotropic diffusion of a point source.
-#include "texgen/stone/stencil.h"
+#include "texgen/slabs/stencil.h"
 
 #include <gtest/gtest.h>
 

@@ -2,7 +2,7 @@
 #pragma once
 
 #include "core/mesh.h"
-#include "texgen/stone/slab_lattice.h"
+#include "texgen/slabs/slab_lattice.h"
 #include "texgen/stone/stone_state.h"
 
 #include <algorithm>
