@@ -1,5 +1,7 @@
 #include "texgen/view/viewer_folder.h"
 
+#include "texgen/view/variant_ages.h"
+
 #include "core/color_management.h"
 #include "core/image_io.h"
 #include "texgen/sun/sky_map.h"
@@ -195,8 +197,8 @@ ViewerSummary write_viewer(const ViewerOptions& o, const ColorManager& colors)
         throw std::runtime_error(fmt::format(
             "view: '{}' has no material variants (KHR_materials_variants): export a time "
             "series with `patina-texgen export`", o.model.string()));
-    for (const json& v : *variants)
-        summary.ages.push_back(v.value("name", std::string()));
+    const VariantAges ages = variant_ages(gltf);
+    summary.ages = ages.labels;
 
     const OCIO::ConstConfigRcPtr config = OCIO::Config::CreateFromFile(colors.config_path().c_str());
     const std::string display = config->getDefaultDisplay();
@@ -209,7 +211,9 @@ ViewerSummary write_viewer(const ViewerOptions& o, const ColorManager& colors)
     const json data = {
         {"title", o.title.empty() ? o.model.stem().string() : o.title},
         {"model", OIIO::Strutil::base64_encode(glb)},
-        {"ages", summary.ages},
+        {"ages", ages.labels},
+        {"age_values", ages.values},
+        {"age_unit", ages.unit},
         {"display", display},
         {"default_view", config->getDefaultView(display.c_str())},
         {"views", views},

@@ -24,7 +24,7 @@ struct ViewerOptions {
 };
 
 struct ViewerSummary {
-    std::vector<std::string> ages;    ///< the asset's variants, in order
+    std::vector<std::string> ages;    ///< the asset's ages ("15 y"), in its variants' order
     std::vector<std::string> views;   ///< the display's views
 };
 

@@ -60,7 +60,7 @@ async function start(data) {
   const gltf = await new GLTFLoader().parseAsync(base64Bytes(data.model).buffer, '');
   scene.add(gltf.scene);
   const materials = await blendAges(gltf, data.ages.length);
-  const ages = ageScale(data.ages);
+  const ages = ageScale(data.ages, data.age_values, data.age_unit);
 
   // Frame the asset.
   const box = new THREE.Box3().setFromObject(gltf.scene);
