@@ -16,4 +16,8 @@ int run_program(const std::vector<std::string>& argv);
 /// exit status when it fails (its stderr goes where ours goes).
 std::string run_and_capture(const std::vector<std::string>& argv);
 
+/// Runs `argv`, capturing stdout into `out` and stderr into `err`; returns its exit status.
+/// Throws std::runtime_error when it cannot be started.
+int run_capturing(const std::vector<std::string>& argv, std::string* out, std::string* err);
+
 }  // namespace patina::farm

@@ -1,6 +1,7 @@
 // patina-texgen: bakes per-texel maps (accessibility, exposure, wetness, ...) onto UV-mapped
 // meshes, as tiled mip-mapped EXR texture stacks.
 #include "texgen/cli/commands.h"
+#include "texgen/cli/farm_plan.h"
 
 #include "core/cancel.h"
 #include "core/cli_errors.h"
@@ -60,6 +61,7 @@ int main(int argc, char** argv)
         // command has finished without error: all of its outputs, or none.
         patina::OutputTransaction outputs;
         const patina::CurrentOutputs current(outputs);
+        pt::set_command_line(argc, argv);  // --plan's tasks repeat it
         app.parse(argc, argv);
         outputs.commit();
         return 0;

@@ -117,6 +117,21 @@ expect_failure("needs a list, --duration" "${PATINA_FARM}" submit-texgen
                --job "${WORK_DIR}/bad" --dry-run -- fade --dose 1 --material newsprint -o x)
 expect_failure("--resume: the farm cuts a stone run" "${PATINA_FARM}" submit-texgen
                --job "${WORK_DIR}/bad" --dry-run -- ${stone} --resume x.stone)
+# The farm asks patina-texgen for its plan, so patina-texgen's own limits hold: 1001 steps
+# are refused as a run without a farm refuses them.
+set(many_times "0")
+foreach(t RANGE 1 1000)
+  string(APPEND many_times ",${t}")
+endforeach()
+expect_failure("--times: 1001 times, more than the limit of 1000" "${PATINA_FARM}" submit-texgen
+               --job "${WORK_DIR}/bad" --dry-run -- patina "${script}" --times "${many_times}")
 if(EXISTS "${WORK_DIR}/bad")
   message(FATAL_ERROR "a refused submit wrote ${WORK_DIR}/bad")
+endif()
+# The plan as patina-texgen prints it.
+expect_success("${PATINA_TEXGEN}" patina "${script}" --times 0,30 -o "${WORK_DIR}/planned" --plan)
+expect_in("${LAST_STDOUT}" "command = 'patina'")
+expect_in("${LAST_STDOUT}" "folder = 't30'")
+if(EXISTS "${WORK_DIR}/planned")
+  message(FATAL_ERROR "--plan ran the series")
 endif()

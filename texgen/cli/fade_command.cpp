@@ -10,6 +10,7 @@
 #include "core/output_transaction.h"
 #include "core/progress.h"
 #include "texgen/fade/depth_profiles.h"
+#include "texgen/cli/farm_plan.h"
 #include "texgen/fade/dose_table.h"
 #include "texgen/fade/fade_map.h"
 #include "texgen/fade/fade_material.h"
@@ -20,11 +21,14 @@
 #include <fmt/format.h>
 #include <tbb/global_control.h>
 
+#include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <memory>
 #include <optional>
+#include <sstream>
 #include <stdexcept>
 
 namespace patina::texgen {
@@ -308,6 +312,71 @@ void run_fade(const FadeOptions& o)
                          .count());
 }
 
+/// --dose: one dose in J/m^2.
+double parse_dose(const std::string& text)
+{
+    size_t used = 0;
+    double dose = 0.0;
+    try {
+        dose = std::stod(text, &used);
+    } catch (const std::exception&) {
+        used = 0;
+    }
+    if (used == 0 || used != text.size())
+        throw std::runtime_error(fmt::format(
+            "--dose '{}' is not a number of J/m^2{}", text,
+            text.find(',') != std::string::npos ? " (a list is for a farm's series: --plan)" : ""));
+    return dose;
+}
+
+/// The tasks of a farm (--plan): a stack per value of the list given to --duration or
+/// --dose, each into a folder of -o named after its value ("7d", "1e+06").
+formats::TexgenPlan fade_plan(const FadeOptions& o, const std::string& dose_text)
+{
+    std::string option, list;
+    for (const auto& [name, text] : {std::pair{"--duration", o.duration}, std::pair{"--dose", dose_text}})
+        if (text.find(',') != std::string::npos) {
+            if (!option.empty())
+                throw std::runtime_error("a fade series on a farm takes one list: --duration or "
+                                         "--dose, not both");
+            option = name;
+            list = text;
+        }
+    if (option.empty())
+        throw std::runtime_error("a fade series on a farm needs a list, --duration D1,D2,... or "
+                                 "--dose J1,J2,... (a stack each)");
+    formats::TexgenPlan plan;
+    plan.command = "fade";
+    plan.output = fs::absolute(o.out_dir).lexically_normal();
+    const std::vector<std::string> args = task_arguments();
+    std::stringstream in(list);
+    std::string value;
+    std::vector<std::string> folders;
+    while (std::getline(in, value, ',')) {
+        // Each value is checked as the run will read it.
+        if (option == "--duration")
+            (void)parse_duration(value);
+        else
+            (void)parse_dose(value);
+        // The value names the folder ("7d", "1e+06"), other characters as '_'.
+        std::string folder = value;
+        for (char& c : folder)
+            if (!std::isalnum(static_cast<unsigned char>(c)) && c != '.' && c != '+' && c != '-')
+                c = '_';
+        if (folder.empty() || std::find(folders.begin(), folders.end(), folder) != folders.end())
+            throw std::runtime_error(fmt::format("{} '{}': an empty or repeated value", option, list));
+        folders.push_back(folder);
+        formats::TexgenPlanTask task;
+        task.label = fmt::format("{} {}", option, value);
+        task.folder = folder;
+        task.args = with_option(with_option(args, {option}, value), {"-o", "--out"},
+                                (plan.output / folder).string());
+        task.outputs = {plan.output / folder};
+        plan.tasks.push_back(std::move(task));
+    }
+    return plan;
+}
+
 }  // namespace
 
 void register_fade_command(CLI::App& app)
@@ -321,7 +390,8 @@ void register_fade_command(CLI::App& app)
                     "exposure map from `patina-texgen exposure` (J/m^2, or W/m^2 with "
                     "--duration); any EXR with an exposure or irradiance channel. Repeat it "
                     "to add the doses of several maps (occluders moved between exposures)");
-    cmd->add_option("--dose", o->dose,
+    auto dose_text = std::make_shared<std::string>();
+    cmd->add_option("--dose", *dose_text,
                     "a uniform dose in J/m^2 instead of exposure maps (swatches, plots)");
     cmd->add_option("--channel", o->channel,
                     "channel of the map to read (default: exposure, else irradiance)");
@@ -372,7 +442,20 @@ void register_fade_command(CLI::App& app)
     cmd->add_option("--threads", o->threads, "worker threads (0 = all cores)")
         ->capture_default_str();
     cmd->add_flag("--quiet", o->quiet, "no progress");
-    cmd->callback([o] { run_fade(*o); });
+    auto plan = std::make_shared<bool>(false);
+    cmd->add_flag("--plan", *plan,
+                  "print the tasks a farm runs for a series of stacks, one per value of a list "
+                  "given to --duration (7d,30d) or --dose (as TOML; docs/farm.md), instead of "
+                  "running");
+    cmd->callback([o, plan, dose_text] {
+        if (*plan) {
+            print_plan(fade_plan(*o, *dose_text));
+            return;
+        }
+        if (!dose_text->empty())
+            o->dose = parse_dose(*dose_text);
+        run_fade(*o);
+    });
 }
 
 }  // namespace patina::texgen

@@ -14,6 +14,7 @@
 #include "texgen/patina/material_library.h"
 #include "texgen/patina/script_parser.h"
 #include "texgen/patina/stack_writer.h"
+#include "texgen/cli/farm_plan.h"
 #include "texgen/cli/mesh_options.h"
 #include "texgen/meshes/mesh_input.h"
 #include "texgen/texels/uv_wrap.h"
@@ -259,12 +260,40 @@ std::vector<double> parse_times(const std::string& text)
     return times;
 }
 
+/// The tasks of a farm (--plan): one per time of --times, each writing its step's folder of
+/// the series (the stack itself for one time), the script describing --end-time.
+formats::TexgenPlan patina_plan(const PatinaOptions& o, const std::string& times_text)
+{
+    if (times_text.empty())
+        throw std::runtime_error("a patina series on a farm needs --times (its steps, a task each)");
+    formats::TexgenPlan plan;
+    plan.command = "patina";
+    plan.output = fs::absolute(o.out_dir).lexically_normal();
+    const std::string end = fmt::format("{}", o.end_time > 0 ? o.end_time : o.times.back());
+    const std::vector<std::string> args = task_arguments();
+    for (const double t : o.times) {
+        formats::TexgenPlanTask task;
+        task.time_years = t;
+        // One step alone is written as the stack itself, as a run without a farm does.
+        task.folder = o.times.size() > 1 ? formats::series_step_folder(t, o.times.back()) : "";
+        const fs::path out = task.folder.empty() ? plan.output : plan.output / task.folder;
+        task.label = fmt::format("t = {} y", t);
+        task.args = with_option(with_option(with_option(args, {"--times"}, fmt::format("{}", t)),
+                                            {"--end-time"}, end),
+                                {"-o", "--out"}, out.string());
+        task.outputs = {out};
+        plan.tasks.push_back(std::move(task));
+    }
+    return plan;
+}
+
 }  // namespace
 
 void register_patina_command(CLI::App& app)
 {
     auto o = std::make_shared<PatinaOptions>();
     auto times_text = std::make_shared<std::string>();
+    auto plan = std::make_shared<bool>(false);
     CLI::App* cmd = app.add_subcommand(
         "patina", "run a patina script (Dorsey & Hanrahan 1996: new, coat, erode, fill, polish, "
                   "offset, growth models) on a mesh or a flat strip; writes a thickness stack "
@@ -310,10 +339,16 @@ void register_patina_command(CLI::App& app)
     cmd->add_flag("--half", o->half, "write half-float maps");
     cmd->add_flag("--no-preview", o->no_preview, "skip the preview PNG");
     cmd->add_flag("-q,--quiet", o->quiet, "no progress");
-    cmd->callback([o, times_text] {
+    cmd->add_flag("--plan", *plan,
+                  "print the tasks a farm runs for this series (one per time of --times, as "
+                  "TOML; docs/farm.md) instead of running it");
+    cmd->callback([o, times_text, plan] {
         if (!times_text->empty())
             o->times = parse_times(*times_text);
-        run_patina(*o);
+        if (*plan)
+            print_plan(patina_plan(*o, *times_text));
+        else
+            run_patina(*o);
     });
 }
 

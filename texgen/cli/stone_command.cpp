@@ -3,6 +3,7 @@
 // the world-grid volume (for the slab_volume medium), the slab volume, the eroded mesh and
 // surface maps, once or as a time series. The work is in texgen/stone/stone_job.h.
 #include "texgen/cli/commands.h"
+#include "texgen/cli/farm_plan.h"
 #include "texgen/cli/mesh_options.h"
 
 #include "core/cli_errors.h"
@@ -11,6 +12,7 @@
 #include <fmt/format.h>
 #include <tbb/global_control.h>
 
+#include <filesystem>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -27,7 +29,54 @@ namespace {
         std::vector<double> rain_dir;
         double chemistry_scale = 1.0;
         int threads = 0;
+        bool plan = false;
+        std::filesystem::path plan_checkpoints;  ///< where the plan's segments keep checkpoints
     };
+
+    /// The tasks of a farm (--plan): the run cut into segments between its snapshots
+    /// (snapshot_cycles), each stopping at its last cycle with a checkpoint that the next
+    /// resumes: a chain.
+    formats::TexgenPlan stone_plan(const StoneCommandOptions& o)
+    {
+        const stone::StoneJobOptions& job = o.job;
+        if (!job.checkpoint.empty() || !job.resume.empty() || job.until >= 0)
+            throw std::runtime_error(fmt::format(
+                "{}: the farm cuts a stone run into segments and sets it itself",
+                !job.resume.empty() ? "--resume" : !job.checkpoint.empty() ? "--checkpoint" : "--until"));
+        if (job.snapshots < 1 || job.cycles < 1)
+            throw std::runtime_error(
+                "a stone run on a farm is cut into segments between its snapshots: give "
+                "--cycles N and --steps K (K >= 1), a task each");
+        if (o.plan_checkpoints.empty())
+            throw std::runtime_error("--plan needs --plan-checkpoints DIR (where the segments "
+                                     "keep their checkpoints)");
+        formats::TexgenPlan plan;
+        plan.command = "stone";
+        plan.output = std::filesystem::absolute(job.out_dir).lexically_normal();
+        plan.chained = true;
+        const std::filesystem::path folder =
+            std::filesystem::absolute(o.plan_checkpoints).lexically_normal();
+        const auto checkpoint = [&](int cycle) {
+            return folder / (stone::snapshot_folder(cycle, job.cycles) + ".stone");
+        };
+        const std::vector<int> at = stone::snapshot_cycles(job.cycles, job.snapshots);
+        const std::vector<std::string> args = task_arguments();
+        for (size_t k = 0; k + 1 < at.size(); ++k) {
+            formats::TexgenPlanTask task;
+            task.label = fmt::format("cycles {}-{}", at[k], at[k + 1]);
+            task.args = args;
+            task.args.insert(task.args.end(), {"--until", std::to_string(at[k + 1]),
+                                               "--checkpoint", checkpoint(at[k + 1]).string()});
+            if (k > 0)
+                task.args.insert(task.args.end(), {"--resume", checkpoint(at[k]).string()});
+            if (k == 0)
+                task.outputs.push_back(plan.output / stone::snapshot_folder(at[0], job.cycles));
+            task.outputs.push_back(plan.output / stone::snapshot_folder(at[k + 1], job.cycles));
+            task.outputs.push_back(checkpoint(at[k + 1]));
+            plan.tasks.push_back(std::move(task));
+        }
+        return plan;
+    }
 
     void run_stone(StoneCommandOptions o)
     {
@@ -164,7 +213,18 @@ void register_stone_command(CLI::App& app)
                     "runs it)")
         ->check(patina::non_negative);
     cmd->add_flag("--quiet", j.quiet, "no progress on stderr");
-    cmd->callback([o] { run_stone(*o); });
+    cmd->add_flag("--plan", o->plan,
+                  "print the tasks a farm runs for this run (its segments between the "
+                  "snapshots of --steps, as TOML; docs/farm.md) instead of running it");
+    cmd->add_option("--plan-checkpoints", o->plan_checkpoints,
+                    "with --plan: the folder where the segments keep their checkpoints")
+        ->needs("--plan");
+    cmd->callback([o] {
+        if (o->plan)
+            print_plan(stone_plan(*o));
+        else
+            run_stone(*o);
+    });
 }
 
 } // namespace patina::texgen

@@ -1,0 +1,144 @@
+#include "formats/texgen_plan.h"
+
+#include "formats/toml_location.h"
+
+#include <sstream>
+#include <vector>
+
+namespace patina::formats {
+
+namespace fs = std::filesystem;
+
+void add_plan_keys(toml::table& header, const TexgenPlan& plan)
+{
+    header.insert_or_assign("command", plan.command);
+    header.insert_or_assign("output", plan.output.string());
+    header.insert_or_assign("chained", plan.chained);
+}
+
+toml::array plan_tasks(const TexgenPlan& plan)
+{
+    toml::array tasks;
+    for (const TexgenPlanTask& t : plan.tasks) {
+        toml::array args, outputs;
+        for (const std::string& a : t.args)
+            args.push_back(a);
+        for (const fs::path& o : t.outputs)
+            outputs.push_back(o.string());
+        toml::table task{{"label", t.label}, {"args", std::move(args)}, {"outputs", std::move(outputs)}};
+        if (t.time_years)
+            task.insert_or_assign("time_years", *t.time_years);
+        if (!t.folder.empty())
+            task.insert_or_assign("folder", t.folder);
+        tasks.push_back(std::move(task));
+    }
+    return tasks;
+}
+
+std::string texgen_plan_text(const TexgenPlan& plan)
+{
+    toml::table header;
+    add_plan_keys(header, plan);
+    toml::table root{{"plan", std::move(header)}, {"task", plan_tasks(plan)}};
+    std::ostringstream text;
+    text << root << "\n";
+    return text.str();
+}
+
+namespace {
+
+    std::string string_of(const fs::path& file, const toml::table& table, const char* key,
+                          const std::string& where)
+    {
+        const toml::node* node = table.get(key);
+        if (!node || !node->is_string())
+            toml_fail(file, node ? node : nullptr, where + key + ": a string is required");
+        return **node->as_string();
+    }
+
+    std::vector<std::string> strings_of(const fs::path& file, const toml::table& table,
+                                        const char* key, const std::string& where)
+    {
+        const toml::node* node = table.get(key);
+        const toml::array* array = node ? node->as_array() : nullptr;
+        if (!array || array->empty())
+            toml_fail(file, node, where + key + ": a non-empty array of strings is required");
+        std::vector<std::string> out;
+        for (const toml::node& item : *array) {
+            if (!item.is_string())
+                toml_fail(file, &item, where + key + ": not a string");
+            out.push_back(**item.as_string());
+        }
+        return out;
+    }
+
+}  // namespace
+
+TexgenPlan read_texgen_plan(const fs::path& file, const toml::table& header,
+                            const toml::table& root, std::initializer_list<const char*> extra_keys)
+{
+    std::vector<const char*> keys{"command", "output", "chained"};
+    keys.insert(keys.end(), extra_keys.begin(), extra_keys.end());
+    for (const auto& [k, v] : header) {
+        bool known = false;
+        for (const char* a : keys)
+            known |= k.str() == a;
+        if (!known) {
+            std::string list;
+            for (const char* a : keys)
+                list += (list.empty() ? "" : ", ") + std::string(a);
+            toml_fail(file, &v, std::string(k.str()) + ": unknown key (known: " + list + ")");
+        }
+    }
+    TexgenPlan plan;
+    plan.command = string_of(file, header, "command", "");
+    plan.output = string_of(file, header, "output", "");
+    if (const toml::node* chained = header.get("chained")) {
+        if (!chained->is_boolean())
+            toml_fail(file, chained, "chained: true or false");
+        plan.chained = **chained->as_boolean();
+    }
+    const toml::node* tasks = root.get("task");
+    const toml::array* array = tasks ? tasks->as_array() : nullptr;
+    if (!array || array->empty())
+        toml_fail(file, tasks, "no [[task]]");
+    for (const toml::node& node : *array) {
+        const toml::table* t = node.as_table();
+        if (!t)
+            toml_fail(file, &node, "a [[task]] that is not a table");
+        const std::string where = "task " + std::to_string(plan.tasks.size()) + ": ";
+        toml_check_keys(file, *t, where, {"label", "args", "outputs", "time_years", "folder"});
+        TexgenPlanTask task;
+        task.label = string_of(file, *t, "label", where);
+        task.args = strings_of(file, *t, "args", where);
+        for (const std::string& o : strings_of(file, *t, "outputs", where))
+            task.outputs.emplace_back(o);
+        if (const toml::node* time = t->get("time_years")) {
+            if (!time->is_number())
+                toml_fail(file, time, where + "time_years: a number is required");
+            task.time_years = time->value<double>();
+        }
+        if (t->get("folder"))
+            task.folder = string_of(file, *t, "folder", where);
+        plan.tasks.push_back(std::move(task));
+    }
+    return plan;
+}
+
+TexgenPlan parse_texgen_plan(std::string_view text, const fs::path& source)
+{
+    toml::table root;
+    try {
+        root = toml::parse(text, source.string());
+    } catch (const toml::parse_error& e) {
+        throw std::runtime_error(toml_where(source, e.source().begin) + ": " +
+                                 std::string(e.description()));
+    }
+    toml_check_keys(source, root, "", {"plan", "task"});
+    const toml::table* header = root["plan"].as_table();
+    if (!header)
+        toml_fail(source, nullptr, "no [plan]");
+    return read_texgen_plan(source, *header, root);
+}
+
+}  // namespace patina::formats
