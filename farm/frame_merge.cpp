@@ -36,9 +36,9 @@ MergeResult merge_render_parts(const std::vector<fs::path>& files, const fs::pat
         parts.push_back(read_render_part(f));
     const RenderPart& first = parts.front();
     for (const RenderPart& p : parts) {
-        require_same(first, p, "scene hash", first.scene_hash, p.scene_hash);
-        require_same(first, p, "seed", std::to_string(first.seed), std::to_string(p.seed));
-        require_same(first, p, "plugins", "'" + first.plugins + "'", "'" + p.plugins + "'");
+        require_same(first, p, "scene hash", first.header.scene_hash, p.header.scene_hash);
+        require_same(first, p, "seed", std::to_string(first.header.seed), std::to_string(p.header.seed));
+        require_same(first, p, "plugins", "'" + first.header.plugins + "'", "'" + p.header.plugins + "'");
         require_same(first, p, "frame size",
                      fmt::format("{}x{}", first.full_width, first.full_height),
                      fmt::format("{}x{}", p.full_width, p.full_height));
@@ -49,21 +49,21 @@ MergeResult merge_render_parts(const std::vector<fs::path>& files, const fs::pat
     // Sample ranges, in order: each must start where the one before ends.
     std::map<std::pair<int, int>, std::vector<size_t>> ranges;
     for (size_t i = 0; i < parts.size(); ++i)
-        ranges[{parts[i].sample_begin, parts[i].sample_end}].push_back(i);
+        ranges[{parts[i].header.sample_begin, parts[i].header.sample_end}].push_back(i);
     const RenderPart* previous = nullptr;
     for (const auto& [range, members] : ranges) {
         const RenderPart& p = parts[members.front()];
-        if (previous && range.first != previous->sample_end)
+        if (previous && range.first != previous->header.sample_end)
             throw std::runtime_error(
-                range.first > previous->sample_end
+                range.first > previous->header.sample_end
                     ? fmt::format("merge: samples {}-{} are in no part: '{}' ends at {}, '{}' "
                                   "starts at {}",
-                                  previous->sample_end, range.first, previous->file.string(),
-                                  previous->sample_end, p.file.string(), range.first)
+                                  previous->header.sample_end, range.first, previous->file.string(),
+                                  previous->header.sample_end, p.file.string(), range.first)
                     : fmt::format("merge: '{}' (samples {}-{}) and '{}' (samples {}-{}) "
                                   "overlap",
-                                  previous->file.string(), previous->sample_begin,
-                                  previous->sample_end, p.file.string(), range.first,
+                                  previous->file.string(), previous->header.sample_begin,
+                                  previous->header.sample_end, p.file.string(), range.first,
                                   range.second));
         previous = &p;
     }
@@ -124,7 +124,7 @@ MergeResult merge_render_parts(const std::vector<fs::path>& files, const fs::pat
 
     const int w = x1 - x0, h = y1 - y0;
     const size_t nc = first.channels.size();
-    const int total = previous->sample_end - ranges.begin()->first.first;
+    const int total = previous->header.sample_end - ranges.begin()->first.first;
     std::vector<float> pixels(static_cast<size_t>(w) * h * nc);
     // Per pixel, the weighted mean over the sample ranges (one range: its values as they
     // are, so that tiles merge bitwise).
@@ -153,20 +153,23 @@ MergeResult merge_render_parts(const std::vector<fs::path>& files, const fs::pat
                     out[c] = static_cast<float>(sum[c] / total);
         }
 
-    Metadata meta;
+    // The first part's header with the merged sample range (formats/render_part.h), then
+    // any other patina:* attribute of the first part.
+    formats::RenderHeader header = first.header;
+    header.spp = total;
+    header.sample_begin = ranges.begin()->first.first;
+    header.sample_end = previous->header.sample_end;
+    header.merged_parts = static_cast<int>(parts.size());
+    Metadata meta = formats::render_header_attributes(header);
     for (const auto& [key, value] : first.attributes)
-        if (key != "patina:spp" && key != "patina:sample_begin" && key != "patina:sample_end")
+        if (std::none_of(meta.begin(), meta.end(), [&](const auto& m) { return m.first == key; }))
             meta.emplace_back(key, value);
-    meta.emplace_back("patina:spp", total);
-    meta.emplace_back("patina:sample_begin", ranges.begin()->first.first);
-    meta.emplace_back("patina:sample_end", previous->sample_end);
-    meta.emplace_back("patina:merged_parts", static_cast<int>(parts.size()));
     const ImageWindow window{x0, y0, fw, fh};
     write_image_atomic(output, pixels.data(), w, h, static_cast<int>(nc), first.channels,
                        first.format == OIIO::TypeDesc::HALF ? OIIO::TypeDesc::HALF
                                                             : OIIO::TypeDesc::FLOAT,
                        meta, &window);
-    return {parts.size(), ranges.begin()->first.first, previous->sample_end, x0, y0, w, h};
+    return {parts.size(), ranges.begin()->first.first, previous->header.sample_end, x0, y0, w, h};
 }
 
 }  // namespace patina::farm

@@ -51,16 +51,16 @@ bool valid_part(const RenderJob& job, const RenderTask& task, const fs::path& pa
         // Its samples: the task's range, or the job's spp from sample 0.
         const bool samples =
             task.sample_end > 0
-                ? p.sample_begin == task.sample_begin && p.sample_end == task.sample_end
-                : job.spp == 0 || (p.sample_begin == 0 && p.sample_end == job.spp);
+                ? p.header.sample_begin == task.sample_begin && p.header.sample_end == task.sample_end
+                : job.spp == 0 || (p.header.sample_begin == 0 && p.header.sample_end == job.spp);
         // Its pixels: the task's band of the frame (a part of a job split otherwise is not).
         const render::Region band =
             job.tiles > 1 ? render::tile_region(task.tile, job.tiles, p.full_width, p.full_height)
                           : render::Region{0, 0, p.full_width, p.full_height};
         const bool pixels = p.x == band.x0 && p.y == band.y0 && p.width == band.width() &&
                             p.height == band.height();
-        return samples && pixels && p.scene_hash == render::scene_hash(task.scene) &&
-               (job.plugins.empty() || p.plugins == job.plugins);
+        return samples && pixels && p.header.scene_hash == render::scene_hash(task.scene) &&
+               (job.plugins.empty() || p.header.plugins == job.plugins);
     } catch (const std::exception&) {
         return false;
     }
@@ -106,13 +106,13 @@ void finish_render_job(const fs::path& folder)
         std::vector<fs::path> parts;
         for (const fs::path& p : m.parts) {
             parts.push_back(job.folder / p);
-            const RenderPart header = read_render_part(parts.back(), false);
-            if (!job.plugins.empty() && header.plugins != job.plugins)
+            const RenderPart part = read_render_part(parts.back(), false);
+            if (!job.plugins.empty() && part.header.plugins != job.plugins)
                 throw std::runtime_error(fmt::format(
                     "finish: part '{}' was rendered with the plugins '{}', the job was "
                     "submitted with '{}': point every node at the same plugin folder "
                     "(PATINA_PLUGIN_PATH) and resubmit the task",
-                    parts.back().string(), header.plugins, job.plugins));
+                    parts.back().string(), part.header.plugins, job.plugins));
         }
         const MergeResult r = merge_render_parts(parts, job.folder / m.output);
         std::fprintf(stderr, "frame %d: %zu part(s), samples %d-%d -> %s\n", m.frame, r.parts,

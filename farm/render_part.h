@@ -4,6 +4,7 @@
 #pragma once
 
 #include "core/image_io.h"
+#include "formats/render_part.h"
 
 #include <OpenImageIO/typedesc.h>
 
@@ -15,10 +16,7 @@ namespace patina::farm {
 
 struct RenderPart {
     std::filesystem::path file;
-    std::string scene_hash;          ///< patina:scene_hash
-    int seed = 0;                    ///< patina:seed
-    std::string plugins;             ///< patina:plugins (render/plugin_setup.h), or ""
-    int sample_begin = 0, sample_end = 0;  ///< samples [begin, end) of every pixel
+    formats::RenderHeader header;    ///< its render header (formats/render_part.h)
     int full_width = 0, full_height = 0;   ///< the frame (the display window)
     int x = 0, y = 0, width = 0, height = 0;  ///< the pixels it holds (the data window)
     std::vector<std::string> channels;  ///< in the file's order
@@ -27,12 +25,13 @@ struct RenderPart {
     /// The header's patina:* attributes and its colour space, copied into the merged file.
     Metadata attributes;
 
-    int samples() const { return sample_end - sample_begin; }
+    int samples() const { return header.samples(); }
 };
 
 /// Read `file`'s header (and its pixels when `pixels`). Throws std::runtime_error naming
-/// the file when it is unreadable or lacks a farm field (a render written before the
-/// fields existed: patina:scene_hash, patina:sample_begin, patina:sample_end).
+/// the file when it is unreadable or its render header lacks a field a merge needs (a
+/// render written before the fields existed: patina:scene_hash, patina:sample_begin,
+/// patina:sample_end).
 RenderPart read_render_part(const std::filesystem::path& file, bool pixels = true);
 
 }  // namespace patina::farm

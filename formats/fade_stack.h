@@ -14,6 +14,7 @@
 // H_0) / (entries − 1), so linear interpolation between rows in u is the table's own.
 #pragma once
 
+#include "formats/pixels.h"
 #include "formats/texture_stack.h"
 
 #include <toml++/toml.h>
@@ -84,5 +85,36 @@ FadeDescription read_fade_description(const std::filesystem::path& path);
 
 /// fade.toml's tables, with a comment line first.
 std::string fade_description_text(const FadeDescription& description);
+
+/// fade_table.exr: the pigment layer at every dose sample (row) and wavelength (column),
+/// row-major (entry = row * columns + column).
+struct FadeTable {
+    int rows = 0, columns = 0;
+    std::vector<float> r_bottom, r_top, r_total, t;
+};
+
+/// The table's pixels as fade_table.exr holds them: `columns` x `rows`, the channels
+/// kFadeTableChannels, the material and illuminant of `description` in the header.
+Pixels fade_table_pixels(const FadeTable& table, const FadeDescription& description);
+
+/// The table of the stack described by `description` in `folder`, read through `reader`.
+/// Throws naming the file when its size is not the description's (wavelengths x doses), a
+/// channel is missing, or an entry is no passive layer (R, T >= 0; R + T <= 1 from either
+/// side, to 1e-4).
+FadeTable read_fade_table(const PixelReader& reader, const FadeDescription& description,
+                          const std::filesystem::path& folder);
+
+/// dose.exr's pixels: per texel, interleaved, the table coordinate (the fractional row of
+/// its dose), the dose (J/m²) and the exposure map's coverage (kDoseMapChannels).
+Pixels dose_map_pixels(int width, int height, std::vector<float> coordinate_dose_coverage,
+                       const FadeDescription& description);
+
+/// The table coordinate of every texel of the stack's dose map (row-major), read through
+/// `reader`; `width` and `height` receive its size. Throws naming the file for a missing
+/// channel or a coordinate that is not finite.
+std::vector<float> read_dose_coordinates(const PixelReader& reader,
+                                         const FadeDescription& description,
+                                         const std::filesystem::path& folder, int* width,
+                                         int* height);
 
 }  // namespace patina::formats

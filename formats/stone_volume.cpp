@@ -104,4 +104,80 @@ void check_voxel_values(const std::string& file, const VolumeGrid& g, const floa
             }
 }
 
+std::vector<Pixels> stone_volume_parts(const StoneVolume& v)
+{
+    const VolumeGrid& g = v.grid;
+    const int width = g.n[0], height = g.n[1] * g.n[2];
+    std::vector<Pixels> parts(v.decay.empty() ? 2 : 3);
+    Pixels& voxels = parts[kVoxelPart];
+    voxels.name = "voxels";
+    voxels.width = width;
+    voxels.height = height;
+    voxels.channels = static_cast<int>(kVolumeChannels.size());
+    voxels.channel_names.assign(kVolumeChannels.begin(), kVolumeChannels.end());
+    voxels.values = v.voxels;
+    Pixels& bounds = parts[kBoundsPart];
+    bounds.name = "bounds";
+    bounds.width = 3;
+    bounds.height = 4;
+    bounds.channels = 1;
+    bounds.channel_names = {"value"};
+    bounds.values = volume_bounds_pixels(g);
+    if (!v.decay.empty()) {
+        Pixels& fields = parts[kFieldsPart];
+        fields.name = "fields";
+        fields.width = width;
+        fields.height = height;
+        fields.channels = static_cast<int>(kFieldChannels.size());
+        fields.channel_names.assign(kFieldChannels.begin(), kFieldChannels.end());
+        fields.values.resize(2 * g.voxels());
+        for (size_t i = 0; i < g.voxels(); ++i) {
+            fields.values[2 * i] = v.decay[i];
+            fields.values[2 * i + 1] = v.moisture[i];
+        }
+    }
+    return parts;
+}
+
+StoneVolume read_stone_volume(const PixelReader& reader, const std::filesystem::path& file,
+                              bool fields)
+{
+    const std::string name = file.string();
+    StoneVolume v;
+    const Pixels bounds = reader.read(file, kBoundsPart);
+    if (bounds.values.size() > 64)
+        fail(name, "part 'bounds' is too large");
+    v.grid = read_volume_bounds(name, bounds.width, bounds.height, bounds.channels,
+                                bounds.values.data());
+    const Pixels voxels = reader.read(file, kVoxelPart);
+    check_voxel_part(name, v.grid, voxels.width, voxels.height, voxels.channels);
+    // Channels by name when the reader knows them (in the stored order, interleaved).
+    std::array<int, kVolumeChannels.size()> at{};
+    for (size_t c = 0; c < kVolumeChannels.size(); ++c)
+        at[c] = channel_index(voxels, kVolumeChannels[c], kVolumeChannels, file);
+    const size_t n = v.grid.voxels(), k = kVolumeChannels.size();
+    v.voxels.resize(n * k);
+    for (size_t i = 0; i < n; ++i)
+        for (size_t c = 0; c < k; ++c)
+            v.voxels[i * k + c] = voxels.values[i * voxels.channels + at[c]];
+    check_voxel_values(name, v.grid, v.voxels.data());
+    if (fields && reader.subimage_count(file) > kFieldsPart) {
+        const Pixels f = reader.read(file, kFieldsPart);
+        if (f.width != voxels.width || f.height != voxels.height)
+            fail(name, "part 'fields' must be " + std::to_string(voxels.width) + "x" +
+                           std::to_string(voxels.height) + " pixels of channels decay, moisture");
+        const int decay = channel_index(f, kFieldChannels[0], kFieldChannels, file);
+        const int moisture = channel_index(f, kFieldChannels[1], kFieldChannels, file);
+        v.decay.resize(n);
+        v.moisture.resize(n);
+        for (size_t i = 0; i < n; ++i) {
+            v.decay[i] = f.values[i * f.channels + decay];
+            v.moisture[i] = f.values[i * f.channels + moisture];
+            if (!std::isfinite(v.decay[i]) || !std::isfinite(v.moisture[i]))
+                fail(name, "part 'fields': voxel " + std::to_string(i) + " is not finite");
+        }
+    }
+    return v;
+}
+
 }  // namespace patina::formats

@@ -16,13 +16,17 @@
 //                    the voxels, 0 outside the weathered shell.
 //
 // Voxel (i, j, k) has its centre at min + (i + 1/2, j + 1/2, k + 1/2) (max − min) / n. The
-// parts are read as raw floats (an OIIO reader in texgen, the host's read_image in the
-// plugin), so this holds the layout and its checks, not the file access.
+// parts are read through a PixelReader (OIIO in texgen, the host's read_image in the
+// plugin): this holds the layout, its reader and its checks, not the file access.
 #pragma once
+
+#include "formats/pixels.h"
 
 #include <array>
 #include <cstddef>
+#include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace patina::formats {
@@ -72,5 +76,27 @@ void check_voxel_part(const std::string& file, const VolumeGrid& grid, int width
 
 /// Throws naming `file`, the voxel and the channel for a value outside [0, 1] (or NaN).
 void check_voxel_values(const std::string& file, const VolumeGrid& grid, const float* pixels);
+
+/// A whole stone volume.
+struct StoneVolume {
+    VolumeGrid grid;
+    /// Part 0: per voxel (VolumeGrid::offset), the kVolumeChannels, interleaved.
+    std::vector<float> voxels;
+    /// Part 2, per voxel: the decay index and moisture; empty when the file has none (or
+    /// they were not asked for).
+    std::vector<float> decay, moisture;
+};
+
+/// The parts of `volume`'s file (part 2 only when it has fields), named "voxels",
+/// "bounds", "fields".
+std::vector<Pixels> stone_volume_parts(const StoneVolume& volume);
+
+/// The volume in `file`, read through `reader`: its bounds first (they say the voxel part's
+/// size), the voxels (channels found by name when the reader gives names, else in
+/// kVolumeChannels' order), and with `fields` part 2 when the reader sees one. Throws
+/// "stone volume 'file': what" for any part of another size, a missing channel, a value
+/// outside [0, 1] or a field that is not finite.
+StoneVolume read_stone_volume(const PixelReader& reader, const std::filesystem::path& file,
+                              bool fields);
 
 }  // namespace patina::formats

@@ -345,6 +345,53 @@ const StackMap& TextureStack::map(const std::string& name) const
     return it->second;
 }
 
+namespace {
+
+    constexpr const char* kNormalConvention =
+        "tangent space, OpenGL (+Y = +v, green up), encoded n * 0.5 + 0.5";
+    constexpr const char* kTwoLobe = "glTF 2.0 metallic-roughness + KHR_materials_clearcoat";
+
+    FlattenTable flatten_from_toml(const fs::path& file, const toml::table& t)
+    {
+        toml_check_keys(file, t, "flatten.",
+                        {"stack", "color_space", "diffuse", "height", "normal",
+                         "normal_convention", "texel_size_m", "normal_scale", "two_lobe",
+                         "base_color", "metallic_roughness", "clearcoat", "interfaces"});
+        auto text = [&](const char* key) {
+            const toml::node* n = t.get(key);
+            if (n && !n->is_string())
+                toml_fail(file, n, std::string("flatten.") + key + " must be a string");
+            return n ? **n->as_string() : std::string();
+        };
+        auto number = [&](const char* key, double fallback) {
+            const toml::node* n = t.get(key);
+            if (n && !n->is_number())
+                toml_fail(file, n, std::string("flatten.") + key + " must be a number");
+            return n ? n->value<double>().value_or(fallback) : fallback;
+        };
+        FlattenTable f;
+        f.stack = text("stack");
+        f.color_space = text("color_space");
+        f.texel_size_m = number("texel_size_m", 0.0);
+        f.normal_scale = number("normal_scale", 1.0);
+        if (const toml::node* n = t.get("interfaces")) {
+            const toml::array* a = n->as_array();
+            if (!a)
+                toml_fail(file, n, "flatten.interfaces must be an array of tables");
+            for (const toml::node& item : *a) {
+                const toml::table* i = item.as_table();
+                if (!i || !(*i)["specular"].is_string() || !(*i)["roughness"].is_string())
+                    toml_fail(file, &item, "flatten.interfaces: each needs the strings specular "
+                                           "and roughness");
+                f.interfaces.push_back({(*i)["specular"].value_or(std::string()),
+                                        (*i)["roughness"].value_or(std::string())});
+            }
+        }
+        return f;
+    }
+
+}  // namespace
+
 TextureStack read_texture_stack(const fs::path& path)
 {
     std::error_code ec;
@@ -378,7 +425,33 @@ TextureStack read_texture_stack(const fs::path& path)
             toml_fail(manifest, patina, "'patina' must be a table");
         stack.patina = patina_from_toml(manifest, *patina->as_table(), stack.maps);
     }
+    if (const toml::node* flatten = root.get("flatten")) {
+        if (!flatten->is_table())
+            toml_fail(manifest, flatten, "'flatten' must be a table");
+        stack.flatten = flatten_from_toml(manifest, *flatten->as_table());
+    }
     return stack;
+}
+
+toml::table to_toml(const FlattenTable& f)
+{
+    toml::array interfaces;
+    for (const FlattenInterface& i : f.interfaces)
+        interfaces.push_back(toml::table{{"specular", i.specular}, {"roughness", i.roughness}});
+    return toml::table{
+        {"stack", f.stack},
+        {"color_space", f.color_space},
+        {"diffuse", kDiffuseAlbedoMap},
+        {"height", kHeightMap},
+        {"normal", kNormalMap},
+        {"normal_convention", kNormalConvention},
+        {"texel_size_m", f.texel_size_m},
+        {"normal_scale", f.normal_scale},
+        {"two_lobe", kTwoLobe},
+        {"base_color", kGltfBaseColorMap},
+        {"metallic_roughness", kGltfMetallicRoughnessMap},
+        {"clearcoat", kGltfClearcoatMap},
+        {"interfaces", std::move(interfaces)}};
 }
 
 StackSeries read_stack_series(const fs::path& path)

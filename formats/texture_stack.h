@@ -7,6 +7,7 @@
 
 #include <toml++/toml.h>
 
+#include <array>
 #include <filesystem>
 #include <map>
 #include <optional>
@@ -90,12 +91,39 @@ struct PatinaTable {
     std::map<std::string, MaterialOptics> materials;  ///< the base's and every layer's
 };
 
+/// The maps of a flattened stack (`patina-texgen flatten`), by name: an ordinary BRDF's
+/// and glTF's two-lobe reduction (docs/flatten.md).
+inline constexpr const char* kDiffuseAlbedoMap = "diffuse_albedo";
+inline constexpr const char* kHeightMap = "height";
+inline constexpr const char* kNormalMap = "normal";
+inline constexpr const char* kGltfBaseColorMap = "gltf_base_color";
+inline constexpr const char* kGltfMetallicRoughnessMap = "gltf_metallic_roughness";
+inline constexpr const char* kGltfClearcoatMap = "gltf_clearcoat";
+/// What a glTF export reads of a flattened stack, in this order.
+inline constexpr std::array<const char*, 5> kGltfExportMaps = {
+    kGltfBaseColorMap, kGltfMetallicRoughnessMap, kGltfClearcoatMap, kNormalMap, kHeightMap};
+
+/// One interface's maps in `[flatten] interfaces`.
+struct FlattenInterface {
+    std::string specular, roughness;
+};
+
+/// `[flatten]`: what a flattened stack's maps are, for a person or a pipeline.
+struct FlattenTable {
+    std::string stack;        ///< the patina stack flattened (relative to the manifest)
+    std::string color_space;  ///< of the colour maps
+    double texel_size_m = 0.0;
+    double normal_scale = 1.0;
+    std::vector<FlattenInterface> interfaces;
+};
+
 struct TextureStack {
     std::filesystem::path manifest;  ///< the stack.toml read
     int format = 1;
     std::string generator;
     std::map<std::string, StackMap> maps;
     std::optional<PatinaTable> patina;
+    std::optional<FlattenTable> flatten;
 
     std::filesystem::path folder() const { return manifest.parent_path(); }
     /// The map `name`; throws naming the manifest when it is not listed.
@@ -148,6 +176,7 @@ const PatinaTable& patina_of(const TextureStack& stack);
 toml::table to_toml(const StackMap& map);
 toml::table to_toml(const MaterialOptics& material);
 toml::table to_toml(const PatinaTable& patina);
+toml::table to_toml(const FlattenTable& flatten);
 
 /// Parse one material table (as read_texture_stack does); throws naming file and key.
 MaterialOptics material_from_toml(const std::filesystem::path& file, const std::string& name,

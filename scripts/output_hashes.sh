@@ -5,9 +5,10 @@
 #   scripts/output_hashes.sh [OUT_DIR] > after.txt       (after ./run.sh at the new one)
 #   diff before.txt after.txt                            (no output: bitwise the same)
 # Images (EXR, PNG, JPEG, TIFF) are hashed by their pixels (oiiotool --hash: SHA-1 of the
-# pixel data), so a header's software name or a timestamp does not count; every other file
-# by its bytes. Logs and the files that carry a time of day or a run time by design are
-# left out, each named below with why.
+# pixel data), so a header's software name or a timestamp does not count; OpenVDB files by
+# their bytes with the random UUID every file gets blanked; every other file by its bytes.
+# Logs and the files that carry a time of day or a run time by design are left out, each
+# named below with why.
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 out="$(cd "${1:-$root/out}" && pwd)"
@@ -16,6 +17,8 @@ excluded() {
     case "$1" in
         *.log) return 0 ;;            # progress, timings
         */timing.toml) return 0 ;;    # wall-clock times of a run
+        */timings.txt) return 0 ;;    # wall-clock times of the stone sample
+        *.fbx) return 0 ;;            # Blender's FBX exporter stamps the time of writing
         */.patina-staging-*) return 0 ;;
     esac
     return 1
@@ -28,6 +31,12 @@ find . -type f | LC_ALL=C sort | while IFS= read -r file; do
         *.exr | *.png | *.jpg | *.jpeg | *.tif | *.tiff)
             hash="$(oiiotool --hash "$file" 2>/dev/null | sed -n 's/.*SHA-1: *//p' | tr '\n' ' ')"
             echo "$file pixels ${hash:-unreadable}" ;;
+        *.vdb)
+            echo "$file bytes-without-uuid $(python3 -c '
+import hashlib, re, sys
+data = re.sub(rb"[0-9a-f]{8}-[0-9a-f]{4}-[0-9a-f]{4}-[0-9a-f]{4}-[0-9a-f]{12}", b"0" * 36,
+              open(sys.argv[1], "rb").read())
+print(hashlib.sha256(data).hexdigest())' "$file")" ;;
         *)
             echo "$file bytes $(sha256sum "$file" | cut -d' ' -f1)" ;;
     esac

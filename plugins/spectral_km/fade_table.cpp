@@ -1,8 +1,9 @@
-// Reading a fade stack in create: fade.toml (the file-format library), the table through
-// host->read_image and the dose map through host->open_texture.
+// Reading a fade stack in create: fade.toml and the table by the file-format library's
+// readers (the table through host->read_image), the dose map through host->open_texture.
 #include "fade_table.h"
 
 #include "formats/fade_stack.h"
+#include "formats/host_pixels.h"
 
 #include <algorithm>
 #include <cmath>
@@ -40,35 +41,17 @@ std::string FadeTable::load(const PatinaHost* host, const char* path)
 
     substrate_.assign(description.substrate.begin(), description.substrate.end());
 
-    // The table: rows x columns x 4 raw floats, channels in formats::kFadeTableChannels order
-    const std::string table_path = description.table_path(dir).string();
-    const std::string dose_path = description.dose_map_path(dir).string();
-    int dims[3] = {0, 0, 0};
-    if (!host->read_image(host, table_path.c_str(), 0, dims, nullptr, 0))
-        return "cannot read the fade table '" + table_path + "'";
-    if (dims[0] != columns_ || dims[1] != rows_ || dims[2] != 4)
-        return "fade table '" + table_path + "' is " + std::to_string(dims[0]) + "x" +
-               std::to_string(dims[1]) + "x" + std::to_string(dims[2]) + "; " + where +
-               " describes " + std::to_string(columns_) + " wavelengths x " +
-               std::to_string(rows_) + " doses x 4 channels";
-    std::vector<float> pixels(static_cast<size_t>(rows_) * columns_ * 4);
-    if (!host->read_image(host, table_path.c_str(), 0, dims, pixels.data(), pixels.size()))
-        return "cannot read the fade table '" + table_path + "'";
-    const size_t n = static_cast<size_t>(rows_) * columns_;
-    r_top_.resize(n);
-    t_.resize(n);
-    r_bottom_.resize(n);
-    for (size_t i = 0; i < n; ++i) {
-        r_bottom_[i] = pixels[4 * i + 0];
-        r_top_[i] = pixels[4 * i + 1];
-        t_[i] = pixels[4 * i + 3];
-        const float sum = r_top_[i] + t_[i];
-        if (!std::isfinite(sum) || r_top_[i] < 0.0f || t_[i] < 0.0f || r_bottom_[i] < 0.0f ||
-            sum > 1.0f + 1e-4f || r_bottom_[i] + t_[i] > 1.0f + 1e-4f)
-            return "fade table '" + table_path + "': row " + std::to_string(i / columns_) +
-                   ", column " + std::to_string(i % columns_) +
-                   " is not a passive layer (R, T >= 0, R + T <= 1)";
+    // The table, read and checked by the format's one reader through the host's read_image
+    formats::FadeTable table;
+    try {
+        table = formats::read_fade_table(formats::HostPixelReader(host), description, dir);
+    } catch (const std::exception& e) {
+        return e.what();
     }
+    r_top_ = std::move(table.r_top);
+    t_ = std::move(table.t);
+    r_bottom_ = std::move(table.r_bottom);
+    const std::string dose_path = description.dose_map_path(dir).string();
     dose_map_ = host->open_texture(host, dose_path.c_str(), "raw");
     if (!dose_map_)
         return "cannot open the dose map '" + dose_path + "'";

@@ -51,13 +51,28 @@ namespace {
         return spec;
     }
 
-    void add_metadata(OIIO::ImageSpec& spec, const Metadata& metadata)
-    {
-        for (const auto& [key, value] : metadata)
-            std::visit([&, &k = key](const auto& v) { spec.attribute(k, v); }, value);
-    }
-
 }  // namespace
+
+void add_metadata(OIIO::ImageSpec& spec, const Metadata& metadata)
+{
+    for (const auto& [key, value] : metadata)
+        std::visit([&, &k = key](const auto& v) { spec.attribute(k, v); }, value);
+}
+
+Metadata metadata_of(const OIIO::ImageSpec& spec)
+{
+    Metadata out;
+    for (const OIIO::ParamValue& p : spec.extra_attribs) {
+        const std::string name = p.name().string();
+        if (p.type() == OIIO::TypeInt)
+            out.emplace_back(name, p.get_int());
+        else if (p.type() == OIIO::TypeFloat)
+            out.emplace_back(name, p.get_float());
+        else
+            out.emplace_back(name, p.get_string());
+    }
+    return out;
+}
 
 void write_file_atomic(const std::filesystem::path& path,
                        std::initializer_list<std::string_view> parts, std::string_view what)

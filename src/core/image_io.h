@@ -4,6 +4,8 @@
 // rule, and plain reads.
 #pragma once
 
+#include "formats/pixels.h"
+
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/typedesc.h>
 
@@ -20,8 +22,8 @@
 namespace patina {
 
 /// One header attribute, e.g. {"patina:bake", "accessibility"} or {"patina:samples", 256}.
-using MetadataValue = std::variant<int, float, std::string>;
-using Metadata = std::vector<std::pair<std::string, MetadataValue>>;
+using MetadataValue = formats::HeaderValue;
+using Metadata = formats::Header;
 
 /// Pixels as floats, scanline order from the top-left corner, channels interleaved.
 /// OpenEXR stores channels sorted by name (OIIO restores R, G, B, A order only), so a map
@@ -56,6 +58,11 @@ struct ImageWindow {
     int x = 0, y = 0;
     int full_width = 0, full_height = 0;
 };
+
+/// Every entry of `metadata` as a header attribute of `spec`, typed as it is.
+void add_metadata(OIIO::ImageSpec& spec, const Metadata& metadata);
+/// The header attributes of `spec` (ints, floats and strings; others as text).
+Metadata metadata_of(const OIIO::ImageSpec& spec);
 
 /// Write the concatenation of `parts` to `path` as bytes (a text manifest, a PLY), staged in
 /// the current output transaction (or one of its own, committed at once): a failed write

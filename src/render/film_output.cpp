@@ -1,5 +1,7 @@
 #include "render/film_output.h"
 
+#include "formats/render_part.h"
+
 #include "core/file_fingerprint.h"
 #include "core/image_io.h"
 
@@ -47,16 +49,16 @@ Checkpoint read_checkpoint(const fs::path& exr)
         throw fail(OIIO::geterror());
     Checkpoint c;
     const OIIO::ImageSpec beauty = in->spec();
-    auto get = [&](const char* key) {
-        const OIIO::ParamValue* p = beauty.find_attribute(key);
-        if (!p)
-            throw fail(fmt::format("no {} in its header: not a render Patina can continue", key));
-        return p;
-    };
-    c.scene_hash = get("patina:scene_hash")->get_string();
-    c.seed = get("patina:seed")->get_int();
-    c.sample_begin = get("patina:sample_begin")->get_int();
-    c.sample_end = get("patina:sample_end")->get_int();
+    formats::RenderHeader header;
+    try {
+        header = formats::read_render_header(metadata_of(beauty));
+    } catch (const std::exception& e) {
+        throw fail(fmt::format("{}: not a render Patina can continue", e.what()));
+    }
+    c.scene_hash = header.scene_hash;
+    c.seed = header.seed;
+    c.sample_begin = header.sample_begin;
+    c.sample_end = header.sample_end;
     c.full_width = beauty.full_width;
     c.full_height = beauty.full_height;
     c.region = {beauty.x, beauty.y, beauty.x + beauty.width, beauty.y + beauty.height};
@@ -70,7 +72,7 @@ Checkpoint read_checkpoint(const fs::path& exr)
     const OIIO::ImageSpec spec = in->spec();
     const size_t npix = static_cast<size_t>(beauty.width) * beauty.height;
     // The layout the header names: xyz, then the AOVs the render kept.
-    const std::string layout = beauty.get_string_attribute("patina:sums_layout");
+    const std::string& layout = header.sums_layout;
     const bool with_albedo = layout.find("albedo") != std::string::npos;
     const bool with_normal = layout.find("normal") != std::string::npos;
     const bool with_depth = layout.find("depth") != std::string::npos;
@@ -144,25 +146,23 @@ void write_film(const Scene& scene, const FilmResult& film, const fs::path& exr,
             *p++ = film.depth[i];
     }
 
-    const Metadata meta = {
-        {"patina:scene", fs::absolute(scene_file).string()},
-        {"patina:spp", film.spp},
-        {"patina:sample_begin", film.sample_begin},
-        {"patina:sample_end", film.sample_begin + film.spp},
-        {"patina:scene_hash", scene_hash(scene_file)},
-        {"patina:plugins", plugins},
-        {"patina:sums_layout",
-         film.sums.xyz.empty()
-             ? std::string()
-             : fmt::format("xyz{}{}{}", film.sums.albedo.empty() ? "" : " albedo",
-                           film.sums.normal.empty() ? "" : " normal",
-                           film.sums.depth.empty() ? "" : " depth")},
-        {"patina:seed", static_cast<int>(scene.film.seed)},
-        {"patina:wavelengths", scene.film.wavelengths},
-        {"patina:max_depth", scene.film.max_depth},
-        {"oiio:ColorSpace", colors.working_space()},
-        {"patina:colorspace", colors.working_space()},
-    };
+    formats::RenderHeader header;
+    header.scene = fs::absolute(scene_file).string();
+    header.spp = film.spp;
+    header.sample_begin = film.sample_begin;
+    header.sample_end = film.sample_begin + film.spp;
+    header.scene_hash = scene_hash(scene_file);
+    header.plugins = plugins;
+    header.sums_layout = film.sums.xyz.empty()
+                             ? std::string()
+                             : fmt::format("xyz{}{}{}", film.sums.albedo.empty() ? "" : " albedo",
+                                           film.sums.normal.empty() ? "" : " normal",
+                                           film.sums.depth.empty() ? "" : " depth");
+    header.seed = static_cast<int>(scene.film.seed);
+    header.wavelengths = scene.film.wavelengths;
+    header.max_depth = scene.film.max_depth;
+    header.colorspace = colors.working_space();
+    const Metadata meta = formats::render_header_attributes(header);
     const ImageWindow window{film.region.x0, film.region.y0, scene.film.width, scene.film.height};
     // The display image is computed before anything is written, so a bad view name leaves
     // no EXR behind either.

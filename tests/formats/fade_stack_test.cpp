@@ -6,7 +6,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <fstream>
+#include <limits>
 
 namespace patina::formats {
 namespace {
@@ -119,6 +121,95 @@ TEST(FadeStackFormat, NewerFormatAndBadKeysAreRefused)
     EXPECT_NE(m.find("wavelength_nm must increase"), std::string::npos) << m;
     m = message("syntax", "[substrate]", "[substrate");
     EXPECT_NE(m.find("fade.toml:"), std::string::npos) << m;
+}
+
+/// A PixelReader serving one image from memory (with or without channel names, as OIIO and
+/// a plugin host's read_image give them).
+class MemoryReader final : public PixelReader {
+public:
+    explicit MemoryReader(Pixels pixels) : pixels_(std::move(pixels)) {}
+    Pixels read(const fs::path&, int) const override { return pixels_; }
+
+private:
+    Pixels pixels_;
+};
+
+FadeTable example_table()
+{
+    // 3 doses x 3 wavelengths of example(): r_bottom 0.1, r_top 0.2 + 0.01 k, R 0.3, T 0.5.
+    FadeTable t;
+    t.rows = 3;
+    t.columns = 3;
+    for (int i = 0; i < 9; ++i) {
+        t.r_bottom.push_back(0.1f);
+        t.r_top.push_back(0.2f + 0.01f * static_cast<float>(i));
+        t.r_total.push_back(0.3f);
+        t.t.push_back(0.5f);
+    }
+    return t;
+}
+
+TEST(FadeStackFormat, TheTableRoundTripsByNameAndInTheDocumentedOrder)
+{
+    const FadeDescription d = example();
+    const Pixels written = fade_table_pixels(example_table(), d);
+    EXPECT_EQ(written.channel_names,
+              (std::vector<std::string>(kFadeTableChannels.begin(), kFadeTableChannels.end())));
+    // OIIO gives names (here shuffled, as a reader may order them); the host none.
+    Pixels shuffled = written;
+    shuffled.channel_names = {"T", "R_total", "R_top", "R_bottom"};
+    for (size_t i = 0; i < 9; ++i)
+        std::reverse(shuffled.values.begin() + 4 * i, shuffled.values.begin() + 4 * i + 4);
+    Pixels unnamed = written;
+    unnamed.channel_names.clear();
+    for (const Pixels& p : {written, shuffled, unnamed}) {
+        const FadeTable back = read_fade_table(MemoryReader(p), d, "stack");
+        EXPECT_EQ(back.r_top, example_table().r_top);
+        EXPECT_EQ(back.r_bottom, example_table().r_bottom);
+        EXPECT_EQ(back.r_total, example_table().r_total);
+        EXPECT_EQ(back.t, example_table().t);
+    }
+}
+
+TEST(FadeStackFormat, ABadTableIsNamedWithWhatIsWrong)
+{
+    const FadeDescription d = example();
+    Pixels small = fade_table_pixels(example_table(), d);
+    small.height = 2;
+    std::string m = test::message_of([&] { read_fade_table(MemoryReader(small), d, "stack"); });
+    EXPECT_NE(m.find("fade_table.exr: 3x2 pixels, but its fade.toml describes 3 wavelengths x 3 "
+                     "doses"), std::string::npos) << m;
+    Pixels renamed = fade_table_pixels(example_table(), d);
+    renamed.channel_names[3] = "Tr";
+    m = test::message_of([&] { read_fade_table(MemoryReader(renamed), d, "stack"); });
+    EXPECT_NE(m.find("no channel 'T' (its channels: R_bottom, R_top, R_total, Tr)"),
+              std::string::npos) << m;
+    FadeTable gaining = example_table();
+    gaining.t[4] = 0.9f;  // R_top 0.24 + T 0.9 > 1
+    m = test::message_of([&] {
+        read_fade_table(MemoryReader(fade_table_pixels(gaining, d)), d, "stack");
+    });
+    EXPECT_NE(m.find("row 1, column 1 is not a passive layer"), std::string::npos) << m;
+}
+
+TEST(FadeStackFormat, TheDoseMapsCoordinatesAreReadByName)
+{
+    const FadeDescription d = example();
+    std::vector<float> texels;
+    for (int i = 0; i < 4; ++i)
+        texels.insert(texels.end(), {0.5f * static_cast<float>(i), 100.0f * i, 1.0f});
+    const Pixels dose = dose_map_pixels(2, 2, texels, d);
+    int w = 0, h = 0;
+    EXPECT_EQ(read_dose_coordinates(MemoryReader(dose), d, "stack", &w, &h),
+              (std::vector<float>{0.0f, 0.5f, 1.0f, 1.5f}));
+    EXPECT_EQ(w, 2);
+    EXPECT_EQ(h, 2);
+    Pixels bad = dose;
+    bad.values[3] = std::numeric_limits<float>::quiet_NaN();
+    const std::string m =
+        test::message_of([&] { read_dose_coordinates(MemoryReader(bad), d, "stack", &w, &h); });
+    EXPECT_NE(m.find("dose.exr: texel (1, 0) has a coordinate that is not finite"),
+              std::string::npos) << m;
 }
 
 }  // namespace

@@ -35,12 +35,12 @@ FlattenedStack rough_dielectric(int width, int height, std::vector<float> base,
         return std::vector<std::vector<float>>{std::move(v)};
     };
     flat.maps = {
-        {"gltf_base_color", {"R", "G", "B"}, "1", description, true, {std::move(base)}},
+        {formats::kGltfBaseColorMap, {"R", "G", "B"}, "1", description, true, {std::move(base)}},
         // R occlusion 1, G roughness 1, B metallic 0
-        {"gltf_metallic_roughness", {"R", "G", "B"}, "1", "", false, constant({1, 1, 0})},
-        {"gltf_clearcoat", {"R", "G", "B"}, "1", "", false, constant({0, 0, 0})},
-        {"normal", {"R", "G", "B"}, "1", "", false, constant({0.5f, 0.5f, 1})},
-        {"height", {"height"}, "um", "", false, constant({0})}};
+        {formats::kGltfMetallicRoughnessMap, {"R", "G", "B"}, "1", "", false, constant({1, 1, 0})},
+        {formats::kGltfClearcoatMap, {"R", "G", "B"}, "1", "", false, constant({0, 0, 0})},
+        {formats::kNormalMap, {"R", "G", "B"}, "1", "", false, constant({0.5f, 0.5f, 1})},
+        {formats::kHeightMap, {"height"}, "um", "", false, constant({0})}};
     return flat;
 }
 
@@ -88,7 +88,7 @@ namespace {
         double top = 0.0;
         for (const ExportStep& step : steps)
             for (const FlatMap& map : step.flat.maps)
-                if (map.name == "height")
+                if (map.name == formats::kHeightMap)
                     for (const std::vector<float>& tile : map.tiles)
                         for (float h : tile)
                             top = std::max(top, static_cast<double>(h));

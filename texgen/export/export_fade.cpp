@@ -5,6 +5,7 @@
 #include "texgen/texels/mesh_merge.h"
 
 #include "core/image_io.h"
+#include "core/pixel_io.h"
 #include "core/spectrum.h"
 
 #include "texgen/meshes/mesh_input.h"
@@ -58,34 +59,26 @@ namespace {
     std::vector<float> row_colors(const FadeStep& step, const ColorManager& colors)
     {
         const formats::FadeDescription& d = step.description;
-        const fs::path file = d.table_path(step.folder);
-        const ImageData table = read_image(file);
-        const int c = table.channel("R_total");
-        if (c < 0 || table.width != static_cast<int>(d.wavelength_nm.size()) ||
-            table.height != static_cast<int>(d.doses.size()))
-            throw std::runtime_error(fmt::format(
-                "{}: expected a {}x{} table with a channel R_total (wavelengths x doses, as "
-                "{} says); it is {}x{}{}",
-                file.string(), d.wavelength_nm.size(), d.doses.size(), step.manifest.string(),
-                table.width, table.height, c < 0 ? " without R_total" : ""));
+        const formats::FadeTable table = formats::read_fade_table(ImagePixelReader(), d, step.folder);
         const std::vector<double>& nm = d.wavelength_nm;
-        std::vector<float> rgb(3 * static_cast<size_t>(table.height));
-        for (int row = 0; row < table.height; ++row) {
+        std::vector<float> rgb(3 * static_cast<size_t>(table.rows));
+        for (int row = 0; row < table.rows; ++row) {
+            const float* r = &table.r_total[static_cast<size_t>(row) * table.columns];
             auto reflectance = [&](double lambda) {
                 const auto hi = std::upper_bound(nm.begin(), nm.end(), lambda);
                 if (hi == nm.begin())
-                    return double(table.at(0, row, c));
+                    return double(r[0]);
                 if (hi == nm.end())
-                    return double(table.at(table.width - 1, row, c));
+                    return double(r[table.columns - 1]);
                 const int i = static_cast<int>(hi - nm.begin());
                 const double t = (lambda - nm[i - 1]) / (nm[i] - nm[i - 1]);
-                return (1.0 - t) * table.at(i - 1, row, c) + t * table.at(i, row, c);
+                return (1.0 - t) * r[i - 1] + t * r[i];
             };
             const Xyz xyz = spectrum_to_xyz(reflectance, d65);
             for (int k = 0; k < 3; ++k)
                 rgb[3 * row + k] = static_cast<float>(xyz[k]);
         }
-        colors.convert("CIE-XYZ-D65", "lin_rec709", rgb.data(), static_cast<size_t>(table.height));
+        colors.convert("CIE-XYZ-D65", "lin_rec709", rgb.data(), static_cast<size_t>(table.rows));
         return rgb;
     }
 
@@ -96,27 +89,19 @@ namespace {
     {
         const std::vector<float> rows = row_colors(step, colors);
         const int last = static_cast<int>(rows.size() / 3) - 1;
-        const fs::path dose_file = step.description.dose_map_path(step.folder);
-        const ImageData dose = read_image(dose_file);
-        const int coordinate = dose.channel("coordinate");
-        if (coordinate < 0)
-            throw std::runtime_error(fmt::format("{}: no channel 'coordinate' (the table row "
-                                                 "of each texel's dose)",
-                                                 dose_file.string()));
-        if (!step.uniform && (dose.width != width || dose.height != height))
-            throw std::runtime_error(fmt::format("{}: {}x{} texels, not {}x{}",
-                                                 dose_file.string(), dose.width, dose.height,
-                                                 width, height));
+        int dose_width = 0, dose_height = 0;
+        const std::vector<float> coordinates = formats::read_dose_coordinates(
+            ImagePixelReader(), step.description, step.folder, &dose_width, &dose_height);
+        if (!step.uniform && (dose_width != width || dose_height != height))
+            throw std::runtime_error(fmt::format(
+                "{}: {}x{} texels, not {}x{}",
+                step.description.dose_map_path(step.folder).string(), dose_width, dose_height,
+                width, height));
         const size_t texels = static_cast<size_t>(width) * height;
         std::vector<float> base(3 * texels);
         for (size_t i = 0; i < texels; ++i) {
             // A uniform stack's small map holds one dose: its first texel, everywhere.
-            const float u = step.uniform ? dose.pixels[coordinate]
-                                         : dose.pixels[i * dose.channels + coordinate];
-            if (!std::isfinite(u))
-                throw std::runtime_error(fmt::format(
-                    "{}: texel ({}, {}) has a coordinate that is not finite", dose_file.string(),
-                    i % width, i / width));
+            const float u = coordinates[step.uniform ? 0 : i];
             const float x = std::clamp(u, 0.0f, static_cast<float>(last));
             const int r = std::min(static_cast<int>(x), std::max(last - 1, 0));
             const float t = x - static_cast<float>(r);

@@ -22,22 +22,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-    /// The [flatten] table of `manifest`, parsed (empty when it has none or is unreadable).
-    toml::table flatten_table(const fs::path& manifest)
-    {
-        try {
-            const toml::table root = toml::parse_file(manifest.string());
-            if (const toml::table* t = root["flatten"].as_table())
-                return *t;
-        } catch (const toml::parse_error&) {
-        }
-        return {};
-    }
-
-    /// The maps export encodes, in the order flatten lists them.
-    constexpr const char* kMaps[] = {"gltf_base_color", "gltf_metallic_roughness",
-                                     "gltf_clearcoat", "normal", "height"};
-
 }  // namespace
 
 bool is_flattened_stack(const fs::path& input)
@@ -63,7 +47,8 @@ ExportResult export_flattened(const fs::path& input, const fs::path& output,
         throw std::runtime_error("--resolution: flattened maps export at their own resolution "
                                  "(flatten again with --resolution)");
     const formats::TextureStack stack = formats::read_texture_stack(input);
-    const toml::table info = flatten_table(stack.manifest);
+    // The [flatten] table, as the stack's reader checked it (a flattened stack has one).
+    const formats::FlattenTable info = stack.flatten.value_or(formats::FlattenTable{});
 
     ExportStep step;
     step.manifest = stack.manifest;
@@ -72,7 +57,7 @@ ExportResult export_flattened(const fs::path& input, const fs::path& output,
         step.label = "flat";
     FlattenedStack& flat = step.flat;
     double time_years = 0.0;
-    for (const char* name : kMaps) {
+    for (const char* name : formats::kGltfExportMaps) {
         const formats::StackMap& entry = stack.map(name);  // throws naming the manifest
         if (flat.udims.empty()) {
             flat.udims = entry.udims();
@@ -83,7 +68,7 @@ ExportResult export_flattened(const fs::path& input, const fs::path& output,
         FlatMap map;
         map.name = name;
         map.channels = entry.channels;
-        map.is_color = std::string(name) == "gltf_base_color";
+        map.is_color = std::string(name) == formats::kGltfBaseColorMap;
         for (const fs::path& file : entry.files(stack.folder())) {
             const ImageData image = read_image(file);
             if (image.width != flat.width || image.height != flat.height ||
@@ -113,7 +98,7 @@ ExportResult export_flattened(const fs::path& input, const fs::path& output,
         }
         flat.maps.push_back(std::move(map));
     }
-    flat.texel_size_m = info["texel_size_m"].value_or(0.0);
+    flat.texel_size_m = info.texel_size_m;
     step.variant = age_name(time_years);
     step.extras = {{"time_years", time_years},
                    {"stack", relative_to(stack.manifest, output.parent_path())}};
@@ -122,7 +107,7 @@ ExportResult export_flattened(const fs::path& input, const fs::path& output,
     // The geometry of the stack the maps came from: its strip, or its mesh.
     ExportGeometry geometry;
     PatinaStackFiles source;
-    const std::string source_text = info["stack"].value_or(std::string());
+    const std::string& source_text = info.stack;
     const fs::path source_path = source_text.empty() ? fs::path()
                                                      : stack.folder() / fs::path(source_text);
     std::error_code ec;

@@ -98,8 +98,7 @@ ExportResult export_patina(const fs::path& input, const fs::path& output,
     }
     flatten.resolution = options.resolution;
     flatten.normal_scale = options.normal_scale;
-    flatten.only = {"gltf_base_color", "gltf_metallic_roughness", "gltf_clearcoat", "normal",
-                    "height"};
+    flatten.only.assign(formats::kGltfExportMaps.begin(), formats::kGltfExportMaps.end());
     // The steps must be of one strip or mesh (the maps' sizes are checked with the rest).
     for (const Step& step : steps)
         if (step.stack.strip_size_m != first_stack.strip_size_m ||

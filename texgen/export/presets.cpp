@@ -1,5 +1,7 @@
 #include "texgen/export/presets.h"
 
+#include "formats/texture_stack.h"
+
 #include <fmt/format.h>
 
 #include <stdexcept>
@@ -56,11 +58,11 @@ std::vector<PresetMap> preset_maps(const std::string& preset, const FlattenedSta
 {
     check_preset(preset);
     const size_t texels = static_cast<size_t>(flat.width) * flat.height;
-    const std::vector<float>& base = map_of(flat, "gltf_base_color").tiles[tile];
-    const std::vector<float>& mr = map_of(flat, "gltf_metallic_roughness").tiles[tile];
-    const std::vector<float>& coat = map_of(flat, "gltf_clearcoat").tiles[tile];
-    const std::vector<float>& normal = map_of(flat, "normal").tiles[tile];
-    const std::vector<float>& height = map_of(flat, "height").tiles[tile];
+    const std::vector<float>& base = map_of(flat, formats::kGltfBaseColorMap).tiles[tile];
+    const std::vector<float>& mr = map_of(flat, formats::kGltfMetallicRoughnessMap).tiles[tile];
+    const std::vector<float>& coat = map_of(flat, formats::kGltfClearcoatMap).tiles[tile];
+    const std::vector<float>& normal = map_of(flat, formats::kNormalMap).tiles[tile];
+    const std::vector<float>& height = map_of(flat, formats::kHeightMap).tiles[tile];
     // flatten's packings: metallicRoughness R occlusion, G roughness, B metallic; clearcoat
     // R weight, G roughness; normal OpenGL (+Y = +v, green up), n * 0.5 + 0.5.
     auto roughness = [&](size_t t) { return mr[t * 3 + 1]; };

@@ -5,6 +5,7 @@
 #include "formats/fade_stack.h"
 
 #include "core/image_io.h"
+#include "core/pixel_io.h"
 
 #include <fmt/format.h>
 
@@ -19,15 +20,6 @@
 namespace patina::texgen::fade {
 
 namespace fs = std::filesystem;
-
-namespace {
-
-    const std::vector<std::string> kTableChannels(formats::kFadeTableChannels.begin(),
-                                                  formats::kFadeTableChannels.end());
-    const std::vector<std::string> kDoseChannels(formats::kDoseMapChannels.begin(),
-                                                 formats::kDoseMapChannels.end());
-
-}  // namespace
 
 DoseRow::DoseRow(const DoseTable& table)
 {
@@ -72,50 +64,7 @@ void write_fade_stack(const fs::path& dir, const DoseTable& table, const FadeSta
                                              "wavelengths",
                                              dir.string(), info.substrate.size(), columns));
 
-    // fade_table.exr: rows = doses, columns = wavelengths, channels in stored (sorted) order
-    std::vector<float> pixels(rows * columns * 4);
-    for (size_t k = 0; k < rows; ++k) {
-        const LayerSpectra& s = table.spectra(k);
-        for (size_t w = 0; w < columns; ++w) {
-            float* p = &pixels[(k * columns + w) * 4];
-            p[0] = static_cast<float>(s.r_bottom[w]);
-            p[1] = static_cast<float>(s.r_top[w]);
-            p[2] = static_cast<float>(s.reflectance[w]);
-            p[3] = static_cast<float>(s.t[w]);
-        }
-    }
-    const Metadata table_meta = {
-        {"patina:map", std::string("fade_table")},
-        {"patina:material", info.material},
-        {"patina:illuminant", info.illuminant},
-        {"patina:colorspace", std::string("raw")},
-        {"patina:description",
-         std::string("rows: dose samples (see fade.toml [table] dose); columns: wavelengths "
-                     "([table] wavelength_nm)")}};
-    write_image_atomic(dir / kFadeTableFile, pixels.data(), static_cast<int>(columns),
-                       static_cast<int>(rows), 4, kTableChannels, OIIO::TypeDesc::FLOAT,
-                       table_meta);
-
-    // dose.exr: the table coordinate and the dose of every texel
-    TextureOptions tex;
-    tex.format = OIIO::TypeDesc::FLOAT;
-    // Uncompressed: zip took 5x longer than the rest of a 2048² map (bench_fade_map)
-    tex.compression = "none";
-    tex.metadata = {{"patina:map", std::string("dose")},
-                    {"patina:baker", std::string("fade")},
-                    {"patina:units", std::string("1, J/m^2")},
-                    {"patina:colorspace", std::string("raw")},
-                    {"patina:material", info.material},
-                    {"patina:illuminant", info.illuminant},
-                    {"patina:coverage", std::string(kCoverageChannel)},
-                    {"patina:description",
-                     std::string("coordinate: fractional row of fade_table.exr; dose: radiant "
-                                 "exposure of the illuminant band, J/m^2; coverage: the "
-                                 "exposure map's")}};
-    make_texture_atomic(dir / kDoseMapFile, dose_pixels.data(), info.width, info.height, 3,
-                        kDoseChannels, tex);
-
-    // fade.toml, last: a stack is complete when its description exists
+    // The description (fade.toml), written last: a stack is complete when it exists.
     const DoseTableOptions& o = table.options();
     formats::FadeDescription d;
     d.generator = std::string("patina-texgen ") + PATINA_VERSION_STRING;
@@ -140,6 +89,34 @@ void write_fade_stack(const fs::path& dir, const DoseTable& table, const FadeSta
     d.mean_dose = info.mean_dose;
     d.max_dose_in_map = info.max_dose;
     d.exposure = info.exposure;
+
+    // fade_table.exr: rows = doses, columns = wavelengths (formats/fade_stack.h)
+    formats::FadeTable t;
+    t.rows = static_cast<int>(rows);
+    t.columns = static_cast<int>(columns);
+    for (auto* v : {&t.r_bottom, &t.r_top, &t.r_total, &t.t})
+        v->resize(rows * columns);
+    for (size_t k = 0; k < rows; ++k) {
+        const LayerSpectra& s = table.spectra(k);
+        for (size_t w = 0; w < columns; ++w) {
+            const size_t i = k * columns + w;
+            t.r_bottom[i] = static_cast<float>(s.r_bottom[w]);
+            t.r_top[i] = static_cast<float>(s.r_top[w]);
+            t.r_total[i] = static_cast<float>(s.reflectance[w]);
+            t.t[i] = static_cast<float>(s.t[w]);
+        }
+    }
+    write_pixels_atomic(dir / kFadeTableFile, formats::fade_table_pixels(t, d),
+                        OIIO::TypeDesc::FLOAT);
+
+    // dose.exr: the table coordinate and the dose of every texel
+    TextureOptions tex;
+    tex.format = OIIO::TypeDesc::FLOAT;
+    // Uncompressed: zip took 5x longer than the rest of a 2048² map (bench_fade_map)
+    tex.compression = "none";
+    make_texture_atomic(dir / kDoseMapFile,
+                        formats::dose_map_pixels(info.width, info.height, dose_pixels, d), tex);
+
     write_file_atomic(dir / kFadeToml, {formats::fade_description_text(d)},
                       "fade stack description");
 }
@@ -156,28 +133,16 @@ FadeStack read_fade_stack(const fs::path& dir)
     s.illuminant = d.illuminant;
     s.max_interpolation_error = d.max_interpolation_error;
     s.dose_map = d.dose_map_path(dir);
-    const fs::path table_file = d.table_path(dir);
-    const ImageData image = read_image(table_file);
-    if (image.width != static_cast<int>(s.wavelength_nm.size()) ||
-        image.height != static_cast<int>(s.doses.size()))
-        throw std::runtime_error(fmt::format("{}: {}x{} pixels, but {} describes {} wavelengths "
-                                             "x {} doses",
-                                             table_file.string(), image.width, image.height,
-                                             file.string(), s.wavelength_nm.size(),
-                                             s.doses.size()));
-    const int c_rb = image.channel("R_bottom"), c_rt = image.channel("R_top"),
-              c_r = image.channel("R_total"), c_t = image.channel("T");
-    if (c_rb < 0 || c_rt < 0 || c_r < 0 || c_t < 0)
-        throw std::runtime_error(table_file.string() +
-                                 ": needs channels R_bottom, R_top, R_total and T");
+    const formats::FadeTable table = formats::read_fade_table(ImagePixelReader(), d, dir);
     for (auto* v : {&s.r_total, &s.r_top, &s.t, &s.r_bottom})
-        v->assign(image.height, std::vector<double>(image.width));
-    for (int k = 0; k < image.height; ++k)
-        for (int w = 0; w < image.width; ++w) {
-            s.r_total[k][w] = image.at(w, k, c_r);
-            s.r_top[k][w] = image.at(w, k, c_rt);
-            s.t[k][w] = image.at(w, k, c_t);
-            s.r_bottom[k][w] = image.at(w, k, c_rb);
+        v->assign(table.rows, std::vector<double>(table.columns));
+    for (int k = 0; k < table.rows; ++k)
+        for (int w = 0; w < table.columns; ++w) {
+            const size_t i = static_cast<size_t>(k) * table.columns + w;
+            s.r_total[k][w] = table.r_total[i];
+            s.r_top[k][w] = table.r_top[i];
+            s.t[k][w] = table.t[i];
+            s.r_bottom[k][w] = table.r_bottom[i];
         }
     return s;
 }

@@ -172,7 +172,7 @@ FlattenedStack flatten_stack(const PatinaStackFiles& stack,
         flat.maps.push_back({std::move(name), std::move(channels), std::move(units),
                              std::move(description), is_color, {}});
     };
-    add("diffuse_albedo", {"R", "G", "B"}, "1",
+    add(formats::kDiffuseAlbedoMap, {"R", "G", "B"}, "1",
         "Kubelka-Munk diffuse reflectance of the layers over the base (D&H 1996 §4.1-4.2); "
         "over a metal base without the metal's once-through reflection, which is "
         "interface 0's glossy lobe",
@@ -192,19 +192,19 @@ FlattenedStack flatten_stack(const PatinaStackFiles& stack,
             fmt::format("perceptual GGX roughness (alpha = r^2) of the glossy lobe at {}", where),
             false);
     }
-    add("height", {"height"}, "um",
+    add(formats::kHeightMap, {"height"}, "um",
         "total thickness of the layers over the base in micrometres (D&H 1996 §4.3)", false);
-    add("normal", {"R", "G", "B"}, "1",
+    add(formats::kNormalMap, {"R", "G", "B"}, "1",
         fmt::format("tangent-space normal of the height map, OpenGL convention (+X = +u, +Y = "
                     "+v, green up), encoded n * 0.5 + 0.5; texel {} m, heights x {}",
                     flat.texel_size_m, options.normal_scale),
         false);
-    add("gltf_base_color", {"R", "G", "B"}, "1",
+    add(formats::kGltfBaseColorMap, {"R", "G", "B"}, "1",
         "glTF 2.0 baseColor of the two-lobe reduction: diffuse albedo + the F0 of the "
         "lobes under the coat over a metal base", true);
-    add("gltf_metallic_roughness", {"R", "G", "B"}, "1",
+    add(formats::kGltfMetallicRoughnessMap, {"R", "G", "B"}, "1",
         "glTF 2.0 metallicRoughness texture: R occlusion (1), G roughness, B metallic", false);
-    add("gltf_clearcoat", {"R", "G", "B"}, "1",
+    add(formats::kGltfClearcoatMap, {"R", "G", "B"}, "1",
         "KHR_materials_clearcoat: R clearcoat (exposed layer's specular / 0.04), G clearcoat "
         "roughness, B unused (0)", false);
 
@@ -227,8 +227,8 @@ FlattenedStack flatten_stack(const PatinaStackFiles& stack,
             if (options.only.empty() ||
                 std::find(options.only.begin(), options.only.end(), map.name) !=
                     options.only.end() ||
-                (map.name == "height" &&  // the normal map is made from it
-                 std::find(options.only.begin(), options.only.end(), "normal") !=
+                (map.name == formats::kHeightMap &&  // the normal map is made from it
+                 std::find(options.only.begin(), options.only.end(), formats::kNormalMap) !=
                      options.only.end()))
                 map.tiles[tile].assign(texels * map.channels.size(), 0.0f);
 

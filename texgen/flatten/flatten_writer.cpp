@@ -115,29 +115,17 @@ std::vector<fs::path> write_flattened(const fs::path& out_dir, const FlattenedSt
     }
 
     // What the maps are, for a person or a pipeline reading the folder.
-    toml::table info;
-    info.insert_or_assign("stack", source);
-    info.insert_or_assign("color_space", colorspace);
-    info.insert_or_assign("diffuse", "diffuse_albedo");
-    info.insert_or_assign("height", "height");
-    info.insert_or_assign("normal", "normal");
-    info.insert_or_assign("normal_convention", "tangent space, OpenGL (+Y = +v, green up), "
-                                               "encoded n * 0.5 + 0.5");
-    info.insert_or_assign("texel_size_m", flat.texel_size_m);
-    info.insert_or_assign("normal_scale", options.normal_scale);
-    info.insert_or_assign("two_lobe", "glTF 2.0 metallic-roughness + KHR_materials_clearcoat");
-    info.insert_or_assign("base_color", "gltf_base_color");
-    info.insert_or_assign("metallic_roughness", "gltf_metallic_roughness");
-    info.insert_or_assign("clearcoat", "gltf_clearcoat");
-    toml::array interfaces;
+    formats::FlattenTable info;
+    info.stack = source;
+    info.color_space = colorspace;
+    info.texel_size_m = flat.texel_size_m;
+    info.normal_scale = options.normal_scale;
     for (const FlatMap& map : flat.maps)
         if (map.name.rfind("interface", 0) == 0 && map.name.ends_with("_specular")) {
             const std::string stem = map.name.substr(0, map.name.size() - 9);
-            interfaces.push_back(toml::table{{"specular", map.name},
-                                             {"roughness", stem + "_roughness"}});
+            info.interfaces.push_back({map.name, stem + "_roughness"});
         }
-    info.insert_or_assign("interfaces", std::move(interfaces));
-    root.insert_or_assign("flatten", std::move(info));
+    root.insert_or_assign("flatten", formats::to_toml(info));
 
     std::ostringstream text;
     text << root << "\n";

@@ -2,6 +2,8 @@
 
 #include "formats/stone_volume.h"
 
+#include "core/pixel_io.h"
+
 #include "core/embree_scene.h"
 #include "core/image_io.h"
 #include "core/limits.h"
@@ -164,170 +166,51 @@ WorldVolume resample_to_world(const StoneState& st, const TriangleMesh& mesh, in
     return vol;
 }
 
-namespace {
-
-    void add_metadata(OIIO::ImageSpec& spec, const Metadata& metadata)
-    {
-        for (const auto& [key, value] : metadata) {
-            if (const int* i = std::get_if<int>(&value))
-                spec.attribute(key, *i);
-            else if (const float* f = std::get_if<float>(&value))
-                spec.attribute(key, *f);
-            else
-                spec.attribute(key, std::get<std::string>(value));
-        }
-    }
-
-    /// Write float parts to `path` (every part with part 0's display window), staged in the
-    /// run's output transaction.
-    void write_parts(const fs::path& path, std::vector<OIIO::ImageSpec> specs,
-                     const std::vector<const std::vector<float>*>& pixels, const char* what)
-    {
-        StagedOutput staged(path);
-        const std::string tmp = staged.path().string();
-        auto fail = [&](const std::string& msg) {
-            throw std::runtime_error(fmt::format("cannot write {} '{}': {}", what, path.string(), msg));
-        };
-        for (OIIO::ImageSpec& spec : specs) {
-            spec.full_x = specs[0].full_x;
-            spec.full_y = specs[0].full_y;
-            spec.full_width = specs[0].full_width;
-            spec.full_height = specs[0].full_height;
-        }
-        auto out = OIIO::ImageOutput::create("openexr");
-        if (!out)
-            fail(OIIO::geterror());
-        if (!out->supports("multiimage"))
-            fail("the EXR writer does not support multi-part files");
-        if (!out->open(tmp, static_cast<int>(specs.size()), specs.data()))
-            fail(out->geterror());
-        for (size_t p = 0; p < specs.size(); ++p) {
-            if (p > 0 && !out->open(tmp, specs[p], OIIO::ImageOutput::AppendSubimage))
-                fail(out->geterror());
-            if (!out->write_image(OIIO::TypeDesc::FLOAT, pixels[p]->data()))
-                fail(out->geterror());
-        }
-        if (!out->close())
-            fail(out->geterror());
-        staged.done();
-    }
-
-} // namespace
-
 void write_world_volume(const fs::path& path, const WorldVolume& v, const Metadata& metadata)
 {
-    // The layout is formats/stone_volume.h: channels in their stored order.
-    OIIO::ImageSpec voxels(v.nx, v.ny * v.nz, 4, OIIO::TypeDesc::FLOAT);
-    voxels.channelnames.assign(formats::kVolumeChannels.begin(), formats::kVolumeChannels.end());
-    voxels.attribute("name", "voxels");
-    voxels.attribute("compression", "zip");
-    add_metadata(voxels, metadata);
-    formats::VolumeGrid grid;
-    grid.min = {v.bounds.min.x, v.bounds.min.y, v.bounds.min.z};
-    grid.max = {v.bounds.max.x, v.bounds.max.y, v.bounds.max.z};
-    grid.n = {v.nx, v.ny, v.nz};
-    std::vector<float> pixels(size_t(v.nx) * v.ny * v.nz * 4);
+    // The layout is formats/stone_volume.h's.
+    formats::StoneVolume out;
+    out.grid.min = {v.bounds.min.x, v.bounds.min.y, v.bounds.min.z};
+    out.grid.max = {v.bounds.max.x, v.bounds.max.y, v.bounds.max.z};
+    out.grid.n = {v.nx, v.ny, v.nz};
+    out.voxels.resize(out.grid.voxels() * formats::kVolumeChannels.size());
     for (size_t i = 0; i < v.density.size(); ++i) {
         // Row k * ny + j, column i: exactly the index i + nx (j + ny k).
-        pixels[4 * i + formats::kDensityChannel] = v.density[i];
-        pixels[4 * i + formats::kCrustChannel] = v.crust[i];
-        pixels[4 * i + formats::kIronChannel] = v.iron[i];
-        pixels[4 * i + formats::kSaltChannel] = v.salt[i];
+        float* voxel = &out.voxels[i * formats::kVolumeChannels.size()];
+        voxel[formats::kDensityChannel] = v.density[i];
+        voxel[formats::kCrustChannel] = v.crust[i];
+        voxel[formats::kIronChannel] = v.iron[i];
+        voxel[formats::kSaltChannel] = v.salt[i];
     }
-    const std::vector<float> b = formats::volume_bounds_pixels(grid);
-    OIIO::ImageSpec bounds(3, static_cast<int>(b.size() / 3), 1, OIIO::TypeDesc::FLOAT);
-    bounds.channelnames = {"value"};
-    bounds.attribute("name", "bounds");
-    if (v.decay.empty() && v.moisture.empty()) {
-        write_parts(path, {voxels, bounds}, {&pixels, &b}, "world volume");
-        return;
+    // Part 2: the simulation's own fields, when there are any.
+    if (!v.decay.empty() || !v.moisture.empty()) {
+        out.decay = v.decay.empty() ? std::vector<float>(out.grid.voxels(), 0.0f) : v.decay;
+        out.moisture = v.moisture.empty() ? std::vector<float>(out.grid.voxels(), 0.0f) : v.moisture;
     }
-    // Part 2: the simulation's own fields, in part 0's layout (channels in sorted order).
-    OIIO::ImageSpec fields(v.nx, v.ny * v.nz, 2, OIIO::TypeDesc::FLOAT);
-    fields.channelnames.assign(formats::kFieldChannels.begin(), formats::kFieldChannels.end());
-    fields.attribute("name", "fields");
-    fields.attribute("compression", "zip");
-    std::vector<float> f(size_t(v.nx) * v.ny * v.nz * 2, 0.0f);
-    for (size_t i = 0; i < v.density.size(); ++i) {
-        f[2 * i] = v.decay.empty() ? 0.0f : v.decay[i];
-        f[2 * i + 1] = v.moisture.empty() ? 0.0f : v.moisture[i];
-    }
-    write_parts(path, {voxels, bounds, fields}, {&pixels, &b, &f}, "world volume");
+    write_parts_atomic(path, formats::stone_volume_parts(out), metadata, "world volume");
 }
 
 WorldVolume read_world_volume(const fs::path& path)
 {
-    auto fail = [&](const std::string& msg) {
-        return std::runtime_error(fmt::format("world volume '{}': {}", path.string(), msg));
-    };
-    auto in = OIIO::ImageInput::open(path.string());
-    if (!in)
-        throw fail(OIIO::geterror());
-    int voxels_part = -1, bounds_part = -1, fields_part = -1;
-    for (int sub = 0; in->seek_subimage(sub, 0); ++sub) {
-        const std::string name = in->spec().get_string_attribute("name");
-        if (name == "voxels")
-            voxels_part = sub;
-        else if (name == "bounds")
-            bounds_part = sub;
-        else if (name == "fields")
-            fields_part = sub;
-    }
-    if (voxels_part < 0 || bounds_part < 0)
-        throw fail("needs the parts 'voxels' and 'bounds'");
-    in->seek_subimage(bounds_part, 0);
-    const OIIO::ImageSpec bspec = in->spec();
-    std::vector<float> b(size_t(bspec.width) * bspec.height * bspec.nchannels);
-    if (b.size() > 64 || !in->read_image(bounds_part, 0, 0, bspec.nchannels,
-                                         OIIO::TypeDesc::FLOAT, b.data()))
-        throw fail(b.size() > 64 ? "part 'bounds' is too large" : in->geterror());
-    const formats::VolumeGrid grid = formats::read_volume_bounds(
-        path.string(), bspec.width, bspec.height, bspec.nchannels, b.data());
+    const formats::StoneVolume in = formats::read_stone_volume(ImagePixelReader(), path, true);
+    const formats::VolumeGrid& grid = in.grid;
     WorldVolume v;
     v.bounds = Imath::Box3d(V3d(grid.min[0], grid.min[1], grid.min[2]),
                             V3d(grid.max[0], grid.max[1], grid.max[2]));
     v.nx = grid.n[0];
     v.ny = grid.n[1];
     v.nz = grid.n[2];
-    in->seek_subimage(voxels_part, 0);
-    const OIIO::ImageSpec spec = in->spec();
-    formats::check_voxel_part(path.string(), grid, spec.width, spec.height, spec.nchannels);
-    for (size_t c = 0; c < formats::kVolumeChannels.size(); ++c)
-        if (spec.channelnames[c] != formats::kVolumeChannels[c])
-            throw fail(fmt::format("part 'voxels' has channel '{}' where '{}' belongs",
-                                   spec.channelnames[c], formats::kVolumeChannels[c]));
-    std::vector<float> px(size_t(spec.width) * spec.height * spec.nchannels);
-    if (!in->read_image(voxels_part, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, px.data()))
-        throw fail(in->geterror());
-    formats::check_voxel_values(path.string(), grid, px.data());
-    const size_t n = grid.voxels();
-    std::vector<float>* fields[4] = {&v.crust, &v.density, &v.iron, &v.salt};
-    for (int f = 0; f < 4; ++f) {
-        fields[f]->resize(n);
-        for (size_t i = 0; i < n; ++i)
-            (*fields[f])[i] = px[i * 4 + f];
+    const size_t n = grid.voxels(), k = formats::kVolumeChannels.size();
+    for (auto* field : {&v.crust, &v.density, &v.iron, &v.salt})
+        field->resize(n);
+    for (size_t i = 0; i < n; ++i) {
+        v.crust[i] = in.voxels[i * k + formats::kCrustChannel];
+        v.density[i] = in.voxels[i * k + formats::kDensityChannel];
+        v.iron[i] = in.voxels[i * k + formats::kIronChannel];
+        v.salt[i] = in.voxels[i * k + formats::kSaltChannel];
     }
-    if (fields_part >= 0) {
-        in->seek_subimage(fields_part, 0);
-        const OIIO::ImageSpec fspec = in->spec();
-        if (fspec.width != spec.width || fspec.height != spec.height ||
-            fspec.nchannels != static_cast<int>(formats::kFieldChannels.size()) ||
-            fspec.channelnames[0] != formats::kFieldChannels[0] ||
-            fspec.channelnames[1] != formats::kFieldChannels[1])
-            throw fail(fmt::format("part 'fields' must be {}x{} pixels of channels decay, "
-                                   "moisture", spec.width, spec.height));
-        std::vector<float> fp(n * 2);
-        if (!in->read_image(fields_part, 0, 0, 2, OIIO::TypeDesc::FLOAT, fp.data()))
-            throw fail(in->geterror());
-        v.decay.resize(n);
-        v.moisture.resize(n);
-        for (size_t i = 0; i < n; ++i) {
-            if (!std::isfinite(fp[2 * i]) || !std::isfinite(fp[2 * i + 1]))
-                throw fail(fmt::format("part 'fields': voxel {} is not finite", i));
-            v.decay[i] = fp[2 * i];
-            v.moisture[i] = fp[2 * i + 1];
-        }
-    }
+    v.decay = in.decay;
+    v.moisture = in.moisture;
     return v;
 }
 
@@ -338,15 +221,16 @@ void write_slab_volume(const fs::path& path, const StoneState& st, const Metadat
     std::vector<float> crust, iron, salt;
     output_fractions(st, crust, iron, salt);
     constexpr int kChannels = 7;
-    OIIO::ImageSpec voxels(g.n_t, g.n_t * g.n_d * g.slab_count, kChannels, OIIO::TypeDesc::FLOAT);
-    voxels.channelnames = {"density", "porosity", "moisture", "decay", "crust", "iron", "salt"};
-    voxels.attribute("name", "voxels");
-    voxels.attribute("compression", "zip");
-    voxels.attribute("patina:n_t", g.n_t);
-    voxels.attribute("patina:n_d", g.n_d);
-    voxels.attribute("patina:slabs", g.slab_count);
-    add_metadata(voxels, metadata);
-    std::vector<float> px(size_t(g.n_t) * g.n_t * g.n_d * g.slab_count * kChannels);
+    formats::Pixels voxels;
+    voxels.name = "voxels";
+    voxels.width = g.n_t;
+    voxels.height = g.n_t * g.n_d * g.slab_count;
+    voxels.channels = kChannels;
+    voxels.channel_names = {"density", "porosity", "moisture", "decay", "crust", "iron", "salt"};
+    Metadata header = {{"patina:n_t", g.n_t}, {"patina:n_d", g.n_d}, {"patina:slabs", g.slab_count}};
+    header.insert(header.end(), metadata.begin(), metadata.end());
+    std::vector<float>& px = voxels.values;
+    px.resize(size_t(g.n_t) * g.n_t * g.n_d * g.slab_count * kChannels);
     tbb::parallel_for(0, g.slab_count, [&](int s) {
         for (int k = 0; k < g.n_d; ++k)
             for (int j = 0; j < g.n_t; ++j)
@@ -363,15 +247,18 @@ void write_slab_volume(const fs::path& path, const StoneState& st, const Metadat
                     o[6] = salt[c];
                 }
     });
-    OIIO::ImageSpec corners(8, g.slab_count, 3, OIIO::TypeDesc::FLOAT);
-    corners.channelnames = {"x", "y", "z"};
-    corners.attribute("name", "corners");
-    std::vector<float> cp(size_t(8) * g.slab_count * 3);
+    formats::Pixels corners;
+    corners.name = "corners";
+    corners.width = 8;
+    corners.height = g.slab_count;
+    corners.channels = 3;
+    corners.channel_names = {"x", "y", "z"};
+    corners.values.resize(size_t(8) * g.slab_count * 3);
     for (int s = 0; s < g.slab_count; ++s)
         for (int c = 0; c < 8; ++c)
             for (int a = 0; a < 3; ++a)
-                cp[(size_t(s) * 8 + c) * 3 + a] = float(lat.slabs()[size_t(s)][c][a]);
-    write_parts(path, {voxels, corners}, {&px, &cp}, "slab volume");
+                corners.values[(size_t(s) * 8 + c) * 3 + a] = float(lat.slabs()[size_t(s)][c][a]);
+    write_parts_atomic(path, {voxels, corners}, header, "slab volume");
 }
 
 } // namespace patina::texgen::stone
