@@ -173,15 +173,10 @@ namespace {
     /// Adds a layer of `m`, thickness d, under the composite of the layers above it (its
     /// reflectance from above and below and its transmittance), four lanes from `gp`: KM R,
     /// T (§4.1) and the composite (§4.2), both patina/shading/kubelka_munk.h.
-    void km_composite_below(const CompiledMaterial& m, float d, const GridPos* gp, V4* r_top,
-                            V4* r_bottom, V4* t_above)
+    /// Material `m`, `d` µm thick, under the layers above, at four grid positions.
+    void add_layer(const CompiledMaterial& m, float d, const GridPos* gp, LayersAbove<V4>* above)
     {
-        const KmLayers<V4> layer =
-            km_layer4(grid_eval4(m.absorption, gp), grid_eval4(m.scattering, gp), d);
-        const KmLayers<V4> stack = km_composite<V4>({*r_top, *r_bottom, *t_above}, layer);
-        *r_top = stack.r_top;
-        *r_bottom = stack.r_bottom;
-        *t_above = stack.t;
+        above->add(grid_eval4(m.absorption, gp), grid_eval4(m.scattering, gp), d);
     }
 
     /// eta_of_f0 for four lanes.
@@ -447,14 +442,10 @@ void LayeredModel::setup_thickness(const float* thickness_um, const PatinaWavele
     for (int i = 0; i < count; ++i)
         gp[i] = grid_pos(wl.lambda_nm[i]);
 
-    // The layers above the current depth as one composite, folded from the top down: its
-    // reflectance from above and from below and its transmittance (§4.2), per lane group.
+    // The layers above the current depth as one composite, per lane group, walked from the
+    // top down (patina/shading/layer_stack.h, §4.2-4.3).
     constexpr int kGroups = PATINA_MAX_WAVELENGTHS / kLanes;
-    V4 r_top[kGroups], r_bottom[kGroups], t_above[kGroups];
-    for (int g = 0; g < kGroups; ++g) {
-        r_top[g] = r_bottom[g] = splat(0.0f);
-        t_above[g] = splat(1.0f);
-    }
+    LayersAbove<V4> above_layers[kGroups];
     s->interfaces = 0;
     s->layers = 0;
     const CompiledMaterial* above = nullptr;
@@ -464,11 +455,11 @@ void LayeredModel::setup_thickness(const float* thickness_um, const PatinaWavele
             continue;
         const CompiledMaterial& m = *layers_[l];
         // KM R, T of this layer (§4.1) composited under the layers above (§4.2), below.
-        // Two adjacent layers of one material are one layer: no interface between them.
-        if (&m == above) {
+        // A layer of the material above continues it: no interface between them.
+        if (!has_interface(&m, above)) {
             s->thickness_um[s->layers - 1] += d;
             for (int g = 0; g < groups; ++g)
-                km_composite_below(m, d, &gp[kLanes * g], &r_top[g], &r_bottom[g], &t_above[g]);
+                add_layer(m, d, &gp[kLanes * g], &above_layers[g]);
             continue;
         }
         above = &m;
@@ -476,11 +467,11 @@ void LayeredModel::setup_thickness(const float* thickness_um, const PatinaWavele
         // specular colour times T_above² (§4.3).
         Interface& lobe = s->lobe[s->interfaces++];
         lobe.material = &m;
-        lobe.fade = std::min(1.0f, d / kInterfaceFadeUm);
+        lobe.fade = interface_fade(d);
         lobe.coupled = true;
         for (int g = 0; g < groups; ++g) {
             const int o = kLanes * g;
-            store4(&lobe.attenuation[o], lobe.fade * t_above[g] * t_above[g]);
+            store4(&lobe.attenuation[o], above_layers[g].attenuation(lobe.fade));
             store4(&lobe.f0[o], grid_eval4(m.specular, &gp[o]));
         }
         const Interface* prev = s->interfaces > 1 ? &s->lobe[s->interfaces - 2] : nullptr;
@@ -502,7 +493,7 @@ void LayeredModel::setup_thickness(const float* thickness_um, const PatinaWavele
         s->thickness_um[s->layers] = d;
         s->layer_material[s->layers++] = &m;
         for (int g = 0; g < groups; ++g)
-            km_composite_below(m, d, &gp[kLanes * g], &r_top[g], &r_bottom[g], &t_above[g]);
+            add_layer(m, d, &gp[kLanes * g], &above_layers[g]);
     }
     // The base's own surface: a conductor (n, k) or a dielectric lobe (specular).
     const CompiledMaterial& b = *base_;
@@ -513,8 +504,7 @@ void LayeredModel::setup_thickness(const float* thickness_um, const PatinaWavele
     s->base = &b;
     for (int g = 0; g < groups; ++g) {
         const int o = kLanes * g;
-        const V4 t = t_above[g];
-        store4(&lobe.attenuation[o], t * t);
+        store4(&lobe.attenuation[o], above_layers[g].attenuation());
         const V4 r_base = grid_eval4(b.base_reflectance, &gp[o]);
         if (b.metal) {
             store4(&lobe.f0[o], grid_eval4(b.eta, &gp[o]));
@@ -525,14 +515,9 @@ void LayeredModel::setup_thickness(const float* thickness_um, const PatinaWavele
             store4(&lobe.f0[o], f0);
             store4(&lobe.eta[o], eta_of_f0_4(f0));
         }
-        // The stack over the opaque base (§4.2, the base a layer with T = 0).
-        const V4 denom = 1.0f - r_bottom[g] * r_base;
-        V4 r = denom > splat(0.0f) ? r_top[g] + t * t * r_base / denom : splat(1.0f);
-        // A metal's direct reflection is its glossy lobe: the diffuse part keeps only the
-        // light the layers scattered (zero for a bare metal).
-        if (b.metal)
-            r -= t * t * r_base;
-        store4(&s->diffuse[o], clamp4(r, 0.0f, 1.0f));
+        // The stack over the opaque base (§4.2); a metal's direct reflection is its glossy
+        // lobe, so the diffuse part keeps only the light the layers scattered.
+        store4(&s->diffuse[o], clamp4(above_layers[g].diffuse_over(r_base, b.metal), 0.0f, 1.0f));
     }
     for (int i = count; i < PATINA_MAX_WAVELENGTHS; ++i)
         s->diffuse[i] = 0.0f;

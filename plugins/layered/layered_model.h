@@ -14,6 +14,7 @@
 #include "stack_file.h"
 
 #include <patina/abi.h>
+#include <patina/shading/layer_stack.h>
 #include <patina/shading/microfacet.h>
 #include <patina/shading/spectral.h>
 
@@ -42,10 +43,6 @@ inline constexpr int kGaussNodes = 8;
 /// below kF0MinSqrt E is scaled down linearly in x to 0 at F0 = 0.
 inline constexpr float kF0MinSqrt = 0.05f;
 inline constexpr float kF0MaxSqrt = 0.99f;
-/// A layer thinner than this (µm) fades its interface in linearly: a film much thinner than a
-/// wavelength does not act as a separate reflecting surface, and a filtered coverage edge
-/// of a thickness map shows no sudden gloss.
-inline constexpr float kInterfaceFadeUm = 0.05f;
 
 enum class Model { kubelka_munk, random_walk };
 
@@ -83,7 +80,7 @@ struct GridPos {
 /// One glossy lobe of a shading point, from the top interface down.
 struct Interface {
     const CompiledMaterial* material = nullptr;
-    float fade = 1.0f;          ///< kInterfaceFadeUm fade-in of a thin layer
+    float fade = 1.0f;          ///< shading::interface_fade of its layer
     bool coupled = true;        ///< its reflection is taken out of what passes below it
     SpectralArray attenuation;  ///< fade · T_above², T_above the KM transmittance above (§4.3)
     SpectralArray f0;           ///< normal reflectance F0 (dielectric) or n (metal)

@@ -1,6 +1,6 @@
 #include "texgen/flatten/flat_texel.h"
 
-#include <patina/shading/kubelka_munk.h>
+#include <patina/shading/layer_stack.h>
 
 #include <algorithm>
 #include <cmath>
@@ -19,39 +19,39 @@ FlatTexel flatten_texel(const PatinaMaterial& base, std::span<const PatinaMateri
     for (size_t i = 0; i < n; ++i)
         out.height_um += thickness_um[i];
 
-    // One pass from the top down, the three channels in the lanes of one register (§4.2,
-    // patina/shading/kubelka_munk.h): the layers above each interface as one composite,
-    // its reflectance from both sides and its transmittance, so that interface k's
-    // attenuation and, at the end, the diffuse over the base both come from the same
-    // composites, in O(n).
+    // One walk from the top down, the three channels in the lanes of one register
+    // (patina/shading/layer_stack.h, §4.2-4.3), as the layered_km shader walks its
+    // wavelengths: interface k (the top of layer k - 1) is seen through the layers above it;
+    // a layer of the material above it continues that layer and has no interface.
     using shading::simd::V4;
     auto lanes = [](const Imath::V3f& v) { return V4{v.x, v.y, v.z, 0.0f}; };
-    std::vector<V4> t_above(n + 1);
-    shading::KmLayers<V4> above;  // nothing above the top interface
-    t_above[n] = above.t;
+    shading::LayersAbove<V4> above;
+    const PatinaMaterial* material_above = nullptr;
     for (size_t k = n; k-- > 0;) {
-        // KM R and T of layer k at its thickness (§4.1), added under the layers above.
-        const shading::KmLayers<V4> layer = shading::km_layer4(
-            lanes(layers[k]->absorption), lanes(layers[k]->scattering), thickness_um[k]);
-        above = shading::km_composite(above, layer);
-        t_above[k] = above.t;
+        const float d = thickness_um[k];
+        const PatinaMaterial& m = *layers[k];
+        InterfaceLobe& lobe = out.interfaces[k + 1];
+        lobe.roughness = m.roughness;
+        if (d > 0.0f && shading::has_interface(&m, material_above)) {
+            // §4.3: the specular colour "multiplied twice by diffuse transmittance of the
+            // intervening layers calculated using the KM equations".
+            const V4 attenuation = above.attenuation(shading::interface_fade(d));
+            for (int c = 0; c < 3; ++c)
+                lobe.specular[c] = m.specular[c] * attenuation[c];
+        }
+        if (d > 0.0f)
+            material_above = &m;
+        // KM R and T of layer k (§4.1), added under the layers above.
+        above.add(lanes(m.absorption), lanes(m.scattering), d);
     }
-    for (size_t k = 0; k <= n; ++k) {
-        const float fade =
-            k == 0 ? 1.0f : std::clamp(thickness_um[k - 1] / kInterfaceFadeUm, 0.0f, 1.0f);
-        const PatinaMaterial& below = k == 0 ? base : *layers[k - 1];
-        // §4.3: the specular colour "multiplied twice by diffuse transmittance of the
-        // intervening layers calculated using the KM equations".
-        const V4 attenuation = t_above[k] * t_above[k];
-        for (int c = 0; c < 3; ++c)
-            out.interfaces[k].specular[c] = fade * below.specular[c] * attenuation[c];
-        out.interfaces[k].roughness = below.roughness;
-    }
-    // Diffuse: the whole stack over the opaque base (§4.2, the base a layer with T = 0).
-    const V4 rho = lanes(base.color);
-    V4 diffuse = shading::km_reflectance_over(above, rho);
-    if (base.is_metal)  // the metal's own once-through reflection is the base lobe
-        diffuse = diffuse - above.t * above.t * rho;
+    // The base's own interface, under every layer.
+    const V4 base_attenuation = above.attenuation();
+    for (int c = 0; c < 3; ++c)
+        out.interfaces[0].specular[c] = base.specular[c] * base_attenuation[c];
+    out.interfaces[0].roughness = base.roughness;
+    // Diffuse: the whole stack over the opaque base (§4.2); a metal's once-through
+    // reflection is the base lobe.
+    const V4 diffuse = above.diffuse_over(lanes(base.color), base.is_metal);
     for (int c = 0; c < 3; ++c)
         out.diffuse[c] = std::max(0.0f, diffuse[c]);
 

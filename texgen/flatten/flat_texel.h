@@ -21,8 +21,9 @@ namespace patina::texgen {
 struct InterfaceLobe {
     /// The material's specular colour times the squared KM diffuse transmittance of the
     /// layers above the interface (§4.3: "multiplied twice by diffuse transmittance of the
-    /// intervening layers"), faded in over the first kInterfaceFadeUm of the layer under it
-    /// (0 where that layer is absent).
+    /// intervening layers"), faded in over the first shading::kInterfaceFadeUm of the layer
+    /// under it (patina/shading/layer_stack.h); 0 where that layer is absent or continues
+    /// the layer above it (the same material: no interface between them).
     Imath::V3f specular{0.0f};
     float roughness = 0.5f;  ///< the material's roughness (constant per interface)
 };
@@ -45,11 +46,6 @@ struct FlatTexel {
     float height_um = 0.0f;                 ///< total thickness over the base (§4.3, last ¶)
     TwoLobe two_lobe;
 };
-
-/// A layer thinner than this (µm) fades its interface's lobe in linearly, as the layered_km
-/// plugin does (plugins/layered/layered_model.h): a film far thinner than a wavelength is no
-/// separate reflecting surface, and a filtered coverage edge shows no sudden gloss.
-inline constexpr float kInterfaceFadeUm = 0.05f;
 
 /// Normal-incidence reflectance of glTF's clearcoat (IOR 1.5: ((1.5 - 1) / (1.5 + 1))² =
 /// 0.04, KHR_materials_clearcoat): the coat weight is the exposed layer's specular over it.

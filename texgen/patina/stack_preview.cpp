@@ -1,7 +1,8 @@
 #include "texgen/patina/stack_preview.h"
 
 #include "core/image_io.h"
-#include "core/kubelka_munk.h"
+
+#include <patina/shading/layer_stack.h>
 
 #include <tbb/parallel_for.h>
 
@@ -18,24 +19,22 @@ std::vector<Imath::V3f> stack_diffuse_color(const PatinaMaterial& base,
             throw std::invalid_argument("stack_diffuse_color: every layer needs a material "
                                         "and one thickness per texel");
     std::vector<Imath::V3f> out(texels);
+    using shading::simd::V4;
+    auto lanes = [](const Imath::V3f& v) { return V4{v.x, v.y, v.z, 0.0f}; };
     tbb::parallel_for(tbb::blocked_range<size_t>(0, texels, 4096),
                       [&](const tbb::blocked_range<size_t>& range) {
         for (size_t i = range.begin(); i != range.end(); ++i) {
-            Imath::V3f rgb;
-            for (int c = 0; c < 3; ++c) {
-                // Fold from the base up: each layer over what lies below it (§4.2).
-                KmLayer below{base.color[c], 0.0f};
-                for (const PreviewLayer& layer : bottom_to_top) {
-                    const float d = layer.thickness_um[i];
-                    if (!(d > 0.0f))
-                        continue;
-                    const KmLayer top = km_layer(layer.material->absorption[c],
-                                                 layer.material->scattering[c], d);
-                    below = km_composite(top, below);
-                }
-                rgb[c] = below.R;
+            // The stack's model (patina/shading/layer_stack.h), walked from the top down in
+            // linear Rec.709 lanes; the whole reflectance over the base, a metal's included:
+            // a preview shows what the surface looks like.
+            shading::LayersAbove<V4> above;
+            for (size_t l = bottom_to_top.size(); l-- > 0;) {
+                const PreviewLayer& layer = bottom_to_top[l];
+                above.add(lanes(layer.material->absorption), lanes(layer.material->scattering),
+                          layer.thickness_um[i]);
             }
-            out[i] = rgb;
+            const V4 r = above.diffuse_over(lanes(base.color), false);
+            out[i] = Imath::V3f(r[0], r[1], r[2]);
         }
     });
     return out;

@@ -2,6 +2,7 @@
 #include "flatten_test_materials.h"
 
 #include "texgen/flatten/flat_texel.h"
+#include "texgen/patina/stack_preview.h"
 
 #include <gtest/gtest.h>
 
@@ -140,6 +141,41 @@ TEST(FlatTexel, TwoHalfLayersEqualOneLayer)
     for (int c = 0; c < 3; ++c) {
         EXPECT_NEAR(one.diffuse[c], two.diffuse[c], 2e-6);
         EXPECT_NEAR(one.interfaces[0].specular[c], two.interfaces[0].specular[c], 1e-6);
+    }
+}
+
+TEST(FlatTexel, ALayerOfTheMaterialAboveItHasNoInterface)
+{
+    // One material has no boundary with itself (patina/shading/layer_stack.h), as in
+    // layered_km: 1.5 + 1.5 um of green shows the lobe of its top only, and the base's
+    // lobe sees the same layers as under one 3 um layer.
+    const PatinaMaterial stone = stone_material(), green = green_material();
+    const FlatTexel one = flatten(stone, {&green}, {3.0f});
+    const FlatTexel two = flatten(stone, {&green, &green}, {1.5f, 1.5f});
+    for (int c = 0; c < 3; ++c) {
+        EXPECT_EQ(two.interfaces[1].specular[c], 0.0f);
+        EXPECT_EQ(two.interfaces[2].specular[c], green.specular[c]);
+        EXPECT_EQ(one.interfaces[1].specular[c], green.specular[c]);
+    }
+    // An absent layer between two of one material does not separate them.
+    const FlatTexel gap = flatten(stone, {&green, &stone, &green}, {1.5f, 0.0f, 1.5f});
+    EXPECT_EQ(gap.interfaces[1].specular.x, 0.0f);
+    EXPECT_EQ(gap.interfaces[2].specular.x, 0.0f);
+}
+
+TEST(FlatTexel, FlattenAndThePreviewComputeOneModel)
+{
+    // The stack model has one home (patina/shading/layer_stack.h): the preview's colour is
+    // flatten's diffuse albedo over a dielectric base, bit for bit.
+    const PatinaMaterial stone = stone_material(), green = green_material(),
+                         brown = brown_material();
+    const std::vector<float> brown_d{0.0f, 0.4f, 2.0f, 0.02f}, green_d{1.2f, 0.0f, 0.7f, 5.0f};
+    const std::vector<PreviewLayer> preview{{&brown, brown_d}, {&green, green_d}};
+    const std::vector<Imath::V3f> colours = stack_diffuse_color(stone, preview, brown_d.size());
+    for (size_t i = 0; i < brown_d.size(); ++i) {
+        const FlatTexel f = flatten(stone, {&brown, &green}, {brown_d[i], green_d[i]});
+        for (int c = 0; c < 3; ++c)
+            EXPECT_EQ(colours[i][c], f.diffuse[c]) << "texel " << i << " channel " << c;
     }
 }
 
