@@ -1,5 +1,7 @@
 #include "farm/job_folder.h"
 
+#include "formats/toml_location.h"
+
 #include "farm/processes.h"
 
 #include "core/image_io.h"
@@ -198,14 +200,7 @@ Submitted write_and_submit_job(const JobShape& job, const std::vector<std::strin
 
 toml::table parse_job_file(const fs::path& folder)
 {
-    const fs::path file = folder / "job.toml";
-    try {
-        return toml::parse_file(file.string());
-    } catch (const toml::parse_error& e) {
-        throw std::runtime_error(fmt::format("{}:{}:{}: {}", file.string(),
-                                             e.source().begin.line, e.source().begin.column,
-                                             e.description()));
-    }
+    return formats::parse_toml_file(folder / "job.toml");
 }
 
 Submitted submit_job(const JobShape& job, const std::vector<size_t>& tasks,

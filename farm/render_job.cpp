@@ -1,5 +1,7 @@
 #include "farm/render_job.h"
 
+#include "formats/toml_location.h"
+
 #include "farm/job_folder.h"
 
 #include "render/renderer.h"
@@ -7,6 +9,7 @@
 #include <fmt/format.h>
 #include <toml++/toml.h>
 
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -107,6 +110,22 @@ std::string render_job_text(const RenderJob& job)
     return text.str();
 }
 
+namespace {
+
+    /// The value of `key` in `table`, of type T; a missing or mistyped value names its line.
+    template <class T>
+    T need(const fs::path& file, const toml::table& table, const char* key, const std::string& where)
+    {
+        const toml::node* node = table.get(key);
+        const std::optional<T> value = node ? node->value_exact<T>() : std::nullopt;
+        if (!value)
+            formats::toml_fail(file, node ? node : nullptr,
+                               where + key + (node ? ": wrong type" : ": missing"));
+        return *value;
+    }
+
+}  // namespace
+
 RenderJob read_render_job(const fs::path& folder)
 {
     const fs::path file = folder / "job.toml";
@@ -117,30 +136,37 @@ RenderJob read_render_job(const fs::path& folder)
     const toml::table* j = root["job"].as_table();
     if (!j || (*j)["kind"].value_or(std::string()) != "render")
         throw fail("no [job] of kind \"render\"");
+    formats::toml_check_keys(file, root, "", {"job", "task", "merge"});
+    formats::toml_check_keys(file, *j, "job.",
+                             {"kind", "scene", "frames", "first_frame", "last_frame", "tiles",
+                              "sample_splits", "spp", "render", "farm", "plugins"});
     RenderJob job;
     job.folder = fs::absolute(folder).lexically_normal();
-    job.scene = (*j)["scene"].value_or(std::string());
-    job.frames = (*j)["frames"].value_or(false);
-    job.first_frame = (*j)["first_frame"].value_or(0);
-    job.last_frame = (*j)["last_frame"].value_or(0);
-    job.tiles = (*j)["tiles"].value_or(1);
-    job.sample_splits = (*j)["sample_splits"].value_or(1);
-    job.spp = (*j)["spp"].value_or(0);
-    job.render = (*j)["render"].value_or(std::string());
-    job.farm = (*j)["farm"].value_or(std::string());
-    job.plugins = (*j)["plugins"].value_or(std::string());
+    job.scene = need<std::string>(file, *j, "scene", "job.");
+    job.frames = need<bool>(file, *j, "frames", "job.");
+    job.first_frame = static_cast<int>(need<int64_t>(file, *j, "first_frame", "job."));
+    job.last_frame = static_cast<int>(need<int64_t>(file, *j, "last_frame", "job."));
+    job.tiles = static_cast<int>(need<int64_t>(file, *j, "tiles", "job."));
+    job.sample_splits = static_cast<int>(need<int64_t>(file, *j, "sample_splits", "job."));
+    job.spp = static_cast<int>(need<int64_t>(file, *j, "spp", "job."));
+    job.render = need<std::string>(file, *j, "render", "job.");
+    job.farm = need<std::string>(file, *j, "farm", "job.");
+    job.plugins = need<std::string>(file, *j, "plugins", "job.");
     if (const toml::array* tasks = root["task"].as_array())
         for (const toml::node& n : *tasks) {
             const toml::table* t = n.as_table();
             if (!t)
                 throw fail("a [[task]] that is not a table");
+            const std::string where = fmt::format("task {}: ", job.tasks.size());
+            formats::toml_check_keys(file, *t, where,
+                                     {"frame", "tile", "sample_begin", "sample_end", "scene", "output"});
             RenderTask task;
-            task.frame = (*t)["frame"].value_or(0);
-            task.tile = (*t)["tile"].value_or(0);
-            task.sample_begin = (*t)["sample_begin"].value_or(0);
-            task.sample_end = (*t)["sample_end"].value_or(0);
-            task.scene = (*t)["scene"].value_or(std::string());
-            task.output = (*t)["output"].value_or(std::string());
+            task.frame = static_cast<int>(need<int64_t>(file, *t, "frame", where));
+            task.tile = static_cast<int>(need<int64_t>(file, *t, "tile", where));
+            task.sample_begin = static_cast<int>(need<int64_t>(file, *t, "sample_begin", where));
+            task.sample_end = static_cast<int>(need<int64_t>(file, *t, "sample_end", where));
+            task.scene = need<std::string>(file, *t, "scene", where);
+            task.output = need<std::string>(file, *t, "output", where);
             job.tasks.push_back(std::move(task));
         }
     if (const toml::array* merges = root["merge"].as_array())
@@ -148,12 +174,19 @@ RenderJob read_render_job(const fs::path& folder)
             const toml::table* m = n.as_table();
             if (!m)
                 throw fail("a [[merge]] that is not a table");
+            const std::string where = fmt::format("merge {}: ", job.merges.size());
+            formats::toml_check_keys(file, *m, where, {"frame", "output", "parts"});
             FrameMerge merge;
-            merge.frame = (*m)["frame"].value_or(0);
-            merge.output = (*m)["output"].value_or(std::string());
-            if (const toml::array* parts = (*m)["parts"].as_array())
-                for (const toml::node& p : *parts)
-                    merge.parts.emplace_back(p.value_or(std::string()));
+            merge.frame = static_cast<int>(need<int64_t>(file, *m, "frame", where));
+            merge.output = need<std::string>(file, *m, "output", where);
+            const toml::array* parts = (*m)["parts"].as_array();
+            if (!parts)
+                formats::toml_fail(file, m->get("parts"), where + "parts: an array of files is required");
+            for (const toml::node& p : *parts) {
+                if (!p.is_string())
+                    formats::toml_fail(file, &p, where + "parts: not a string");
+                merge.parts.emplace_back(**p.as_string());
+            }
             job.merges.push_back(std::move(merge));
         }
     if (job.tasks.empty() || job.merges.empty())

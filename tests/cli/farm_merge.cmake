@@ -107,3 +107,11 @@ expect_failure("was rendered with the plugins" bash "${WORK_DIR}/job/run_local.s
 if(EXISTS "${WORK_DIR}/job/frames/frame.0000.exr" OR EXISTS "${WORK_DIR}/bad8.exr")
   message(FATAL_ERROR "a merge of parts with other plugins wrote its output")
 endif()
+# job.toml is read strictly: a key misspelt by hand is named with its line, not defaulted.
+string(REPLACE "sample_splits = " "sample_split = " misspelt "${manifest}")
+file(WRITE "${WORK_DIR}/job/job.toml" "${misspelt}")
+expect_failure("job.sample_split: unknown key" "${PATINA_FARM}" status "${WORK_DIR}/job")
+string(REPLACE "tiles = 2" "tiles = 'two'" mistyped "${manifest}")
+file(WRITE "${WORK_DIR}/job/job.toml" "${mistyped}")
+expect_failure("job.tiles: wrong type" "${PATINA_FARM}" status "${WORK_DIR}/job")
+file(WRITE "${WORK_DIR}/job/job.toml" "${manifest}")

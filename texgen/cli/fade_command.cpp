@@ -7,6 +7,7 @@
 #include "core/cancel.h"
 #include "core/image_io.h"
 #include "core/limits.h"
+#include "core/number_text.h"
 #include "core/output_transaction.h"
 #include "core/progress.h"
 #include "texgen/fade/depth_profiles.h"
@@ -315,18 +316,12 @@ void run_fade(const FadeOptions& o)
 /// --dose: one dose in J/m^2.
 double parse_dose(const std::string& text)
 {
-    size_t used = 0;
-    double dose = 0.0;
-    try {
-        dose = std::stod(text, &used);
-    } catch (const std::exception&) {
-        used = 0;
-    }
-    if (used == 0 || used != text.size())
+    const std::optional<double> dose = parse_double(text);
+    if (!dose)
         throw std::runtime_error(fmt::format(
             "--dose '{}' is not a number of J/m^2{}", text,
             text.find(',') != std::string::npos ? " (a list is for a farm's series: --plan)" : ""));
-    return dose;
+    return *dose;
 }
 
 /// The tasks of a farm (--plan): a stack per value of the list given to --duration or

@@ -8,6 +8,7 @@
 #include "core/cancel.h"
 #include "core/color_management.h"
 #include "core/limits.h"
+#include "core/number_text.h"
 #include "core/output_transaction.h"
 #include "core/progress.h"
 #include "texgen/patina/interpreter.h"
@@ -240,16 +241,11 @@ std::vector<double> parse_times(const std::string& text)
     std::string item;
     while (std::getline(in, item, ',')) {
         check_limit("--times", static_cast<double>(times.size() + 1), kMaxTimeSteps, "times");
-        size_t used = 0;
-        double v = 0;
-        try {
-            v = std::stod(item, &used);
-        } catch (const std::exception&) {
-            used = 0;
-        }
-        if (used == 0 || used != item.size() || !std::isfinite(v) || v < 0)
+        const std::optional<double> time = parse_double(item);
+        if (!time || *time < 0)
             throw std::runtime_error(fmt::format("--times: '{}' is not a time in years >= 0 "
                                                  "(expected e.g. 0,6,12,18,24,30)", item));
+        const double v = *time;
         if (!times.empty() && !(v > times.back()))
             throw std::runtime_error(fmt::format("--times must ascend ({} after {})", v,
                                                  times.back()));

@@ -247,13 +247,7 @@ std::vector<DepositSource> load_sources_file(const fs::path& path)
     std::error_code ec;
     if (!fs::is_regular_file(path, ec))
         throw std::runtime_error(fmt::format("sources file '{}' does not exist", path.string()));
-    toml::table root;
-    try {
-        root = toml::parse_file(path.string());
-    } catch (const toml::parse_error& e) {
-        throw std::runtime_error(
-            fmt::format("{}: {}", formats::toml_where(path, e.source().begin), e.description()));
-    }
+    const toml::table root = formats::parse_toml_file(path);
     for (auto&& [key, node] : root)
         if (key.str() != "source")
             throw std::runtime_error(fmt::format("{}: unknown key '{}' (a sources file holds "

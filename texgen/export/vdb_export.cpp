@@ -1,5 +1,7 @@
 #include "texgen/export/vdb_export.h"
 
+#include "formats/toml_location.h"
+
 #include "core/cancel.h"
 #include "core/image_io.h"
 #include "core/output_transaction.h"
@@ -132,14 +134,7 @@ namespace {
 VdbOptions read_medium_options(const fs::path& scene, const std::string& name,
                                const ColorManager& colors)
 {
-    toml::table root;
-    try {
-        root = toml::parse_file(scene.string());
-    } catch (const toml::parse_error& e) {
-        throw std::runtime_error(fmt::format("{}:{}:{}: {}", scene.string(),
-                                             e.source().begin.line, e.source().begin.column,
-                                             e.description()));
-    }
+    const toml::table root = formats::parse_toml_file(scene);
     const toml::table* medium = nullptr;
     if (const toml::array* shaders = root["shader"].as_array())
         for (const toml::node& node : *shaders) {
