@@ -6,7 +6,9 @@
 #   diff before.txt after.txt                            (no output: bitwise the same)
 # Images (EXR, PNG, JPEG, TIFF) are hashed by their pixels (oiiotool --hash: SHA-1 of the
 # pixel data), so a header's software name or a timestamp does not count; OpenVDB files by
-# their bytes with the random UUID every file gets blanked; every other file by its bytes.
+# their bytes with the random UUID every file gets blanked; TOML files by their content
+# (parsed, keys sorted: a comment or the order of tables is no result); every other file
+# by its bytes.
 # Logs and the files that carry a time of day or a run time by design are left out, each
 # named below with why.
 set -euo pipefail
@@ -37,6 +39,11 @@ import hashlib, re, sys
 data = re.sub(rb"[0-9a-f]{8}-[0-9a-f]{4}-[0-9a-f]{4}-[0-9a-f]{4}-[0-9a-f]{12}", b"0" * 36,
               open(sys.argv[1], "rb").read())
 print(hashlib.sha256(data).hexdigest())' "$file")" ;;
+        *.toml)
+            echo "$file toml $(python3 -c '
+import hashlib, json, sys, tomllib
+content = json.dumps(tomllib.load(open(sys.argv[1], "rb")), sort_keys=True, default=str)
+print(hashlib.sha256(content.encode()).hexdigest())' "$file")" ;;
         *)
             echo "$file bytes $(sha256sum "$file" | cut -d' ' -f1)" ;;
     esac

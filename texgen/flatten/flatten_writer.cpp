@@ -127,9 +127,7 @@ std::vector<fs::path> write_flattened(const fs::path& out_dir, const FlattenedSt
         }
     root.insert_or_assign("flatten", formats::to_toml(info));
 
-    std::ostringstream text;
-    text << root << "\n";
-    write_file_atomic(manifest_path(out_dir), {text.str()}, "manifest");
+    write_manifest(manifest_path(out_dir), root);
     written.push_back(manifest_path(out_dir));
     return written;
 }

@@ -65,7 +65,7 @@ namespace {
                              const ColorManager& colors)
     {
         const fs::path path = manifest_path(out_dir);
-        toml::table root = toml::parse_file(output_to_read(path).string());  // as just recorded
+        toml::table root = read_manifest_for_update(path);  // as just recorded
         formats::PatinaTable patina;
         patina.script = options.script;
         patina.time_years = step.time_years;
@@ -97,14 +97,7 @@ namespace {
         for (const ResultLayer& layer : step.layers)
             add_material(*layer.material);
         root.insert_or_assign("patina", formats::to_toml(patina));
-        std::ostringstream text;
-        text << "# Written by patina-texgen. [patina] lists the layers bottom to top (the base,\n"
-                "# infinitely thick, first); thicknesses are in micrometres.\n"
-                "# [patina.materials] gives the optics of every material the stack uses per\n"
-                "# wavelength (nm): KM absorption K and scattering S per micrometre, the\n"
-                "# specular colour and roughness of its top surface, a metal's n and k.\n"
-             << root << "\n";
-        write_file_atomic(path, {text.str()}, "manifest");
+        write_manifest(path, root);
     }
 
 }  // namespace

@@ -195,21 +195,31 @@ void record_in_manifest(const fs::path& out_dir, const MapDescription& map,
         root.insert_or_assign("maps", toml::table{});
     root["maps"].as_table()->insert_or_assign(map.name, formats::to_toml(entry));
 
+    throw_if_cancelled();
+    write_manifest(path, root);
+}
+
+void write_manifest(const fs::path& path, const toml::table& root)
+{
     std::ostringstream text;
-    text << "# Texture stack written by patina-texgen: every map of this folder, its channels,\n"
-            "# units and colour space. Maps are data (colour space raw), never colour.\n";
+    text << "# Texture stack written by patina-texgen (docs/file-formats.md): every map of this\n"
+            "# folder, its channels, units and colour space; maps are data (colour space raw),\n"
+            "# never colour. [patina] lists a grown stack's layers bottom to top (the base,\n"
+            "# infinitely thick, first; thicknesses in micrometres) and [patina.materials] the\n"
+            "# optics of every material it uses per wavelength (nm): KM absorption K and\n"
+            "# scattering S per micrometre, the specular colour and roughness of its top\n"
+            "# surface, a metal's n and k. [flatten] says what flattened maps are.\n";
     // [stack] first for the reader (toml++ sorts keys). Only when every other top-level entry
     // is a table: a bare key printed after [stack] would move into it.
     toml::table rest = root;
     rest.erase("stack");
-    bool only_tables = true;
+    bool only_tables = root["stack"].is_table();
     for (const auto& [key, node] : rest)
         only_tables = only_tables && node.is_table();
     if (only_tables)
-        text << toml::table{{"stack", stack}} << "\n\n" << rest << "\n";
+        text << toml::table{{"stack", *root["stack"].as_table()}} << "\n\n" << rest << "\n";
     else
         text << root << "\n";
-    throw_if_cancelled();
     write_file_atomic(path, {text.str()}, "manifest");
 }
 
@@ -242,11 +252,8 @@ std::vector<std::string> forget_maps_of(const fs::path& out_dir, const std::stri
             changed = true;
         }
     }
-    if (changed) {
-        std::ostringstream text;
-        text << root << "\n";
-        write_file_atomic(path, {text.str()}, "manifest");
-    }
+    if (changed)
+        write_manifest(path, root);
     return files;
 }
 

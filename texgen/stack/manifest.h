@@ -47,6 +47,12 @@ std::string map_file_pattern(const std::string& name);
 /// rewriting it would lose or misread other entries.
 toml::table read_manifest_for_update(const std::filesystem::path& path);
 
+/// Write `root` as the manifest at `path` (staged in the run's output transaction): the one
+/// serialization of stack.toml every writer uses (the bakers' maps, patina's [patina],
+/// flatten's [flatten]): a comment saying what the file is, `[stack]` first, then the rest
+/// in toml++'s order.
+void write_manifest(const std::filesystem::path& path, const toml::table& root);
+
 /// Read and check `<out_dir>/stack.toml` as record_in_manifest would, and reserve it in the
 /// current output transaction: a manifest that cannot be updated fails before the bake.
 void check_manifest_can_be_updated(const std::filesystem::path& out_dir);
