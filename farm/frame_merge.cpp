@@ -153,7 +153,7 @@ MergeResult merge_render_parts(const std::vector<fs::path>& files, const fs::pat
                     out[c] = static_cast<float>(sum[c] / total);
         }
 
-    // The first part's header with the merged sample range (formats/render_part.h), then
+    // The first part's header with the merged sample range (formats/render_part/render_part.h), then
     // any other patina:* attribute of the first part.
     formats::RenderHeader header = first.header;
     header.spp = total;

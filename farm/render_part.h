@@ -4,7 +4,7 @@
 #pragma once
 
 #include "core/image_io.h"
-#include "formats/render_part.h"
+#include "formats/render_part/render_part.h"
 
 #include <OpenImageIO/typedesc.h>
 
@@ -16,7 +16,7 @@ namespace patina::farm {
 
 struct RenderPart {
     std::filesystem::path file;
-    formats::RenderHeader header;    ///< its render header (formats/render_part.h)
+    formats::RenderHeader header;    ///< its render header (formats/render_part/render_part.h)
     int full_width = 0, full_height = 0;   ///< the frame (the display window)
     int x = 0, y = 0, width = 0, height = 0;  ///< the pixels it holds (the data window)
     std::vector<std::string> channels;  ///< in the file's order

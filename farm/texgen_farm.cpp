@@ -4,7 +4,7 @@
 
 #include "core/file_fingerprint.h"
 #include "core/image_io.h"
-#include "formats/texture_stack.h"
+#include "formats/texture_stack/texture_stack.h"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>

@@ -1,7 +1,7 @@
 #include "farm/texgen_job.h"
 
 #include "farm/processes.h"
-#include "formats/texgen_plan.h"
+#include "formats/texgen_plan/texgen_plan.h"
 #include "formats/toml_location.h"
 
 #include <fmt/format.h>

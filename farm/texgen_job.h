@@ -34,7 +34,7 @@ struct TexgenJob {
 
 /// The tasks of `args` (a patina-texgen command line without the program: "patina SCRIPT
 /// --times ...", "fade ... --duration 0h,1d,7d -o OUT" or "stone --mesh ... --steps N") as
-/// `texgen ARGS --plan` prints them (formats/texgen_plan.h): patina-texgen plans its own
+/// `texgen ARGS --plan` prints them (formats/texgen_plan/texgen_plan.h): patina-texgen plans its own
 /// series. Throws std::invalid_argument with its message for what is missing or not
 /// allowed (a patina run without --times, a fade run without a list, a stone run without
 /// --steps or with the options the farm sets: --until, --resume, --checkpoint).

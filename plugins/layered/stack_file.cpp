@@ -1,6 +1,6 @@
 #include "stack_file.h"
 
-#include "formats/texture_stack.h"
+#include "formats/texture_stack/texture_stack.h"
 
 #include <stdexcept>
 #include <string>

@@ -3,7 +3,7 @@
 #include "slab_volume.h"
 
 #include "formats/host_pixels.h"
-#include "formats/stone_volume.h"
+#include "formats/stone_volume/stone_volume.h"
 
 #include <stdexcept>
 #include <vector>

@@ -1,7 +1,7 @@
 // Reading a world-grid stone volume (the file `patina-texgen stone` writes) into a
 // VoxelGrid, through the host's read_image service (abi.h 1.1).
 //
-// Its layout and checks are formats/stone_volume.h (docs/file-formats.md "Stone volume").
+// Its layout and checks are formats/stone_volume/stone_volume.h (docs/file-formats.md "Stone volume").
 #pragma once
 
 #include <patina/abi.h>

@@ -2,7 +2,7 @@
 // readers (the table through host->read_image), the dose map through host->open_texture.
 #include "fade_table.h"
 
-#include "formats/fade_stack.h"
+#include "formats/fade_stack/fade_stack.h"
 #include "formats/host_pixels.h"
 
 #include <algorithm>
@@ -18,7 +18,7 @@ std::string FadeTable::load(const PatinaHost* host, const char* path)
     if (!PATINA_HOST_HAS_READ_IMAGE(host) || !host->read_image || !host->open_texture)
         return "the host does not offer read_image/open_texture (ABI 1.1 services)";
     const std::string where(path ? path : "");
-    // The description, checked by the one reader of fade.toml (formats/fade_stack.h)
+    // The description, checked by the one reader of fade.toml (formats/fade_stack/fade_stack.h)
     formats::FadeDescription description;
     try {
         description = formats::read_fade_description(where);

@@ -4,7 +4,7 @@
 //
 // A fade stack is a folder written by `patina-texgen fade`: fade.toml, the table
 // (fade_table.exr: rows = doses, columns = wavelengths) and the dose map (dose.exr: the
-// fractional table row and the dose per texel). Its format is formats/fade_stack.h.
+// fractional table row and the dose per texel). Its format is formats/fade_stack/fade_stack.h.
 //
 // Everything is read in create (host->read_image, host->open_texture); lookups are
 // allocation-free.

@@ -1,6 +1,6 @@
 #include "render/film_output.h"
 
-#include "formats/render_part.h"
+#include "formats/render_part/render_part.h"
 
 #include "core/file_fingerprint.h"
 #include "core/image_io.h"

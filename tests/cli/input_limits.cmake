@@ -63,7 +63,7 @@ expect_quick_failure("--wavelengths '300:830:0.000001': 5.3e+08 wavelengths, mor
 
 # --- stone: the world grid ----------------------------------------------------------------
 write_small_cube_obj("${WORK_DIR}/cube.obj")
-# 2048^3 voxels: more than a stone volume may hold (formats/stone_volume.h, what the
+# 2048^3 voxels: more than a stone volume may hold (formats/stone_volume/stone_volume.h, what the
 # slab_volume medium loads), refused before the run.
 expect_quick_failure("a 2048x2048x2048 world volume is more than the 512^3 voxels"
   "${PATINA_TEXGEN}" stone --mesh "${WORK_DIR}/cube.obj" --grid 2048 --cycles 1

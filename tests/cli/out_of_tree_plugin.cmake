@@ -46,7 +46,7 @@ target_link_libraries(core_user PRIVATE Patina::core Patina::formats)
 ]=])
 file(WRITE "${WORK_DIR}/core_user/main.cpp" [=[
 #include "core/kubelka_munk.h"
-#include "formats/stone_volume.h"
+#include "formats/stone_volume/stone_volume.h"
 #include <cstdio>
 // R_inf of K/S = 0.5: 1 + 0.5 - sqrt(0.25 + 1) = 0.381966 (D&H 1996 section 4.1); a stone
 // volume's bounds part written and read back (ny = 3).

@@ -1,6 +1,6 @@
-// fade.toml's one reader and writer (formats/fade_stack.h): a round trip of every key and
+// fade.toml's one reader and writer (formats/fade_stack/fade_stack.h): a round trip of every key and
 // the refusals (a newer format, keys out of order or range).
-#include "formats/fade_stack.h"
+#include "formats/fade_stack/fade_stack.h"
 
 #include "test_util.h"
 

@@ -16,19 +16,19 @@ namespace fs = std::filesystem;
 
 /// The names, quoted as code would spell them, and the header that owns each.
 const std::vector<std::pair<std::string, std::string>> kOwned = {
-    {"\"R_bottom\"", "formats/fade_stack.h"},
-    {"\"R_top\"", "formats/fade_stack.h"},
-    {"\"R_total\"", "formats/fade_stack.h"},
-    {"\"coordinate\"", "formats/fade_stack.h"},
-    {"\"patina:scene_hash\"", "formats/render_part.h"},
-    {"\"patina:sample_begin\"", "formats/render_part.h"},
-    {"\"patina:sample_end\"", "formats/render_part.h"},
-    {"\"patina:sums_layout\"", "formats/render_part.h"},
-    {"\"patina:merged_parts\"", "formats/render_part.h"},
-    {"\"gltf_base_color\"", "formats/texture_stack.h"},
-    {"\"gltf_metallic_roughness\"", "formats/texture_stack.h"},
-    {"\"gltf_clearcoat\"", "formats/texture_stack.h"},
-    {"\"diffuse_albedo\"", "formats/texture_stack.h"},
+    {"\"R_bottom\"", "formats/fade_stack/fade_stack.h"},
+    {"\"R_top\"", "formats/fade_stack/fade_stack.h"},
+    {"\"R_total\"", "formats/fade_stack/fade_stack.h"},
+    {"\"coordinate\"", "formats/fade_stack/fade_stack.h"},
+    {"\"patina:scene_hash\"", "formats/render_part/render_part.h"},
+    {"\"patina:sample_begin\"", "formats/render_part/render_part.h"},
+    {"\"patina:sample_end\"", "formats/render_part/render_part.h"},
+    {"\"patina:sums_layout\"", "formats/render_part/render_part.h"},
+    {"\"patina:merged_parts\"", "formats/render_part/render_part.h"},
+    {"\"gltf_base_color\"", "formats/texture_stack/texture_stack.h"},
+    {"\"gltf_metallic_roughness\"", "formats/texture_stack/texture_stack.h"},
+    {"\"gltf_clearcoat\"", "formats/texture_stack/texture_stack.h"},
+    {"\"diffuse_albedo\"", "formats/texture_stack/texture_stack.h"},
 };
 
 TEST(OneHome, NoSourceOutsideTheFormatLibrarySpellsAFormatsNames)

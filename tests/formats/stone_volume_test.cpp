@@ -1,6 +1,6 @@
-// The stone volume's layout (formats/stone_volume.h): the bounds part round trip, the
+// The stone volume's layout (formats/stone_volume/stone_volume.h): the bounds part round trip, the
 // format row, and the refusals every reader makes.
-#include "formats/stone_volume.h"
+#include "formats/stone_volume/stone_volume.h"
 
 #include "test_util.h"
 

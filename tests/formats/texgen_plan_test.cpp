@@ -1,6 +1,6 @@
-// The plan of a texgen series (formats/texgen_plan.h): what `patina-texgen ... --plan`
+// The plan of a texgen series (formats/texgen_plan/texgen_plan.h): what `patina-texgen ... --plan`
 // prints and patina-farm reads, round-tripped, and its refusals.
-#include "formats/texgen_plan.h"
+#include "formats/texgen_plan/texgen_plan.h"
 
 #include "test_util.h"
 

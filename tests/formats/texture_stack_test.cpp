@@ -1,8 +1,8 @@
-// The texture stack's one reader and writer (formats/texture_stack.h): a round trip of every
+// The texture stack's one reader and writer (formats/texture_stack/texture_stack.h): a round trip of every
 // key, the refusals, and the two consumers of a patina stack (the layered_km plugin's
 // reader and flatten's) seeing the same layers, channels and optics.
-#include "formats/texture_stack.h"
-#include "formats/stack_format.h"
+#include "formats/texture_stack/texture_stack.h"
+#include "formats/texture_stack/stack_format.h"
 
 #include "layered/stack_file.h"
 

@@ -1,9 +1,9 @@
 // `--plan` of the commands a farm cuts into tasks (patina --times, fade with a list of
-// durations or doses, stone --steps): the tasks as formats/texgen_plan.h prints them, so
+// durations or doses, stone --steps): the tasks as formats/texgen_plan/texgen_plan.h prints them, so
 // the farm runs what patina-texgen itself plans, with its own limits and schedules.
 #pragma once
 
-#include "formats/texgen_plan.h"
+#include "formats/texgen_plan/texgen_plan.h"
 
 #include <initializer_list>
 #include <string>

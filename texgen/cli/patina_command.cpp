@@ -2,7 +2,7 @@
 // mesh's texels or on a flat strip and writes a thickness stack per time step.
 #include "texgen/cli/commands.h"
 
-#include "formats/texture_stack.h"
+#include "formats/texture_stack/texture_stack.h"
 
 #include "core/cli_errors.h"
 #include "core/cancel.h"

@@ -1,6 +1,6 @@
 #include "texgen/export/export_asset.h"
 
-#include "formats/texture_stack.h"
+#include "formats/texture_stack/texture_stack.h"
 
 #include "texgen/export/gltf_document.h"
 #include "texgen/export/gltf_geometry.h"

@@ -1,6 +1,6 @@
 #include "texgen/export/export_fade.h"
 
-#include "formats/fade_stack.h"
+#include "formats/fade_stack/fade_stack.h"
 #include "texgen/export/export_asset.h"
 #include "texgen/texels/mesh_merge.h"
 

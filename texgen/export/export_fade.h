@@ -1,4 +1,4 @@
-// `patina-texgen export` of fade stacks (`patina-texgen fade`, formats/fade_stack.h): each
+// `patina-texgen export` of fade stacks (`patina-texgen fade`, formats/fade_stack/fade_stack.h): each
 // stack's reflectance over its substrate (R_total of the dose table, looked up at every
 // texel's dose as spectral_km looks it up) seen under D65 and converted by OCIO to linear
 // Rec.709, as the base colour of a dielectric with roughness 1 (spectral_km is Lambertian);

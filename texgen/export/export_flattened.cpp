@@ -1,6 +1,6 @@
 #include "texgen/export/export_flattened.h"
 
-#include "formats/texture_stack.h"
+#include "formats/texture_stack/texture_stack.h"
 #include "texgen/export/export_asset.h"
 #include "texgen/flatten/patina_stack_files.h"
 #include "texgen/texels/mesh_merge.h"

@@ -1,6 +1,6 @@
 #include "texgen/export/export_forecast.h"
 
-#include "formats/texture_stack.h"
+#include "formats/texture_stack/texture_stack.h"
 #include "texgen/export/export_asset.h"
 #include "texgen/export/export_fade.h"
 #include "texgen/forecast/years_map.h"

@@ -1,6 +1,6 @@
 #include "texgen/export/presets.h"
 
-#include "formats/texture_stack.h"
+#include "formats/texture_stack/texture_stack.h"
 
 #include <fmt/format.h>
 

@@ -2,7 +2,7 @@
 #include "texgen/fade/fade_stack.h"
 
 #include "texgen/stack/map_output.h"
-#include "formats/fade_stack.h"
+#include "formats/fade_stack/fade_stack.h"
 
 #include "core/image_io.h"
 #include "core/pixel_io.h"
@@ -90,7 +90,7 @@ void write_fade_stack(const fs::path& dir, const DoseTable& table, const FadeSta
     d.max_dose_in_map = info.max_dose;
     d.exposure = info.exposure;
 
-    // fade_table.exr: rows = doses, columns = wavelengths (formats/fade_stack.h)
+    // fade_table.exr: rows = doses, columns = wavelengths (formats/fade_stack/fade_stack.h)
     formats::FadeTable t;
     t.rows = static_cast<int>(rows);
     t.columns = static_cast<int>(columns);

@@ -1,10 +1,10 @@
 // The fade stack: what `patina-texgen fade` writes and the spectral_km shader reads.
 //
-// The files and the description's keys are formats/fade_stack.h (docs/file-formats.md
+// The files and the description's keys are formats/fade_stack/fade_stack.h (docs/file-formats.md
 // "Fade stack"); this writes them from a DoseTable and reads them back for plots and tests.
 #pragma once
 
-#include "formats/fade_stack.h"
+#include "formats/fade_stack/fade_stack.h"
 #include "texgen/fade/dose_table.h"
 
 #include <algorithm>

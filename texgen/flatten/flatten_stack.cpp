@@ -1,6 +1,6 @@
 #include "texgen/flatten/flatten_stack.h"
 
-#include "formats/texture_stack.h"
+#include "formats/texture_stack/texture_stack.h"
 
 #include "texgen/patina/stack_materials.h"
 

@@ -5,7 +5,7 @@
 #include "core/cancel.h"
 #include "core/image_io.h"
 #include "texgen/stack/manifest.h"
-#include "formats/texture_stack.h"
+#include "formats/texture_stack/texture_stack.h"
 #include "formats/toml_location.h"
 
 #include <fmt/format.h>
@@ -92,7 +92,7 @@ std::vector<fs::path> write_flattened(const fs::path& out_dir, const FlattenedSt
             files.push_back(path);
             written.push_back(path);
         }
-        // The entry, as every writer of stack.toml makes it (formats/texture_stack.h).
+        // The entry, as every writer of stack.toml makes it (formats/texture_stack/texture_stack.h).
         formats::StackMap entry;
         entry.name = map.name;
         if (lone) {

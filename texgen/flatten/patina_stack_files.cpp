@@ -13,7 +13,7 @@ namespace fs = std::filesystem;
 
 PatinaStackFiles read_patina_stack(const fs::path& stack)
 {
-    // The one reader of stack.toml (formats/texture_stack.h) checks the format, the layers,
+    // The one reader of stack.toml (formats/texture_stack/texture_stack.h) checks the format, the layers,
     // their maps and channels, the optics and that the layers' files exist.
     const formats::TextureStack file = formats::read_texture_stack(stack);
     const formats::PatinaTable& patina = formats::patina_of(file);

@@ -3,7 +3,7 @@
 // files of those maps, per UDIM tile, as `[maps.<name>]` lists them.
 #pragma once
 
-#include "formats/texture_stack.h"
+#include "formats/texture_stack/texture_stack.h"
 
 #include "core/mesh_convention.h"
 

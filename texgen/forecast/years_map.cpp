@@ -1,6 +1,6 @@
 #include "texgen/forecast/years_map.h"
 
-#include "formats/texture_stack.h"
+#include "formats/texture_stack/texture_stack.h"
 #include "texgen/stack/map_output.h"
 
 #include <OpenImageIO/imagebufalgo.h>

@@ -10,7 +10,7 @@
 #pragma once
 
 #include "core/color_management.h"
-#include "formats/texture_stack.h"
+#include "formats/texture_stack/texture_stack.h"
 #include "texgen/patina/material_library.h"
 
 #include <vector>
@@ -33,7 +33,7 @@ std::vector<float> uplift_reflectance(const Imath::V3f& lin_rec709, const ColorM
 SpectralOptics resolve_spectral(const PatinaMaterial& m, const ColorManager& colors);
 
 /// The optics a stack.toml records for a material ([patina.materials."<name>"],
-/// formats/texture_stack.h): its spectral optics on the grid, roughness and description.
+/// formats/texture_stack/texture_stack.h): its spectral optics on the grid, roughness and description.
 formats::MaterialOptics stack_optics(const PatinaMaterial& m, const ColorManager& colors);
 
 }  // namespace patina::texgen

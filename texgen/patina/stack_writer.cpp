@@ -1,6 +1,6 @@
 #include "texgen/patina/stack_writer.h"
 
-#include "formats/texture_stack.h"
+#include "formats/texture_stack/texture_stack.h"
 
 #include "core/output_transaction.h"
 #include "core/image_io.h"

@@ -2,7 +2,7 @@
 
 #include "core/output_transaction.h"
 #include "texgen/stack/map_output.h"
-#include "formats/texture_stack.h"
+#include "formats/texture_stack/texture_stack.h"
 #include "formats/toml_location.h"
 
 #include "core/cancel.h"

@@ -18,7 +18,7 @@
 //   samples = 64
 #pragma once
 
-#include "formats/stack_format.h"
+#include "formats/texture_stack/stack_format.h"
 
 #include <toml++/toml.h>
 

@@ -2,7 +2,7 @@
 // padding, the per-vertex PLY, and the stack.toml manifest of an output folder.
 #pragma once
 
-#include "formats/texture_stack.h"
+#include "formats/texture_stack/texture_stack.h"
 
 #include "core/image_io.h"
 #include "core/mesh.h"
@@ -16,7 +16,7 @@
 
 namespace patina::texgen {
 
-/// The coverage channel every texel map carries (formats/texture_stack.h).
+/// The coverage channel every texel map carries (formats/texture_stack/texture_stack.h).
 using formats::kCoverageChannel;
 
 /// What a map is, for its file header and the manifest.

@@ -5,7 +5,7 @@
 #include "core/mesh_export.h"
 #include "core/output_transaction.h"
 #include "core/progress.h"
-#include "formats/stone_volume.h"
+#include "formats/stone_volume/stone_volume.h"
 #include "texgen/meshes/mesh_input.h"
 #include "texgen/stack/surface_map.h"
 #include "texgen/stone_export/eroded_mesh.h"

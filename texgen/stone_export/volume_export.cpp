@@ -1,6 +1,6 @@
 #include "texgen/stone_export/volume_export.h"
 
-#include "formats/stone_volume.h"
+#include "formats/stone_volume/stone_volume.h"
 
 #include "core/pixel_io.h"
 
@@ -81,7 +81,7 @@ namespace {
 void check_world_volume_memory(const TriangleMesh& mesh, int resolution, const char* option)
 {
     const WorldGrid g = world_grid(mesh, resolution);
-    // What the volume's readers load (formats/stone_volume.h): refused before the run.
+    // What the volume's readers load (formats/stone_volume/stone_volume.h): refused before the run.
     if (static_cast<double>(g.nx) * g.ny * g.nz > formats::kMaxVolumeVoxels)
         throw std::runtime_error(fmt::format(
             "{} {}: a {}x{}x{} world volume is more than the 512^3 voxels a stone volume may "
@@ -168,7 +168,7 @@ WorldVolume resample_to_world(const StoneState& st, const TriangleMesh& mesh, in
 
 void write_world_volume(const fs::path& path, const WorldVolume& v, const Metadata& metadata)
 {
-    // The layout is formats/stone_volume.h's.
+    // The layout is formats/stone_volume/stone_volume.h's.
     formats::StoneVolume out;
     out.grid.min = {v.bounds.min.x, v.bounds.min.y, v.bounds.min.z};
     out.grid.max = {v.bounds.max.x, v.bounds.max.y, v.bounds.max.z};

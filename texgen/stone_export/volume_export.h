@@ -7,7 +7,7 @@
 //     and "salt" (efflorescence), all in [0, 1];
 //   part 1 "bounds": width 3, height 3, channel "value": row 0 the min corner xyz (m), row 1
 //     the max corner, row 2 nx, ny, nz; its display window is part 0's;
-//   part 2 "fields": part 0's layout, channels "decay" and "moisture" (formats/stone_volume.h).
+//   part 2 "fields": part 0's layout, channels "decay" and "moisture" (formats/stone_volume/stone_volume.h).
 //   Voxel (i, j, k) has its centre at min + (i + 1/2, j + 1/2, k + 1/2) (max - min) / n.
 // Slab volume (the simulation's own lattice, for inspection or a slab-aware renderer): a
 // two-part OpenEXR.
@@ -38,7 +38,7 @@ struct WorldVolume {
     /// Per voxel (i + nx (j + ny k)): density, crust, iron, salt.
     std::vector<float> density, crust, iron, salt;
     /// Per voxel, the simulation's decay index and moisture (0 outside the slabs); empty
-    /// for a volume read from a file without them (formats/stone_volume.h part 2).
+    /// for a volume read from a file without them (formats/stone_volume/stone_volume.h part 2).
     std::vector<float> decay, moisture;
 
     size_t index(int i, int j, int k) const { return size_t(i) + size_t(nx) * (size_t(j) + size_t(ny) * k); }

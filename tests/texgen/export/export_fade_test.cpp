@@ -8,7 +8,7 @@
 #include "core/color_difference.h"
 #include "core/image_io.h"
 #include "core/spectrum.h"
-#include "formats/fade_stack.h"
+#include "formats/fade_stack/fade_stack.h"
 #include "test_util.h"
 
 #include <gtest/gtest.h>

@@ -99,7 +99,7 @@ TEST(VdbExport, GridsHoldTheVolumeAsRenderersReadIt)
 
 TEST(VdbExport, SimulationFieldsBecomeGridsOfTheirNames)
 {
-    // A volume with the simulation's decay and moisture (formats/stone_volume.h part 2)
+    // A volume with the simulation's decay and moisture (formats/stone_volume/stone_volume.h part 2)
     // round-trips through volume.exr and becomes the grids `moisture` and `decay`.
     const fs::path dir = fs::path(PATINA_TEST_BUILD_DIR) / "vdb_export_fields_test";
     fs::remove_all(dir);

@@ -6,7 +6,7 @@
 // from the sunny run to the shaded one must rise with the texel's exposure. An exposure term
 // that saturates (a map in J/m^2 clamped to [0, 1] is 1 everywhere) or is ignored makes that
 // ratio the same on every texel, and fails.
-#include "formats/texture_stack.h"
+#include "formats/texture_stack/texture_stack.h"
 
 #include "core/image_io.h"
 

@@ -1,4 +1,4 @@
-#include "formats/fade_stack.h"
+#include "formats/fade_stack/fade_stack.h"
 
 #include "formats/toml_location.h"
 

@@ -15,7 +15,7 @@
 #pragma once
 
 #include "formats/pixels.h"
-#include "formats/texture_stack.h"
+#include "formats/texture_stack/texture_stack.h"
 
 #include <toml++/toml.h>
 

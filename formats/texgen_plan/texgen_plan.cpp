@@ -1,4 +1,4 @@
-#include "formats/texgen_plan.h"
+#include "formats/texgen_plan/texgen_plan.h"
 
 #include "formats/toml_location.h"
 

@@ -1,5 +1,5 @@
-// fade_table.exr and dose.exr of a fade stack (formats/fade_stack.h): their one layout.
-#include "formats/fade_stack.h"
+// fade_table.exr and dose.exr of a fade stack (formats/fade_stack/fade_stack.h): their one layout.
+#include "formats/fade_stack/fade_stack.h"
 
 #include <cmath>
 #include <string>

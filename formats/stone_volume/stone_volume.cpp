@@ -1,4 +1,4 @@
-#include "formats/stone_volume.h"
+#include "formats/stone_volume/stone_volume.h"
 
 #include <algorithm>
 #include <cmath>

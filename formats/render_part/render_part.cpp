@@ -1,4 +1,4 @@
-#include "formats/render_part.h"
+#include "formats/render_part/render_part.h"
 
 #include <stdexcept>
 #include <type_traits>

@@ -1,6 +1,6 @@
-#include "formats/texture_stack.h"
+#include "formats/texture_stack/texture_stack.h"
 
-#include "formats/stack_format.h"
+#include "formats/texture_stack/stack_format.h"
 #include "formats/toml_location.h"
 
 #include <algorithm>
