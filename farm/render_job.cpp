@@ -9,7 +9,6 @@
 #include <fmt/format.h>
 #include <toml++/toml.h>
 
-#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -110,22 +109,6 @@ std::string render_job_text(const RenderJob& job)
     return text.str();
 }
 
-namespace {
-
-    /// The value of `key` in `table`, of type T; a missing or mistyped value names its line.
-    template <class T>
-    T need(const fs::path& file, const toml::table& table, const char* key, const std::string& where)
-    {
-        const toml::node* node = table.get(key);
-        const std::optional<T> value = node ? node->value_exact<T>() : std::nullopt;
-        if (!value)
-            formats::toml_fail(file, node ? node : nullptr,
-                               where + key + (node ? ": wrong type" : ": missing"));
-        return *value;
-    }
-
-}  // namespace
-
 RenderJob read_render_job(const fs::path& folder)
 {
     const fs::path file = folder / "job.toml";
@@ -142,16 +125,16 @@ RenderJob read_render_job(const fs::path& folder)
                               "sample_splits", "spp", "render", "farm", "plugins"});
     RenderJob job;
     job.folder = fs::absolute(folder).lexically_normal();
-    job.scene = need<std::string>(file, *j, "scene", "job.");
-    job.frames = need<bool>(file, *j, "frames", "job.");
-    job.first_frame = static_cast<int>(need<int64_t>(file, *j, "first_frame", "job."));
-    job.last_frame = static_cast<int>(need<int64_t>(file, *j, "last_frame", "job."));
-    job.tiles = static_cast<int>(need<int64_t>(file, *j, "tiles", "job."));
-    job.sample_splits = static_cast<int>(need<int64_t>(file, *j, "sample_splits", "job."));
-    job.spp = static_cast<int>(need<int64_t>(file, *j, "spp", "job."));
-    job.render = need<std::string>(file, *j, "render", "job.");
-    job.farm = need<std::string>(file, *j, "farm", "job.");
-    job.plugins = need<std::string>(file, *j, "plugins", "job.");
+    job.scene = formats::toml_value<std::string>(file, *j, "scene", "job.");
+    job.frames = formats::toml_value<bool>(file, *j, "frames", "job.");
+    job.first_frame = static_cast<int>(formats::toml_value<int64_t>(file, *j, "first_frame", "job."));
+    job.last_frame = static_cast<int>(formats::toml_value<int64_t>(file, *j, "last_frame", "job."));
+    job.tiles = static_cast<int>(formats::toml_value<int64_t>(file, *j, "tiles", "job."));
+    job.sample_splits = static_cast<int>(formats::toml_value<int64_t>(file, *j, "sample_splits", "job."));
+    job.spp = static_cast<int>(formats::toml_value<int64_t>(file, *j, "spp", "job."));
+    job.render = formats::toml_value<std::string>(file, *j, "render", "job.");
+    job.farm = formats::toml_value<std::string>(file, *j, "farm", "job.");
+    job.plugins = formats::toml_value<std::string>(file, *j, "plugins", "job.");
     if (const toml::array* tasks = root["task"].as_array())
         for (const toml::node& n : *tasks) {
             const toml::table* t = n.as_table();
@@ -161,12 +144,12 @@ RenderJob read_render_job(const fs::path& folder)
             formats::toml_check_keys(file, *t, where,
                                      {"frame", "tile", "sample_begin", "sample_end", "scene", "output"});
             RenderTask task;
-            task.frame = static_cast<int>(need<int64_t>(file, *t, "frame", where));
-            task.tile = static_cast<int>(need<int64_t>(file, *t, "tile", where));
-            task.sample_begin = static_cast<int>(need<int64_t>(file, *t, "sample_begin", where));
-            task.sample_end = static_cast<int>(need<int64_t>(file, *t, "sample_end", where));
-            task.scene = need<std::string>(file, *t, "scene", where);
-            task.output = need<std::string>(file, *t, "output", where);
+            task.frame = static_cast<int>(formats::toml_value<int64_t>(file, *t, "frame", where));
+            task.tile = static_cast<int>(formats::toml_value<int64_t>(file, *t, "tile", where));
+            task.sample_begin = static_cast<int>(formats::toml_value<int64_t>(file, *t, "sample_begin", where));
+            task.sample_end = static_cast<int>(formats::toml_value<int64_t>(file, *t, "sample_end", where));
+            task.scene = formats::toml_value<std::string>(file, *t, "scene", where);
+            task.output = formats::toml_value<std::string>(file, *t, "output", where);
             job.tasks.push_back(std::move(task));
         }
     if (const toml::array* merges = root["merge"].as_array())
@@ -177,8 +160,8 @@ RenderJob read_render_job(const fs::path& folder)
             const std::string where = fmt::format("merge {}: ", job.merges.size());
             formats::toml_check_keys(file, *m, where, {"frame", "output", "parts"});
             FrameMerge merge;
-            merge.frame = static_cast<int>(need<int64_t>(file, *m, "frame", where));
-            merge.output = need<std::string>(file, *m, "output", where);
+            merge.frame = static_cast<int>(formats::toml_value<int64_t>(file, *m, "frame", where));
+            merge.output = formats::toml_value<std::string>(file, *m, "output", where);
             const toml::array* parts = (*m)["parts"].as_array();
             if (!parts)
                 formats::toml_fail(file, m->get("parts"), where + "parts: an array of files is required");

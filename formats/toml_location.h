@@ -10,6 +10,8 @@
 #include <stdexcept>
 #include <string>
 #include <initializer_list>
+#include <optional>
+#include <span>
 #include <string_view>
 
 namespace patina::formats {
@@ -44,7 +46,7 @@ inline std::string toml_where(const std::filesystem::path& file, const toml::nod
 /// Throws std::runtime_error("file:line:column: <prefix><key>: unknown key (known: a, b)")
 /// for the first key of `table` not in `allowed` (a typo must not pass as a default).
 inline void toml_check_keys(const std::filesystem::path& file, const toml::table& table,
-                            const std::string& prefix, std::initializer_list<const char*> allowed)
+                            const std::string& prefix, std::span<const char* const> allowed)
 {
     for (const auto& [k, v] : table) {
         const std::string_view key = k.str();
@@ -61,6 +63,25 @@ inline void toml_check_keys(const std::filesystem::path& file, const toml::table
         }
         toml_fail(file, &v, prefix + std::string(key) + ": unknown key (known: " + list + ")");
     }
+}
+inline void toml_check_keys(const std::filesystem::path& file, const toml::table& table,
+                            const std::string& prefix, std::initializer_list<const char*> allowed)
+{
+    toml_check_keys(file, table, prefix, std::span<const char* const>(allowed.begin(), allowed.size()));
+}
+
+/// The value of `key` in `table` as exactly a T (std::string, int64_t, double, bool);
+/// throws "file:line:column: <prefix><key>: missing" or "...: wrong type" naming where.
+template <class T>
+T toml_value(const std::filesystem::path& file, const toml::table& table, const char* key,
+             const std::string& prefix)
+{
+    const toml::node* node = table.get(key);
+    const std::optional<T> value = node ? node->value_exact<T>() : std::nullopt;
+    if (!value)
+        toml_fail(file, node ? node : &table,
+                  prefix + key + (node ? ": wrong type" : ": missing"));
+    return *value;
 }
 
 /// The parsed file, or std::runtime_error("file:line:column: <toml++'s description>").

@@ -47,15 +47,6 @@ std::string texgen_plan_text(const TexgenPlan& plan)
 
 namespace {
 
-    std::string string_of(const fs::path& file, const toml::table& table, const char* key,
-                          const std::string& where)
-    {
-        const toml::node* node = table.get(key);
-        if (!node || !node->is_string())
-            toml_fail(file, node ? node : nullptr, where + key + ": a string is required");
-        return **node->as_string();
-    }
-
     std::vector<std::string> strings_of(const fs::path& file, const toml::table& table,
                                         const char* key, const std::string& where)
     {
@@ -79,25 +70,12 @@ TexgenPlan read_texgen_plan(const fs::path& file, const toml::table& header,
 {
     std::vector<const char*> keys{"command", "output", "chained"};
     keys.insert(keys.end(), extra_keys.begin(), extra_keys.end());
-    for (const auto& [k, v] : header) {
-        bool known = false;
-        for (const char* a : keys)
-            known |= k.str() == a;
-        if (!known) {
-            std::string list;
-            for (const char* a : keys)
-                list += (list.empty() ? "" : ", ") + std::string(a);
-            toml_fail(file, &v, std::string(k.str()) + ": unknown key (known: " + list + ")");
-        }
-    }
+    toml_check_keys(file, header, "", keys);
     TexgenPlan plan;
-    plan.command = string_of(file, header, "command", "");
-    plan.output = string_of(file, header, "output", "");
-    if (const toml::node* chained = header.get("chained")) {
-        if (!chained->is_boolean())
-            toml_fail(file, chained, "chained: true or false");
-        plan.chained = **chained->as_boolean();
-    }
+    plan.command = toml_value<std::string>(file, header, "command", "");
+    plan.output = toml_value<std::string>(file, header, "output", "");
+    if (header.get("chained"))
+        plan.chained = toml_value<bool>(file, header, "chained", "");
     const toml::node* tasks = root.get("task");
     const toml::array* array = tasks ? tasks->as_array() : nullptr;
     if (!array || array->empty())
@@ -109,7 +87,7 @@ TexgenPlan read_texgen_plan(const fs::path& file, const toml::table& header,
         const std::string where = "task " + std::to_string(plan.tasks.size()) + ": ";
         toml_check_keys(file, *t, where, {"label", "args", "outputs", "time_years", "folder"});
         TexgenPlanTask task;
-        task.label = string_of(file, *t, "label", where);
+        task.label = toml_value<std::string>(file, *t, "label", where);
         task.args = strings_of(file, *t, "args", where);
         for (const std::string& o : strings_of(file, *t, "outputs", where))
             task.outputs.emplace_back(o);
@@ -119,7 +97,7 @@ TexgenPlan read_texgen_plan(const fs::path& file, const toml::table& header,
             task.time_years = time->value<double>();
         }
         if (t->get("folder"))
-            task.folder = string_of(file, *t, "folder", where);
+            task.folder = toml_value<std::string>(file, *t, "folder", where);
         plan.tasks.push_back(std::move(task));
     }
     return plan;

@@ -357,34 +357,23 @@ namespace {
                         {"stack", "color_space", "diffuse", "height", "normal",
                          "normal_convention", "texel_size_m", "normal_scale", "two_lobe",
                          "base_color", "metallic_roughness", "clearcoat", "interfaces"});
-        auto text = [&](const char* key) {
-            const toml::node* n = t.get(key);
-            if (n && !n->is_string())
-                toml_fail(file, n, std::string("flatten.") + key + " must be a string");
-            return n ? **n->as_string() : std::string();
-        };
-        auto number = [&](const char* key, double fallback) {
-            const toml::node* n = t.get(key);
-            if (n && !n->is_number())
-                toml_fail(file, n, std::string("flatten.") + key + " must be a number");
-            return n ? n->value<double>().value_or(fallback) : fallback;
-        };
+        // The typed reads every table of the manifest uses (top of this file).
         FlattenTable f;
-        f.stack = text("stack");
-        f.color_space = text("color_space");
-        f.texel_size_m = number("texel_size_m", 0.0);
-        f.normal_scale = number("normal_scale", 1.0);
+        f.stack = optional_string(file, t, "stack", "[flatten]");
+        f.color_space = optional_string(file, t, "color_space", "[flatten]");
+        f.texel_size_m = optional_number(file, t, "texel_size_m", "[flatten]", 0.0);
+        f.normal_scale = optional_number(file, t, "normal_scale", "[flatten]", 1.0);
         if (const toml::node* n = t.get("interfaces")) {
             const toml::array* a = n->as_array();
             if (!a)
-                toml_fail(file, n, "flatten.interfaces must be an array of tables");
-            for (const toml::node& item : *a) {
-                const toml::table* i = item.as_table();
-                if (!i || !(*i)["specular"].is_string() || !(*i)["roughness"].is_string())
-                    toml_fail(file, &item, "flatten.interfaces: each needs the strings specular "
-                                           "and roughness");
-                f.interfaces.push_back({(*i)["specular"].value_or(std::string()),
-                                        (*i)["roughness"].value_or(std::string())});
+                toml_fail(file, n, "[flatten] 'interfaces' must be an array of tables");
+            for (size_t k = 0; k < a->size(); ++k) {
+                const std::string context = "[flatten] interface " + std::to_string(k + 1);
+                const toml::table* i = a->get(k)->as_table();
+                if (!i)
+                    toml_fail(file, a->get(k), context + " must be a table");
+                f.interfaces.push_back({string_of(file, *i, "specular", context),
+                                        string_of(file, *i, "roughness", context)});
             }
         }
         return f;

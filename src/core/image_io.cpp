@@ -208,7 +208,7 @@ void make_texture_atomic(const std::filesystem::path& path, const float* pixels,
 
 namespace {
 
-    /// Every pixel of the first subimage of `in` as float; errors begin with `what`.
+    /// Every pixel of the current subimage of `in` as float; errors begin with `what`.
     ImageData read_all(OIIO::ImageInput& in, const std::string& what)
     {
         const OIIO::ImageSpec& spec = in.spec();
@@ -220,14 +220,15 @@ namespace {
         for (const OIIO::ParamValue& p : spec.extra_attribs)
             image.metadata.emplace_back(p.name().string(), p.get_string());
         image.pixels.resize(static_cast<size_t>(spec.width) * spec.height * spec.nchannels);
-        if (!in.read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, image.pixels.data()))
+        if (!in.read_image(in.current_subimage(), 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT,
+                           image.pixels.data()))
             throw std::runtime_error(fmt::format("{}: {}", what, oiio_error(in.geterror())));
         return image;
     }
 
 }  // namespace
 
-ImageData read_image(const std::filesystem::path& path)
+ImageData read_image(const std::filesystem::path& path, int subimage)
 {
     std::error_code ec;
     if (!std::filesystem::exists(path, ec))
@@ -235,6 +236,9 @@ ImageData read_image(const std::filesystem::path& path)
     auto in = OIIO::ImageInput::open(path.string());
     if (!in)
         throw std::runtime_error(fmt::format("cannot read image '{}': {}", path.string(), oiio_error("")));
+    if (subimage != 0 && !in->seek_subimage(subimage, 0))
+        throw std::runtime_error(fmt::format("cannot read part {} of '{}': the file has no such part",
+                                             subimage, path.string()));
     return read_all(*in, fmt::format("cannot read image '{}'", path.string()));
 }
 

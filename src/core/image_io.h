@@ -122,9 +122,10 @@ void make_texture_atomic(const std::filesystem::path& path, const float* pixels,
 /// turn into a plausible-looking render.
 void check_finite_texels(const std::filesystem::path& path, const char* what = "texture");
 
-/// Read the first subimage (top mip level) of any OIIO-readable file as floats. Throws
-/// std::runtime_error naming the file when it is missing or unreadable.
-ImageData read_image(const std::filesystem::path& path);
+/// Read a subimage (an OpenEXR part; the first by default), top mip level, of any
+/// OIIO-readable file as floats. Throws std::runtime_error naming the file when it is
+/// missing or unreadable, or has no such subimage.
+ImageData read_image(const std::filesystem::path& path, int subimage = 0);
 /// An image file held in memory (e.g. embedded in a mesh file): `format` is its extension
 /// ("png", "jpg"), `name` names it in errors.
 ImageData read_image(std::span<const unsigned char> bytes, const std::string& format,

@@ -11,24 +11,7 @@ namespace patina {
 
 formats::Pixels ImagePixelReader::read(const std::filesystem::path& file, int subimage) const
 {
-    if (subimage != 0) {
-        // Parts beyond the first: OIIO directly (read_image reads the first).
-        auto in = OIIO::ImageInput::open(file.string());
-        if (!in || !in->seek_subimage(subimage, 0))
-            throw std::runtime_error(fmt::format("cannot read part {} of '{}'", subimage, file.string()));
-        const OIIO::ImageSpec& spec = in->spec();
-        formats::Pixels p;
-        p.width = spec.width;
-        p.height = spec.height;
-        p.channels = spec.nchannels;
-        p.channel_names = spec.channelnames;
-        p.values.resize(static_cast<size_t>(p.width) * p.height * p.channels);
-        if (!in->read_image(subimage, 0, 0, p.channels, OIIO::TypeDesc::FLOAT, p.values.data()))
-            throw std::runtime_error(fmt::format("cannot read part {} of '{}': {}", subimage,
-                                                 file.string(), in->geterror()));
-        return p;
-    }
-    ImageData image = read_image(file);
+    ImageData image = read_image(file, subimage);
     formats::Pixels p;
     p.width = image.width;
     p.height = image.height;

@@ -15,11 +15,11 @@ TexgenPlan example()
 {
     TexgenPlan plan;
     plan.command = "patina";
-    plan.output = "/work/urban";
-    plan.tasks.push_back({"t = 0 y", {"patina", "urban.patina", "--times", "0", "-o", "/work/urban/t00"},
-                          {"/work/urban/t00"}, 0.0, "t00"});
-    plan.tasks.push_back({"t = 30 y", {"patina", "urban.patina", "--times=30", "-o", "/work/urban/t30"},
-                          {"/work/urban/t30", "/work/urban/extra"}, 30.0, "t30"});
+    plan.output = "/shots/urban";
+    plan.tasks.push_back({"t = 0 y", {"patina", "urban.patina", "--times", "0", "-o", "/shots/urban/t00"},
+                          {"/shots/urban/t00"}, 0.0, "t00"});
+    plan.tasks.push_back({"t = 30 y", {"patina", "urban.patina", "--times=30", "-o", "/shots/urban/t30"},
+                          {"/shots/urban/t30", "/shots/urban/extra"}, 30.0, "t30"});
     return plan;
 }
 
