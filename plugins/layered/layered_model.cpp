@@ -118,25 +118,14 @@ namespace {
         if (o.metal) {
             m.eta = resample(o.lambda_nm, o.n);
             m.kappa = resample(o.lambda_nm, o.k);
-            // Hemispherical reflectance 2 ∫ F(μ) μ dμ of the smooth metal: what light that
-            // arrives diffusely from the layers above sees (midpoint rule, 64 nodes).
-            for (int i = 0; i < kGridSize; ++i) {
-                double sum = 0.0;
-                for (int q = 0; q < 64; ++q) {
-                    const float mu = (q + 0.5f) / 64.0f;
-                    sum += fresnel_conductor(mu, m.eta[i], m.kappa[i]) * mu;
-                }
-                m.base_reflectance[i] = static_cast<float>(2.0 * sum / 64.0);
-            }
+            for (int i = 0; i < kGridSize; ++i)
+                m.base_reflectance[i] = base_reflectance_metal(m.eta[i], m.kappa[i]);
         } else {
             m.absorption = resample(o.lambda_nm, o.absorption_per_um);
             m.scattering = resample(o.lambda_nm, o.scattering_per_um);
-            for (int i = 0; i < kGridSize; ++i) {
-                // R_inf = 1 + K/S - sqrt((K/S)^2 + 2 K/S) (D&H 1996 §4.1), as 1 / (1 + q + sqrt)
-                const double K = m.absorption[i], S = m.scattering[i];
-                const double q = S > 0.0 ? K / S : (K > 0.0 ? 1e30 : 0.0);
-                m.base_reflectance[i] = static_cast<float>(1.0 / (1.0 + q + std::sqrt(q * q + 2.0 * q)));
-            }
+            for (int i = 0; i < kGridSize; ++i)
+                m.base_reflectance[i] =
+                    base_reflectance_dielectric(m.absorption[i], m.scattering[i]);
         }
         tabulate_albedo(&m);
         return m;

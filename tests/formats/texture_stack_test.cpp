@@ -293,8 +293,9 @@ TEST(TextureStackFormat, LayeredKmAndFlattenSeeOneStack)
     ColorManager colors(fs::path(PATINA_SOURCE_DIR) / "ocio/config.ocio");
     texgen::MaterialLibrary library;
     library.load(fs::path(PATINA_SOURCE_DIR) / "shaders/patina/copper.toml", colors);
-    const std::vector<const texgen::PatinaMaterial*> materials =
-        texgen::resolve_stack_materials(flatten, library, colors);
+    std::vector<const texgen::PatinaMaterial*> materials{library.find(flatten.base)};
+    for (const texgen::StackLayerFiles& l : flatten.layers)
+        materials.push_back(library.find(l.material));
 
     EXPECT_EQ(plugin.base, flatten.base);
     ASSERT_EQ(plugin.layers.size(), 5u);
@@ -312,10 +313,13 @@ TEST(TextureStackFormat, LayeredKmAndFlattenSeeOneStack)
         ASSERT_LT(plugin.layers[l].channel, static_cast<int>(names.size()));
         EXPECT_EQ(names[static_cast<size_t>(plugin.layers[l].channel)], flatten.layers[l].channel);
     }
-    // The optics: the plugin's floats are the library's resolution that flatten checked.
+    // The optics: what the library resolved, recorded once, read alike by both (flatten
+    // in double, the plugin in float).
     for (const texgen::PatinaMaterial* m : materials) {
+        ASSERT_TRUE(m);
         SCOPED_TRACE(m->name);
         const MaterialOptics expected = texgen::stack_optics(*m, colors);
+        EXPECT_EQ(optics_difference(flatten.materials.at(m->name), expected, 0.0), "");
         const layered::MaterialOptics& seen = plugin.materials.at(m->name);
         EXPECT_EQ(seen.metal, expected.metal);
         EXPECT_EQ(seen.roughness, static_cast<float>(expected.roughness));

@@ -9,7 +9,6 @@
 #include "texgen/export/export_flattened.h"
 #include "texgen/export/export_patina.h"
 #include "texgen/export/vdb_export.h"
-#include "texgen/patina/material_library.h"
 
 #include <fmt/format.h>
 
@@ -27,7 +26,6 @@ namespace {
 struct ExportCommandOptions {
     std::vector<fs::path> inputs;
     fs::path output;
-    std::vector<fs::path> materials;
     ExportOptions exporting;
     fs::path scene;        ///< --scene: the slab_volume parameters of a .vdb export
     std::string medium;    ///< --medium: its name
@@ -92,8 +90,7 @@ void run_export(const ExportCommandOptions& o)
                              .count());
         return;
     }
-    const MaterialLibrary library = MaterialLibrary::load_default(o.materials, colors);
-    const ExportResult r = export_patina(input, o.output, o.exporting, library, colors);
+    const ExportResult r = export_patina(input, o.output, o.exporting, colors);
     if (!o.quiet) {
         const double seconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -153,9 +150,6 @@ void register_export_command(CLI::App& app)
         ->check(CLI::ExistingFile);
     cmd->add_option("--medium", o->medium,
                     ".vdb with --scene: the name of the slab_volume shader (default: the first)");
-    cmd->add_option("--materials", o->materials,
-                    "extra material library files (the ones the stack was made with)")
-        ->check(CLI::ExistingFile);
     cmd->add_flag("-q,--quiet", o->quiet, "no summary line");
     cmd->callback([o] { run_export(*o); });
 }

@@ -7,7 +7,6 @@
 #include "core/color_management.h"
 #include "texgen/flatten/flatten_stack.h"
 #include "texgen/flatten/patina_stack_files.h"
-#include "texgen/patina/material_library.h"
 
 #include <fmt/format.h>
 
@@ -24,7 +23,6 @@ namespace {
 struct FlattenCommandOptions {
     fs::path stack;
     fs::path out_dir;
-    std::vector<fs::path> materials;
     FlattenOptions flatten;
     bool quiet = false;
 };
@@ -34,11 +32,8 @@ void run_flatten(const FlattenCommandOptions& o)
     const auto start = std::chrono::steady_clock::now();
     flatten_colorspace(o.flatten.color_space);  // a bad option fails before any work
     ColorManager colors(ColorManager::default_config_path());
-    const MaterialLibrary library = MaterialLibrary::load_default(o.materials, colors);
-
     const PatinaStackFiles stack = read_patina_stack(o.stack);
-    const std::vector<const PatinaMaterial*> materials = resolve_stack_materials(stack, library, colors);
-    const FlattenedStack flat = flatten_stack(stack, materials, o.flatten);
+    const FlattenedStack flat = flatten_stack(stack, colors, o.flatten);
     const auto written = write_flattened(o.out_dir, flat, stack, o.flatten, colors);
     if (!o.quiet) {
         const double seconds =
@@ -76,9 +71,6 @@ void register_flatten_command(CLI::App& app)
     cmd->add_option("--normal-scale", o->flatten.normal_scale,
                     "height exaggeration of the normal map (1: true relief)")
         ->capture_default_str()->check(patina::positive);
-    cmd->add_option("--materials", o->materials, "more material library files (TOML), as given "
-                                                 "to `patina-texgen patina`")
-        ->check(CLI::ExistingFile);
     cmd->add_flag("--half", o->flatten.half, "write half-float maps");
     cmd->add_flag("-q,--quiet", o->quiet, "no summary line");
     cmd->callback([o] { run_flatten(*o); });

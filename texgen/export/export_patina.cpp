@@ -65,8 +65,7 @@ std::string age_name(double years)
 }
 
 ExportResult export_patina(const fs::path& input, const fs::path& output,
-                           const ExportOptions& given, const MaterialLibrary& library,
-                           const ColorManager& colors)
+                           const ExportOptions& given, const ColorManager& colors)
 {
     ExportOptions options = given;
     check_export_options(options, output);
@@ -117,8 +116,7 @@ ExportResult export_patina(const fs::path& input, const fs::path& output,
         out.manifest = step.stack.manifest;
         out.extras = {{"time_years", step.time_years},
                       {"stack", relative_to(step.stack.manifest, output.parent_path())}};
-        out.flat = flatten_stack(step.stack,
-                                 resolve_stack_materials(step.stack, library, colors), flatten);
+        out.flat = flatten_stack(step.stack, colors, flatten);
         encode_step(out, options, colors);
     });
 

@@ -8,7 +8,6 @@
 
 #include "core/color_management.h"
 #include "core/mesh_convention.h"
-#include "texgen/patina/material_library.h"
 
 #include <filesystem>
 #include <string>
@@ -49,7 +48,7 @@ struct ExportResult {
 /// output is written last, under a temporary name, so nothing is left half-written.
 ExportResult export_patina(const std::filesystem::path& input,
                            const std::filesystem::path& output, const ExportOptions& options,
-                           const MaterialLibrary& library, const ColorManager& colors);
+                           const ColorManager& colors);
 
 /// "0 y", "6 y", "7.5 y": a step's variant name.
 std::string age_name(double years);

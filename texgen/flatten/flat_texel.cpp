@@ -3,55 +3,91 @@
 #include <patina/shading/layer_stack.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <stdexcept>
 
 namespace patina::texgen {
 
-FlatTexel flatten_texel(const PatinaMaterial& base, std::span<const PatinaMaterial* const> layers,
-                        std::span<const float> thickness_um)
+namespace {
+
+    using shading::simd::V4;
+
+    /// The walk of one texel from the top down, every band group at once
+    /// (patina/shading/layer_stack.h, §4.2-4.3), as the layered_km shader walks its
+    /// wavelengths. `on_interface(k, attenuation)` is called for each layer k (0-based,
+    /// bottom to top) with an interface of its own: present, and not continuing the layer
+    /// above it (the same material has no boundary with itself).
+    template <class OnInterface>
+    std::array<shading::LayersAbove<V4>, kBandGroups>
+    walk(const BandStack& stack, std::span<const float> thickness_um, OnInterface on_interface)
+    {
+        if (stack.layers.size() != thickness_um.size())
+            throw std::invalid_argument("flatten_texel: one thickness per layer");
+        std::array<shading::LayersAbove<V4>, kBandGroups> above;
+        const BandMaterial* material_above = nullptr;
+        for (size_t k = stack.layers.size(); k-- > 0;) {
+            const float d = thickness_um[k];
+            if (!(d > 0.0f))
+                continue;
+            const BandMaterial& m = *stack.layers[k];
+            if (shading::has_interface(&m, material_above))
+                on_interface(k, above, shading::interface_fade(d));
+            material_above = &m;
+            // KM R and T of layer k (§4.1), added under the layers above.
+            for (int g = 0; g < kBandGroups; ++g)
+                above[g].add(m.absorption[g], m.scattering[g], d);
+        }
+        return above;
+    }
+
+    Bands diffuse_over_base(const std::array<shading::LayersAbove<V4>, kBandGroups>& above,
+                            const BandMaterial& base, bool metal)
+    {
+        Bands out;
+        for (int g = 0; g < kBandGroups; ++g)
+            out[g] = shading::simd::clamp4(above[g].diffuse_over(base.base_reflectance[g], metal),
+                                           0.0f, 1.0f);
+        return out;
+    }
+
+}  // namespace
+
+Bands stack_diffuse(const BandStack& stack, std::span<const float> thickness_um,
+                    bool keep_metal_reflection)
 {
-    if (layers.size() != thickness_um.size())
-        throw std::invalid_argument("flatten_texel: one thickness per layer");
-    const size_t n = layers.size();
+    const auto above = walk(stack, thickness_um, [](size_t, const auto&, float) {});
+    return diffuse_over_base(above, *stack.base, stack.base->metal && !keep_metal_reflection);
+}
+
+FlatTexel flatten_texel(const BandStack& stack, std::span<const float> thickness_um,
+                        const BandsToRgb& to_rgb)
+{
+    const size_t n = stack.layers.size();
     FlatTexel out;
     out.interfaces.resize(n + 1);
-    for (size_t i = 0; i < n; ++i)
+    for (size_t i = 0; i < n && i < thickness_um.size(); ++i) {
         out.height_um += thickness_um[i];
-
-    // One walk from the top down, the three channels in the lanes of one register
-    // (patina/shading/layer_stack.h, §4.2-4.3), as the layered_km shader walks its
-    // wavelengths: interface k (the top of layer k - 1) is seen through the layers above it;
-    // a layer of the material above it continues that layer and has no interface.
-    using shading::simd::V4;
-    auto lanes = [](const Imath::V3f& v) { return V4{v.x, v.y, v.z, 0.0f}; };
-    shading::LayersAbove<V4> above;
-    const PatinaMaterial* material_above = nullptr;
-    for (size_t k = n; k-- > 0;) {
-        const float d = thickness_um[k];
-        const PatinaMaterial& m = *layers[k];
-        InterfaceLobe& lobe = out.interfaces[k + 1];
-        lobe.roughness = m.roughness;
-        if (d > 0.0f && shading::has_interface(&m, material_above)) {
-            // §4.3: the specular colour "multiplied twice by diffuse transmittance of the
-            // intervening layers calculated using the KM equations".
-            const V4 attenuation = above.attenuation(shading::interface_fade(d));
-            for (int c = 0; c < 3; ++c)
-                lobe.specular[c] = m.specular[c] * attenuation[c];
-        }
-        if (d > 0.0f)
-            material_above = &m;
-        // KM R and T of layer k (§4.1), added under the layers above.
-        above.add(lanes(m.absorption), lanes(m.scattering), d);
+        out.interfaces[i + 1].roughness = stack.layers[i]->roughness;
     }
+    // §4.3: each interface's specular reflectance "multiplied twice by diffuse
+    // transmittance of the intervening layers calculated using the KM equations".
+    auto lobe_colour = [&](const BandMaterial& m, const auto& above, float fade) {
+        Bands s;
+        for (int g = 0; g < kBandGroups; ++g)
+            s[g] = m.specular[g] * above[g].attenuation(fade);
+        return to_rgb(s);
+    };
+    const auto above = walk(stack, thickness_um, [&](size_t k, const auto& layers_above, float fade) {
+        out.interfaces[k + 1].specular = lobe_colour(*stack.layers[k], layers_above, fade);
+    });
     // The base's own interface, under every layer.
-    const V4 base_attenuation = above.attenuation();
-    for (int c = 0; c < 3; ++c)
-        out.interfaces[0].specular[c] = base.specular[c] * base_attenuation[c];
+    const BandMaterial& base = *stack.base;
+    out.interfaces[0].specular = lobe_colour(base, above, 1.0f);
     out.interfaces[0].roughness = base.roughness;
     // Diffuse: the whole stack over the opaque base (§4.2); a metal's once-through
     // reflection is the base lobe.
-    const V4 diffuse = above.diffuse_over(lanes(base.color), base.is_metal);
+    const Imath::V3f diffuse = to_rgb(diffuse_over_base(above, base, base.metal));
     for (int c = 0; c < 3; ++c)
         out.diffuse[c] = std::max(0.0f, diffuse[c]);
 
@@ -61,11 +97,11 @@ FlatTexel flatten_texel(const PatinaMaterial& base, std::span<const PatinaMateri
             top = static_cast<int>(i);
             break;
         }
-    out.two_lobe = reduce_to_two_lobes(base, out.diffuse, out.interfaces, top);
+    out.two_lobe = reduce_to_two_lobes(base.metal, out.diffuse, out.interfaces, top);
     return out;
 }
 
-TwoLobe reduce_to_two_lobes(const PatinaMaterial& base, const Imath::V3f& diffuse,
+TwoLobe reduce_to_two_lobes(bool metal_base, const Imath::V3f& diffuse,
                             std::span<const InterfaceLobe> interfaces, int top_interface)
 {
     TwoLobe two;
@@ -92,7 +128,7 @@ TwoLobe reduce_to_two_lobes(const PatinaMaterial& base, const Imath::V3f& diffus
 
     // glTF's metallic blend carries the diffuse albedo and the metal's F0 in one colour.
     // Over a dielectric base the lower lobes are left to glTF's fixed 0.04 F0.
-    const Imath::V3f metal = base.is_metal ? f0 : Imath::V3f(0.0f);
+    const Imath::V3f metal = metal_base ? f0 : Imath::V3f(0.0f);
     const float lum_metal = luminance(metal), lum_diffuse = luminance(diffuse);
     two.base_color = diffuse + metal;
     two.metallic = lum_metal + lum_diffuse > 0.0f ? lum_metal / (lum_metal + lum_diffuse) : 0.0f;

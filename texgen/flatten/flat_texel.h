@@ -3,11 +3,13 @@
 // lobe per interface), and its reduction to two lobes in glTF 2.0 conventions
 // (metallic-roughness + KHR_materials_clearcoat) for renderers without layered shading.
 //
-// Colours are linear Rec.709 (the MaterialLibrary's space), per channel; roughness is the
-// library's perceptual roughness r (GGX alpha = r², as glTF and the plugins use it).
+// The model is evaluated at the band wavelengths on the optics the stack records
+// (band_optics.h), as layered_km evaluates it at its wavelengths; its colours are taken to
+// linear Rec.709 under D65 there. Roughness is perceptual (GGX alpha = r², as glTF and the
+// plugins use it).
 #pragma once
 
-#include "texgen/patina/material_library.h"
+#include "texgen/flatten/band_optics.h"
 
 #include <Imath/ImathVec.h>
 
@@ -19,7 +21,7 @@ namespace patina::texgen {
 /// The glossy lobe of one interface (§4.3): "each interface inherits properties from the
 /// material below it". Interface 0 is the top of the base, interface i the top of layer i.
 struct InterfaceLobe {
-    /// The material's specular colour times the squared KM diffuse transmittance of the
+    /// The material's specular reflectance times the squared KM diffuse transmittance of the
     /// layers above the interface (§4.3: "multiplied twice by diffuse transmittance of the
     /// intervening layers"), faded in over the first shading::kInterfaceFadeUm of the layer
     /// under it (patina/shading/layer_stack.h); 0 where that layer is absent or continues
@@ -51,10 +53,16 @@ struct FlatTexel {
 /// 0.04, KHR_materials_clearcoat): the coat weight is the exposed layer's specular over it.
 inline constexpr float kClearcoatF0 = 0.04f;
 
-/// Flatten one texel: `layers` bottom to top with their thickness here (µm, >= 0;
-/// thickness_um.size() == layers.size()).
-FlatTexel flatten_texel(const PatinaMaterial& base, std::span<const PatinaMaterial* const> layers,
-                        std::span<const float> thickness_um);
+/// Flatten one texel of `stack`, its layers' thickness here (µm, >= 0, bottom to top;
+/// thickness_um.size() == stack.layers.size()), colours through `to_rgb`.
+FlatTexel flatten_texel(const BandStack& stack, std::span<const float> thickness_um,
+                        const BandsToRgb& to_rgb);
+
+/// The diffuse reflectance alone at the bands (FlatTexel::diffuse before its conversion to
+/// colour), over a metal base with (`keep_metal_reflection`, what a preview shows) or
+/// without the metal's once-through reflection.
+Bands stack_diffuse(const BandStack& stack, std::span<const float> thickness_um,
+                    bool keep_metal_reflection);
 
 /// Reduce a flattened texel to two lobes (called by flatten_texel; exposed for tests).
 /// The coat is the top interface where a layer is exposed (weight = its specular luminance
@@ -64,7 +72,7 @@ FlatTexel flatten_texel(const PatinaMaterial& base, std::span<const PatinaMateri
 /// (base = mix(dielectric diffuse, metal F0, metallic)) then carries the diffuse albedo D
 /// and that F0 M as base_color = D + M, metallic = lum(M) / (lum(M) + lum(D)), which keeps
 /// the luminance of both parts exactly and mixes their hues.
-TwoLobe reduce_to_two_lobes(const PatinaMaterial& base, const Imath::V3f& diffuse,
+TwoLobe reduce_to_two_lobes(bool metal_base, const Imath::V3f& diffuse,
                             std::span<const InterfaceLobe> interfaces, int top_interface);
 
 /// Rec.709 luminance (the Y row of the Rec.709 → XYZ matrix, ITU-R BT.709-6).

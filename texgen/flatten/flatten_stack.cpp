@@ -2,8 +2,6 @@
 
 #include "formats/texture_stack/texture_stack.h"
 
-#include "texgen/patina/stack_materials.h"
-
 #include "core/image_io.h"
 #include "texgen/flatten/flat_texel.h"
 #include "texgen/flatten/normal_map.h"
@@ -75,44 +73,6 @@ std::string flatten_colorspace(const std::string& option)
     throw std::runtime_error(fmt::format("--color-space '{}': expected srgb or acescg", option));
 }
 
-std::vector<const PatinaMaterial*> resolve_stack_materials(const PatinaStackFiles& stack,
-                                                           const MaterialLibrary& library,
-                                                           const ColorManager& colors)
-{
-    std::vector<const PatinaMaterial*> out;
-    auto find = [&](const std::string& name, const std::string& what) {
-        const PatinaMaterial* m = library.find(name);
-        if (!m) {
-            std::string files;
-            for (const PatinaMaterial& known : library.materials())
-                if (files.find(known.file.string()) == std::string::npos)
-                    files += (files.empty() ? "" : ", ") + known.file.string();
-            throw std::runtime_error(fmt::format(
-                "patina stack '{}': {} material '{}' is not in the material library ({}); "
-                "pass the library the stack was made with: --materials FILE",
-                stack.manifest.string(), what, name, files.empty() ? "no files" : files));
-        }
-        const auto recorded = stack.materials.find(name);
-        if (recorded == stack.materials.end())
-            throw std::runtime_error(fmt::format("patina stack '{}': {} material '{}' has no "
-                                                 "optics in [patina.materials]",
-                                                 stack.manifest.string(), what, name));
-        if (const std::string d =
-                formats::optics_difference(recorded->second, stack_optics(*m, colors));
-            !d.empty())
-            throw std::runtime_error(fmt::format(
-                "patina stack '{}': {} material '{}' differs from the library's ({}: {} in the "
-                "stack against the library's); pass the library the stack was made with: "
-                "--materials FILE",
-                stack.manifest.string(), what, name, m->file.string(), d));
-        return m;
-    };
-    out.push_back(find(stack.base, "base"));
-    for (size_t i = 0; i < stack.layers.size(); ++i)
-        out.push_back(find(stack.layers[i].material, fmt::format("layer {}", i + 1)));
-    return out;
-}
-
 void check_finite_maps(const FlattenedStack& flat, const fs::path& manifest, const char* command)
 {
     for (const FlatMap& map : flat.maps)
@@ -129,16 +89,12 @@ void check_finite_maps(const FlattenedStack& flat, const fs::path& manifest, con
                 }
 }
 
-FlattenedStack flatten_stack(const PatinaStackFiles& stack,
-                             const std::vector<const PatinaMaterial*>& materials,
+FlattenedStack flatten_stack(const PatinaStackFiles& stack, const ColorManager& colors,
                              const FlattenOptions& options)
 {
-    if (materials.size() != stack.layers.size() + 1)
-        throw std::invalid_argument("flatten_stack: one material for the base and each layer");
     const size_t n = stack.layers.size();
-    const PatinaMaterial& base = *materials.front();
-    const std::vector<const PatinaMaterial*> layer_materials(materials.begin() + 1,
-                                                             materials.end());
+    const BandStack materials = band_stack(stack);
+    const BandsToRgb to_rgb(colors);
 
     FlattenedStack flat;
     flat.udims = stack.udims;
@@ -178,7 +134,7 @@ FlattenedStack flatten_stack(const PatinaStackFiles& stack,
         "interface 0's glossy lobe",
         true);
     for (size_t k = 0; k <= n; ++k) {
-        const PatinaMaterial& below = *materials[k];
+        const BandMaterial& below = k == 0 ? *materials.base : *materials.layers[k - 1];
         const std::string stem = fmt::format("interface{:02}_{}", k, formats::name_part(below.name));
         const std::string where =
             k == 0 ? fmt::format("the top of the base ({})", below.name)
@@ -238,7 +194,7 @@ FlattenedStack flatten_stack(const PatinaStackFiles& stack,
             for (size_t t = range.begin(); t != range.end(); ++t) {
                 for (size_t l = 0; l < n; ++l)
                     d[l] = thickness[l][t];
-                const FlatTexel f = flatten_texel(base, layer_materials, d);
+                const FlatTexel f = flatten_texel(materials, d, to_rgb);
                 size_t m = 0;
                 auto put3 = [&](const Imath::V3f& v) {
                     std::vector<float>& texels_of = flat.maps[m++].tiles[tile];

@@ -4,7 +4,6 @@
 
 #include "core/color_management.h"
 #include "texgen/flatten/patina_stack_files.h"
-#include "texgen/patina/material_library.h"
 
 #include <filesystem>
 #include <string>
@@ -47,22 +46,12 @@ struct FlattenedStack {
 /// The OCIO colour space of a --color-space value; throws std::runtime_error for others.
 std::string flatten_colorspace(const std::string& option);
 
-/// The materials of `stack`: its base and each layer's, from `library`, which must describe
-/// them as the stack does (the optics of its [patina.materials], resolved through `colors`
-/// as the patina writer resolved them), so that flatten and layered_km see one material.
-/// Throws std::runtime_error naming the stack.toml, the layer and the libraries for an
-/// unknown name, and the first value that differs for a material the library describes
-/// otherwise.
-std::vector<const PatinaMaterial*> resolve_stack_materials(const PatinaStackFiles& stack,
-                                                           const MaterialLibrary& library,
-                                                           const ColorManager& colors);
-
-/// Read the thickness maps of `stack` and flatten every texel. `materials` is
-/// resolve_stack_materials' answer (base first). Throws std::runtime_error naming the file
-/// for an unreadable map, a map without a "thickness" channel or of another size than the others,
-/// and a NaN, infinite or negative texel (with its position).
-FlattenedStack flatten_stack(const PatinaStackFiles& stack,
-                             const std::vector<const PatinaMaterial*>& materials,
+/// Read the thickness maps of `stack` and flatten every texel with the optics its
+/// manifest records (flat_texel.h; colours through `colors`). Throws std::runtime_error
+/// naming the file for an unreadable map, a map without a "thickness" channel or of another
+/// size than the others, a NaN, infinite or negative texel (with its position), and naming
+/// the manifest for a material it records no optics of.
+FlattenedStack flatten_stack(const PatinaStackFiles& stack, const ColorManager& colors,
                              const FlattenOptions& options);
 
 /// Throws std::runtime_error "<command> of '<manifest>': map '<name>' texel (x, y) of tile T

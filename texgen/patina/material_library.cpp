@@ -2,7 +2,7 @@
 
 #include "formats/toml_location.h"
 
-#include "core/kubelka_munk.h"
+#include <patina/shading/kubelka_munk.h>
 #include "core/shader_library.h"
 #include "texgen/patina/stack_materials.h"
 
@@ -199,15 +199,15 @@ void MaterialLibrary::load(const fs::path& file, const ColorManager& colors)
                 }
             }
             for (int i = 0; i < kSpectralSamples; ++i)
-                mat.spectral.r_infinity.push_back(km_r_infinity(
-                    mat.spectral.absorption[i] / mat.spectral.scattering[i]));
+                mat.spectral.r_infinity.push_back(static_cast<float>(shading::km_r_infinity(
+                    mat.spectral.absorption[i] / mat.spectral.scattering[i])));
             if (std::abs(sum - 1.0) > 1e-3)
                 toml_fail(file, mix_node, fmt::format("material '{}': mixture fractions sum to {} "
                                                   "(must be 1)", name, sum));
             mat.absorption = K;
             mat.scattering = S;
             for (int c = 0; c < 3; ++c)
-                mat.color[c] = km_r_infinity(K[c] / S[c]);
+                mat.color[c] = static_cast<float>(shading::km_r_infinity(K[c] / S[c]));
         } else {
             const toml::node* color = m.get("color");
             if (!color)
@@ -242,7 +242,7 @@ void MaterialLibrary::load(const fs::path& file, const ColorManager& colors)
                 mat.scattering = Imath::V3f(S);
                 // K/S from R_inf (D&H 1996 §4.1), with the assumed S.
                 for (int i = 0; i < 3; ++i)
-                    mat.absorption[i] = km_k_over_s(c[i]) * S;
+                    mat.absorption[i] = static_cast<float>(shading::km_k_over_s(c[i])) * S;
             }
             // The spectral optics: the tables when given, else uplifted from the colour.
             if (!n_table.empty()) {
@@ -257,7 +257,7 @@ void MaterialLibrary::load(const fs::path& file, const ColorManager& colors)
                 for (float& r : mat.spectral.r_infinity) {
                     r = std::clamp(r, 1e-4f, 0.9999f);
                     mat.spectral.scattering.push_back(mat.scattering[0]);
-                    mat.spectral.absorption.push_back(km_k_over_s(r) * mat.scattering[0]);
+                    mat.spectral.absorption.push_back(static_cast<float>(shading::km_k_over_s(r)) * mat.scattering[0]);
                 }
             } else {
                 mat.spectral = resolve_spectral(mat, colors);

@@ -1,6 +1,6 @@
 #include "texgen/patina/stack_materials.h"
 
-#include "core/kubelka_munk.h"
+#include <patina/shading/kubelka_munk.h>
 #include "core/rgb_spectrum.h"
 
 #include <algorithm>
@@ -95,15 +95,15 @@ SpectralOptics resolve_spectral(const PatinaMaterial& m, const ColorManager& col
     // the mean of the channels' S (S is a single assumed number in the library).
     Imath::V3f r_inf;
     for (int c = 0; c < 3; ++c)
-        r_inf[c] = km_r_infinity(m.scattering[c] > 0.0f ? m.absorption[c] / m.scattering[c]
-                                                        : 0.0f);
+        r_inf[c] = static_cast<float>(shading::km_r_infinity(
+            m.scattering[c] > 0.0f ? m.absorption[c] / m.scattering[c] : 0.0f));
     const float S = (m.scattering[0] + m.scattering[1] + m.scattering[2]) / 3.0f;
     o.r_infinity = uplift_reflectance(r_inf, colors);
     for (float& r : o.r_infinity)
         r = std::clamp(r, 1e-4f, 0.9999f);
     for (float r : o.r_infinity) {
         o.scattering.push_back(S);
-        o.absorption.push_back(km_k_over_s(r) * S);
+        o.absorption.push_back(static_cast<float>(shading::km_k_over_s(r)) * S);
     }
     return o;
 }

@@ -1,8 +1,7 @@
 #include "texgen/patina/stack_preview.h"
 
 #include "core/image_io.h"
-
-#include <patina/shading/layer_stack.h>
+#include "texgen/flatten/flat_texel.h"
 
 #include <tbb/parallel_for.h>
 
@@ -10,31 +9,23 @@
 
 namespace patina::texgen {
 
-std::vector<Imath::V3f> stack_diffuse_color(const PatinaMaterial& base,
-                                            std::span<const PreviewLayer> bottom_to_top,
-                                            size_t texels)
+std::vector<Imath::V3f> stack_diffuse_color(const BandStack& stack,
+                                            std::span<const std::vector<float>> thickness_um,
+                                            size_t texels, const BandsToRgb& to_rgb)
 {
-    for (const PreviewLayer& layer : bottom_to_top)
-        if (!layer.material || layer.thickness_um.size() != texels)
-            throw std::invalid_argument("stack_diffuse_color: every layer needs a material "
-                                        "and one thickness per texel");
+    if (thickness_um.size() != stack.layers.size())
+        throw std::invalid_argument("stack_diffuse_color: one thickness map per layer");
+    for (const std::vector<float>& layer : thickness_um)
+        if (layer.size() != texels)
+            throw std::invalid_argument("stack_diffuse_color: one thickness per texel");
     std::vector<Imath::V3f> out(texels);
-    using shading::simd::V4;
-    auto lanes = [](const Imath::V3f& v) { return V4{v.x, v.y, v.z, 0.0f}; };
     tbb::parallel_for(tbb::blocked_range<size_t>(0, texels, 4096),
                       [&](const tbb::blocked_range<size_t>& range) {
+        std::vector<float> d(stack.layers.size());
         for (size_t i = range.begin(); i != range.end(); ++i) {
-            // The stack's model (patina/shading/layer_stack.h), walked from the top down in
-            // linear Rec.709 lanes; the whole reflectance over the base, a metal's included:
-            // a preview shows what the surface looks like.
-            shading::LayersAbove<V4> above;
-            for (size_t l = bottom_to_top.size(); l-- > 0;) {
-                const PreviewLayer& layer = bottom_to_top[l];
-                above.add(lanes(layer.material->absorption), lanes(layer.material->scattering),
-                          layer.thickness_um[i]);
-            }
-            const V4 r = above.diffuse_over(lanes(base.color), false);
-            out[i] = Imath::V3f(r[0], r[1], r[2]);
+            for (size_t l = 0; l < d.size(); ++l)
+                d[l] = thickness_um[l][i];
+            out[i] = to_rgb(stack_diffuse(stack, d, /*keep_metal_reflection=*/true));
         }
     });
     return out;

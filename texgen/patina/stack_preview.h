@@ -1,10 +1,11 @@
 // A quick look at a patina stack without a renderer: the Kubelka-Munk diffuse colour of
-// every texel's layers over the base (Dorsey & Hanrahan 1996 §4.1-4.2), per linear Rec.709
-// channel, written as a display PNG through OpenColorIO.
+// every texel's layers over the base (Dorsey & Hanrahan 1996 §4.1-4.2), the stack model of
+// flatten (texgen/flatten/flat_texel.h) on the optics the stack records, written as a
+// display PNG through OpenColorIO.
 #pragma once
 
 #include "core/color_management.h"
-#include "texgen/patina/material_library.h"
+#include "texgen/flatten/band_optics.h"
 
 #include <Imath/ImathVec.h>
 
@@ -14,18 +15,13 @@
 
 namespace patina::texgen {
 
-/// One layer of a stack as the preview sees it: its material and per-texel thickness (µm).
-struct PreviewLayer {
-    const PatinaMaterial* material = nullptr;
-    std::span<const float> thickness_um;
-};
-
-/// Diffuse reflectance (linear Rec.709) of each of `texels` stacks: each layer's KM R and T
-/// from its K, S and thickness (§4.1), composited over the opaque base of reflectance
-/// base.color (§4.2, the base as a layer with T = 0). Layers bottom to top.
-std::vector<Imath::V3f> stack_diffuse_color(const PatinaMaterial& base,
-                                            std::span<const PreviewLayer> bottom_to_top,
-                                            size_t texels);
+/// Reflectance (linear Rec.709 under D65) of each of `texels` stacks: flatten's diffuse
+/// albedo (flat_texel.h), over a metal base with the metal's once-through reflection kept:
+/// the whole reflectance, what the surface looks like. `thickness_um[l]` holds layer l's
+/// thickness (µm) at every texel, bottom to top.
+std::vector<Imath::V3f> stack_diffuse_color(const BandStack& stack,
+                                            std::span<const std::vector<float>> thickness_um,
+                                            size_t texels, const BandsToRgb& to_rgb);
 
 /// Write `colors` (linear Rec.709, width x height, row 0 at the top; texels outside the
 /// mesh given by `covered`, when not empty, are drawn mid grey) as an 8-bit sRGB PNG via

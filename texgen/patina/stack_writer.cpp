@@ -57,8 +57,8 @@ namespace {
         return s;
     }
 
-    /// The stack's own table in stack.toml, after its maps were recorded.
-    void record_patina_table(const fs::path& out_dir, const PatinaStep& step,
+    /// The stack's own table in stack.toml, after its maps were recorded; returns it.
+    formats::PatinaTable record_patina_table(const fs::path& out_dir, const PatinaStep& step,
                              const PatinaDomain& domain, const PatinaOutputOptions& options,
                              const std::vector<std::string>& layer_maps,
                              const std::vector<std::string>& channels,
@@ -98,6 +98,7 @@ namespace {
             add_material(*layer.material);
         root.insert_or_assign("patina", formats::to_toml(patina));
         write_manifest(path, root);
+        return patina;
     }
 
 }  // namespace
@@ -174,7 +175,8 @@ std::vector<fs::path> write_patina_step(const fs::path& out_dir, const PatinaSte
               "total thickness of the layers over the base in micrometres (for displacement or "
               "bump, D&H 1996 §4.3)",
               domain.per_tile(step.total_um));
-    record_patina_table(out_dir, step, domain, options, layer_maps, channels, colors);
+    const formats::PatinaTable patina =
+        record_patina_table(out_dir, step, domain, options, layer_maps, channels, colors);
     written.push_back(manifest_path(out_dir));
 
     if (options.preview) {
@@ -194,15 +196,14 @@ std::vector<fs::path> write_patina_step(const fs::path& out_dir, const PatinaSte
                         static_cast<int32_t>(nodes.size());
                     nodes.push_back(static_cast<size_t>(g));
                 }
+        // The optics just recorded: the preview is what flatten makes of this stack.
         std::vector<std::vector<float>> thickness(step.layers.size());
-        std::vector<PreviewLayer> layers;
-        for (size_t l = 0; l < step.layers.size(); ++l) {
+        for (size_t l = 0; l < step.layers.size(); ++l)
             for (size_t n : nodes)
                 thickness[l].push_back(step.layers[l].thickness_um[n]);
-            layers.push_back({step.layers[l].material, thickness[l]});
-        }
         const std::vector<Imath::V3f> node_colors =
-            stack_diffuse_color(*step.base, layers, nodes.size());
+            stack_diffuse_color(band_stack(patina, manifest_path(out_dir)), thickness,
+                                nodes.size(), BandsToRgb(colors));
         std::vector<Imath::V3f> image(node_of_pixel.size());
         std::vector<uint8_t> covered(node_of_pixel.size(), 0);
         for (size_t p = 0; p < node_of_pixel.size(); ++p) {

@@ -18,9 +18,11 @@
 // Header-only and free of the renderer: plugins include it.
 #pragma once
 
+#include <patina/shading/fresnel.h>
 #include <patina/shading/kubelka_munk.h>
 
 #include <algorithm>
+#include <cmath>
 
 namespace patina::shading {
 
@@ -40,6 +42,28 @@ template <class Material>
 inline bool has_interface(const Material* material, const Material* material_above)
 {
     return material != material_above;
+}
+
+/// The reflectance an opaque base returns to diffuse light from the layers above it, for
+/// a dielectric base of absorption K and scattering S (an infinitely thick layer: R∞ of
+/// §4.1, 1 / (1 + q + sqrt(q² + 2q)) with q = K/S; 1 for K = S = 0, 0 for S = 0 < K).
+inline float base_reflectance_dielectric(double K, double S)
+{
+    const double q = S > 0.0 ? K / S : (K > 0.0 ? 1e30 : 0.0);
+    return static_cast<float>(1.0 / (1.0 + q + std::sqrt(q * q + 2.0 * q)));
+}
+
+/// The same for a smooth metal of complex index n + ik: its hemispherical reflectance
+/// 2 ∫ F(μ) μ dμ (midpoint rule, 64 nodes), what light arriving diffusely from the layers
+/// above sees.
+inline float base_reflectance_metal(float n, float k)
+{
+    double sum = 0.0;
+    for (int q = 0; q < 64; ++q) {
+        const float mu = (q + 0.5f) / 64.0f;
+        sum += fresnel_conductor(mu, n, k) * mu;
+    }
+    return static_cast<float>(2.0 * sum / 64.0);
 }
 
 /// A layer's Kubelka-Munk R and T (§4.1) for the lanes a walk works in.

@@ -41,16 +41,11 @@ protected:
         ASSERT_EQ(std::system(command.c_str()), 0) << command;
     }
 
-    Export()
-    {
-        library_.load(fs::path(PATINA_SOURCE_DIR) / "shaders/patina/copper.toml", colors_);
-    }
-
     /// The flattened maps of one step, as export made them.
     FlattenedStack flat(const std::string& step) const
     {
         const PatinaStackFiles stack = read_patina_stack(dir_ / "rural" / step);
-        return flatten_stack(stack, resolve_stack_materials(stack, library_, colors_), {});
+        return flatten_stack(stack, colors_, {});
     }
 
     static const FlatMap& map_of(const FlattenedStack& f, const std::string& name)
@@ -81,13 +76,12 @@ protected:
 
     fs::path dir_;
     ColorManager colors_{fs::path(PATINA_SOURCE_DIR) / "ocio/config.ocio"};
-    MaterialLibrary library_;
 };
 
 TEST_F(Export, GlbHoldsOneVariantPerStepNamedByAge)
 {
     const fs::path out = dir_ / "rural.glb";
-    const ExportResult r = export_patina(dir_ / "rural", out, {}, library_, colors_);
+    const ExportResult r = export_patina(dir_ / "rural", out, {}, colors_);
     EXPECT_EQ(r.steps, 3u);
     std::ifstream in(out, std::ios::binary);
     const std::string bytes((std::istreambuf_iterator<char>(in)), {});
@@ -143,7 +137,7 @@ TEST_F(Export, MapsReadBackAsTheFlattenedMapsEncodedForGltf)
     ExportOptions o;
     o.separate = true;
     const fs::path out = dir_ / "sep" / "rural.gltf";
-    export_patina(dir_ / "rural" / "t30", out, o, library_, colors_);
+    export_patina(dir_ / "rural" / "t30", out, o, colors_);
     const FlattenedStack f = flat("t30");
     const size_t texels = static_cast<size_t>(f.width) * f.height;
 
@@ -206,7 +200,7 @@ TEST_F(Export, PresetsPackTheFlattenedMapsAsDocumented)
 
     ExportOptions o;
     o.preset = "unreal";
-    export_patina(dir_ / "rural" / "t30", dir_ / "unreal", o, library_, colors_);
+    export_patina(dir_ / "rural" / "t30", dir_ / "unreal", o, colors_);
     // ORM: R occlusion, G roughness, B metallic; the normal DirectX (green down).
     expect_packed(dir_ / "unreal" / "unreal_t30_OcclusionRoughnessMetallic.png", 8, 3, q8,
                   [&](size_t t, int c) { return mr[t * 3 + c]; });
@@ -221,7 +215,7 @@ TEST_F(Export, PresetsPackTheFlattenedMapsAsDocumented)
                   [&](size_t t, int) { return float(height[t] / top); });
 
     o.preset = "unity-hdrp";
-    export_patina(dir_ / "rural" / "t30", dir_ / "unity", o, library_, colors_);
+    export_patina(dir_ / "rural" / "t30", dir_ / "unity", o, colors_);
     // Mask map: R metallic, G occlusion, B detail mask (1), A smoothness = 1 - roughness.
     expect_packed(dir_ / "unity" / "unity_t30_MaskMap.png", 8, 4, q8, [&](size_t t, int c) {
         return c == 0 ? mr[t * 3 + 2] : c == 1 ? mr[t * 3] : c == 2 ? 1.0f : 1.0f - mr[t * 3 + 1];
@@ -230,7 +224,7 @@ TEST_F(Export, PresetsPackTheFlattenedMapsAsDocumented)
                   [&](size_t t, int) { return coat[t * 3]; });
 
     o.preset = "exr";
-    export_patina(dir_ / "rural" / "t30", dir_ / "exr", o, library_, colors_);
+    export_patina(dir_ / "rural" / "t30", dir_ / "exr", o, colors_);
     // Linear float: the flattened values themselves; displacement in metres.
     const ImageData base = read_image(dir_ / "exr" / "exr_t30_base_color.exr");
     const std::vector<float>& flat_base = map_of(f, "gltf_base_color").tiles[0];
@@ -256,7 +250,7 @@ TEST_F(Export, FlattenedMapsExportAsTheStackDoes)
     ExportOptions o;
     o.separate = true;
     o.name_template = "$map";
-    export_patina(dir_ / "rural" / "t30", dir_ / "from_stack" / "a.gltf", o, library_, colors_);
+    export_patina(dir_ / "rural" / "t30", dir_ / "from_stack" / "a.gltf", o, colors_);
     export_flattened(dir_ / "flat", dir_ / "from_maps" / "a.gltf", o, colors_);
     for (const char* map : {"base_color", "metallic_roughness", "normal", "clearcoat"}) {
         int bits_a = 0, bits_b = 0, ch_a = 0, ch_b = 0;
@@ -288,9 +282,9 @@ TEST_F(Export, SameBytesWithAnyThreadCount)
     fs::create_directories(dir_ / "threads");
     {
         tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
-        export_patina(dir_ / "rural", dir_ / "one_thread" / "a.glb", {}, library_, colors_);
+        export_patina(dir_ / "rural", dir_ / "one_thread" / "a.glb", {}, colors_);
     }
-    export_patina(dir_ / "rural", dir_ / "threads" / "a.glb", {}, library_, colors_);
+    export_patina(dir_ / "rural", dir_ / "threads" / "a.glb", {}, colors_);
     auto bytes = [](const fs::path& f) {
         std::ifstream in(f, std::ios::binary);
         return std::string((std::istreambuf_iterator<char>(in)), {});
@@ -309,7 +303,7 @@ TEST_F(Export, StepsThatDisagreeAreRefusedBeforeAnythingIsWritten)
     fs::remove_all(dir_ / "rural" / "t12");
     fs::copy(dir_ / "other", dir_ / "rural" / "t12", fs::copy_options::recursive);
     const std::string m = test::message_of(
-        [&] { export_patina(dir_ / "rural", dir_ / "x.glb", {}, library_, colors_); });
+        [&] { export_patina(dir_ / "rural", dir_ / "x.glb", {}, colors_); });
     EXPECT_NE(m.find("the steps disagree: t00 is 24x24 texels on 1 tile(s)"), std::string::npos)
         << m;
     EXPECT_NE(m.find("t12 is 16x16"), std::string::npos) << m;
@@ -321,20 +315,20 @@ TEST_F(Export, BadInputsNameTheOptionOrFile)
     ExportOptions o;
     o.preset = "maya";
     std::string m = test::message_of(
-        [&] { export_patina(dir_ / "rural", dir_ / "x.glb", o, library_, colors_); });
+        [&] { export_patina(dir_ / "rural", dir_ / "x.glb", o, colors_); });
     EXPECT_NE(m.find("--preset 'maya': expected one of gltf, unreal, unity-hdrp, exr"),
               std::string::npos) << m;
     o.preset = "unreal";
     o.bits = 12;
     m = test::message_of(
-        [&] { export_patina(dir_ / "rural", dir_ / "x", o, library_, colors_); });
+        [&] { export_patina(dir_ / "rural", dir_ / "x", o, colors_); });
     EXPECT_NE(m.find("--bits 12"), std::string::npos) << m;
     o.bits = 8;
     m = test::message_of(
-        [&] { export_patina(dir_ / "rural", dir_ / "x.glb", o, library_, colors_); });
+        [&] { export_patina(dir_ / "rural", dir_ / "x.glb", o, colors_); });
     EXPECT_NE(m.find("writes a folder of textures"), std::string::npos) << m;
     m = test::message_of(
-        [&] { export_patina(dir_ / "rural", dir_ / "x.gltf", {}, library_, colors_); });
+        [&] { export_patina(dir_ / "rural", dir_ / "x.gltf", {}, colors_); });
     EXPECT_NE(m.find("a binary glTF file"), std::string::npos) << m;
     EXPECT_FALSE(fs::exists(dir_ / "x.glb"));
     EXPECT_FALSE(fs::exists(dir_ / "x.gltf"));

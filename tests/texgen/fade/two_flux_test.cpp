@@ -6,7 +6,7 @@
 
 #include "dense_two_flux.h"
 
-#include "core/kubelka_munk.h"
+#include <patina/shading/kubelka_munk.h>
 #include "core/sampling.h"
 
 #include <gtest/gtest.h>
@@ -82,7 +82,7 @@ TEST(TwoFlux, SublayerOpticsMatchesKubelkaAndItsLimits)
     EXPECT_NEAR(lo.rho, hi.rho, 1e-10);
     // Very thick: R_inf and no overflow.
     const SublayerOptics thick = sublayer_optics(K, S, 1.0);
-    EXPECT_NEAR(thick.rho, patina::km_r_infinity(static_cast<float>(K / S)), 1e-6);
+    EXPECT_NEAR(thick.rho, patina::shading::km_r_infinity(K / S), 1e-6);
     EXPECT_LT(thick.tau, 1e-300);
 }
 
@@ -125,16 +125,20 @@ TEST(TwoFlux, SinglePrecisionHelpersAreAccurate)
 
 TEST(TwoFlux, TopReflectanceEqualsKmCompositingOfTheSublayers)
 {
-    // The system's E^u_0 / E_0 against core kubelka_munk.h composited sublayer by sublayer
-    // (float, hence 1e-6) and against the double fold of layer_optics.h (1e-12).
+    // The system's E^u_0 / E_0 against patina/shading/kubelka_munk.h composited sublayer by
+    // sublayer from the bottom up in float (hence 1e-6) and against the double top-down fold
+    // of layer_optics.h (1e-12).
     const Stack s = random_stack(40, 5, 2e5);
     const double ground = 0.6;
     std::vector<double> down(41), up(41);
     solve_two_flux(s.rho, s.tau, {1.0, 0.0, ground}, down, up);
-    std::vector<patina::KmLayer> layers;
-    for (size_t i = 0; i < s.rho.size(); ++i)
-        layers.push_back({static_cast<float>(s.rho[i]), static_cast<float>(s.tau[i])});
-    EXPECT_NEAR(up[0], patina::km_reflectance_over(layers, static_cast<float>(ground)), 1e-6);
+    using patina::shading::KmLayers;
+    KmLayers<float> below{static_cast<float>(ground), static_cast<float>(ground), 0.0f};
+    for (size_t i = s.rho.size(); i-- > 0;) {
+        const float r = static_cast<float>(s.rho[i]), t = static_cast<float>(s.tau[i]);
+        below = patina::shading::km_composite<float>({r, r, t}, below);
+    }
+    EXPECT_NEAR(up[0], below.r_top, 1e-6);
     const LayerOpticsValue v = fold_sublayers(s.rho, s.tau);
     EXPECT_NEAR(up[0], reflectance_over(v, ground), 1e-12);
 }

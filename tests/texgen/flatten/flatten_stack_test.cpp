@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 #include <toml++/toml.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <iterator>
@@ -76,14 +77,13 @@ protected:
     FlattenedStack flatten(FlattenOptions options = {})
     {
         const PatinaStackFiles stack = read_patina_stack(dir_ / "stack");
-        return flatten_stack(stack, resolve_stack_materials(stack, library_, colors_), options);
+        return flatten_stack(stack, colors_, options);
     }
 
     std::vector<fs::path> flatten_to(const fs::path& out, FlattenOptions options = {})
     {
         const PatinaStackFiles stack = read_patina_stack(dir_ / "stack");
-        const FlattenedStack flat =
-            flatten_stack(stack, resolve_stack_materials(stack, library_, colors_), options);
+        const FlattenedStack flat = flatten_stack(stack, colors_, options);
         return write_flattened(out, flat, stack, options, colors_);
     }
 
@@ -108,9 +108,8 @@ TEST_F(FlattenStack, MapsHoldTheTexelsOfFlattenTexel)
     const auto files = flatten_to(out);
     EXPECT_EQ(files.size(), 1 + 2 * 3 + 5 + 1u);  // + the manifest
 
-    const PatinaMaterial* copper = library_.find("copper");
-    const std::vector<const PatinaMaterial*> layers = {library_.find("tarnish"),
-                                                       library_.find("rural patina 3")};
+    const BandStack stack = band_stack(read_patina_stack(dir_ / "stack"));
+    const BandsToRgb to_rgb(colors_);
     const ImageData diffuse = read_image(out / "diffuse_albedo.exr");
     const ImageData spec0 = read_image(out / "interface00_copper_specular.exr");
     const ImageData rough1 = read_image(out / "interface01_tarnish_roughness.exr");
@@ -120,7 +119,7 @@ TEST_F(FlattenStack, MapsHoldTheTexelsOfFlattenTexel)
     ASSERT_EQ(diffuse.width, kSize);
     for (int x = 0; x < kSize; x += 5) {
         const float d[2] = {0.5f * x / (kSize - 1), 2.0f};
-        const FlatTexel f = flatten_texel(*copper, layers, d);
+        const FlatTexel f = flatten_texel(stack, d, to_rgb);
         // Colour maps are sRGB-encoded through OCIO (lin_rec709 -> srgb_texture).
         Imath::V3f want = f.diffuse, want_spec = f.interfaces[0].specular;
         colors_.convert("lin_rec709", "srgb_texture", &want.x, 1);
@@ -129,7 +128,7 @@ TEST_F(FlattenStack, MapsHoldTheTexelsOfFlattenTexel)
             EXPECT_NEAR(diffuse.at(x, 3, c), want[c], 1e-5) << x;
             EXPECT_NEAR(spec0.at(x, 3, c), want_spec[c], 1e-5) << x;
         }
-        EXPECT_FLOAT_EQ(rough1.at(x, 3, 0), layers[0]->roughness);
+        EXPECT_FLOAT_EQ(rough1.at(x, 3, 0), library_.find("tarnish")->roughness);
         EXPECT_FLOAT_EQ(height.at(x, 3, 0), d[0] + d[1]);
         EXPECT_FLOAT_EQ(mr.at(x, 3, mr.channel("G")), f.two_lobe.roughness);
         EXPECT_FLOAT_EQ(mr.at(x, 3, mr.channel("B")), f.two_lobe.metallic);
@@ -171,10 +170,9 @@ TEST_F(FlattenStack, AcesCgAndAPlanarHeight)
     const toml::table m = toml::parse_file((out / "stack.toml").string());
     EXPECT_EQ(m["maps"]["gltf_base_color"]["colorspace"].value<std::string>(), "ACEScg");
     // ACEScg is linear: the diffuse map is the Rec.709 value sent through OCIO.
-    const PatinaMaterial* copper = library_.find("copper");
-    const PatinaMaterial* cuprite = library_.find("cuprite");
     const float d[1] = {0.7f};
-    const FlatTexel f = flatten_texel(*copper, std::span(&cuprite, 1), d);
+    const FlatTexel f =
+        flatten_texel(band_stack(read_patina_stack(dir_ / "stack")), d, BandsToRgb(colors_));
     Imath::V3f want = f.diffuse;
     colors_.convert("lin_rec709", "ACEScg", &want.x, 1);
     const ImageData diffuse = read_image(out / "diffuse_albedo.exr");
@@ -302,38 +300,53 @@ TEST_F(FlattenStack, MissingMap)
     EXPECT_NE(m.find("does not exist"), std::string::npos) << m;
 }
 
-TEST_F(FlattenStack, UnknownMaterial)
+/// The stack.toml of `dir` with `edit` applied to its text.
+template <class Edit>
+void edit_manifest(const fs::path& dir, Edit edit)
+{
+    std::string toml;
+    {
+        std::ifstream in(dir / "stack.toml");
+        toml.assign(std::istreambuf_iterator<char>(in), {});
+    }
+    edit(toml);
+    std::ofstream(dir / "stack.toml") << toml;
+}
+
+TEST_F(FlattenStack, AMaterialWithoutOpticsIsNamed)
 {
     write_stack({{"tarnish", ramp(0.5f)}, {"marine patina 9", ramp(1.0f)}});
-    const PatinaStackFiles stack = read_patina_stack(dir_ / "stack");
-    const std::string m = test::message_of([&] { resolve_stack_materials(stack, library_, colors_); });
-    EXPECT_NE(m.find("layer 2 material 'marine patina 9' is not in the material library"),
-              std::string::npos) << m;
+    edit_manifest(dir_ / "stack", [](std::string& toml) {
+        const size_t table = toml.find("[patina.materials.\"marine patina 9\"]");
+        ASSERT_NE(table, std::string::npos);
+        const size_t next = toml.find("\n[", table + 1);
+        toml.erase(table, next == std::string::npos ? std::string::npos : next - table);
+    });
+    const std::string m = test::message_of(
+        [&] { flatten_stack(read_patina_stack(dir_ / "stack"), colors_, {}); });
+    EXPECT_NE(m.find("'marine patina 9'"), std::string::npos) << m;
+    EXPECT_NE(m.find("has no [patina.materials."), std::string::npos) << m;
     EXPECT_NE(m.find("stack.toml"), std::string::npos) << m;
 }
 
-TEST_F(FlattenStack, MaterialThatDiffersFromTheLibraryIsRefused)
+TEST_F(FlattenStack, TheOpticsTheStackRecordsAreTheOnesUsed)
 {
-    // flatten and layered_km must see one material: a stack whose recorded optics differ
-    // from the library's (another library, an edited stack) is refused, naming the value.
+    // flatten sees the material layered_km renders: the optics in the stack, whatever the
+    // library says now (another library, an edited stack). No library is read.
     write_stack({{"tarnish", ramp(0.5f)}});
-    std::string toml;
-    {
-        std::ifstream in(dir_ / "stack" / "stack.toml");
-        toml.assign(std::istreambuf_iterator<char>(in), {});
-    }
-    const size_t table = toml.find("[patina.materials.\"tarnish\"]");
-    ASSERT_NE(table, std::string::npos);
-    const size_t at = toml.find("roughness = ", table);
-    ASSERT_NE(at, std::string::npos);
-    toml.replace(at, toml.find('\n', at) - at, "roughness = 0.987");
-    std::ofstream(dir_ / "stack" / "stack.toml") << toml;
-    const PatinaStackFiles stack = read_patina_stack(dir_ / "stack");
-    const std::string m =
-        test::message_of([&] { resolve_stack_materials(stack, library_, colors_); });
-    EXPECT_NE(m.find("layer 1 material 'tarnish' differs from the library's"), std::string::npos)
-        << m;
-    EXPECT_NE(m.find("roughness 0.987 against"), std::string::npos) << m;
+    edit_manifest(dir_ / "stack", [](std::string& toml) {
+        const size_t table = toml.find("[patina.materials.\"tarnish\"]");
+        ASSERT_NE(table, std::string::npos);
+        const size_t at = toml.find("roughness = ", table);
+        ASSERT_NE(at, std::string::npos);
+        toml.replace(at, toml.find('\n', at) - at, "roughness = 0.987");
+    });
+    const FlattenedStack flat = flatten();
+    const auto map = std::find_if(flat.maps.begin(), flat.maps.end(), [](const FlatMap& m) {
+        return m.name == "interface01_tarnish_roughness";
+    });
+    ASSERT_NE(map, flat.maps.end());
+    EXPECT_FLOAT_EQ(map->tiles[0][0], 0.987f);
 }
 
 TEST_F(FlattenStack, NanTexelWritesNothing)
@@ -352,12 +365,11 @@ TEST_F(FlattenStack, MeshStackNeedsATexelSize)
     write_stack({{"tarnish", ramp(0.5f)}});
     PatinaStackFiles stack = read_patina_stack(dir_ / "stack");
     stack.strip_size_m = 0.0;  // as a mesh stack has none
-    const auto materials = resolve_stack_materials(stack, library_, colors_);
-    const std::string m = test::message_of([&] { flatten_stack(stack, materials, {}); });
+    const std::string m = test::message_of([&] { flatten_stack(stack, colors_, {}); });
     EXPECT_NE(m.find("pass --texel-size"), std::string::npos) << m;
     FlattenOptions o;
     o.texel_size_m = 0.001;
-    EXPECT_DOUBLE_EQ(flatten_stack(stack, materials, o).texel_size_m, 0.001);
+    EXPECT_DOUBLE_EQ(flatten_stack(stack, colors_, o).texel_size_m, 0.001);
     EXPECT_THROW(flatten_colorspace("rec2020"), std::runtime_error);
 }
 

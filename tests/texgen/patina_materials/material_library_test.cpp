@@ -1,7 +1,7 @@
 // The patina material library: the shipped copper minerals and the rules of the format.
 #include "texgen/patina/material_library.h"
 
-#include "core/kubelka_munk.h"
+#include <patina/shading/kubelka_munk.h>
 #include "test_util.h"
 
 #include <gtest/gtest.h>
@@ -69,12 +69,12 @@ TEST(MaterialLibrary, AbsorptionReproducesTheThickLayerColour)
             continue;
         for (int c = 0; c < 3; ++c) {
             // R_inf = 1 + K/S - sqrt((K/S)^2 + 2 K/S) (D&H 1996 §4.1) gives back the colour.
-            EXPECT_NEAR(patina::km_r_infinity(m.absorption[c] / m.scattering[c]), m.color[c],
-                        1e-4f)
+            EXPECT_NEAR(patina::shading::km_r_infinity(m.absorption[c] / m.scattering[c]),
+                        m.color[c], 1e-4f)
                 << m.name;
             // And a layer 100 / S thick is optically thick.
-            EXPECT_NEAR(patina::km_layer(m.absorption[c], m.scattering[c],
-                                         100.0f / m.scattering[c]).R,
+            EXPECT_NEAR(patina::shading::km_layer(m.absorption[c], m.scattering[c],
+                                                  100.0f / m.scattering[c]).r_top,
                         m.color[c], 2e-3f)
                 << m.name;
         }

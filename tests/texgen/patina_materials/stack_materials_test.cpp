@@ -6,7 +6,7 @@
 #include "texgen/patina/stack_writer.h"
 #include "shipped_materials.h"
 
-#include "core/kubelka_munk.h"
+#include <patina/shading/kubelka_munk.h>
 #include "core/rgb_spectrum.h"
 #include "test_util.h"
 
@@ -64,7 +64,7 @@ TEST(StackMaterials, LayerSpectraFollowKubelkaMunk)
             const float K = m.spectral.absorption[i], S = m.spectral.scattering[i];
             ASSERT_GT(S, 0.0f) << m.name;
             // R_inf = 1 + K/S - sqrt((K/S)^2 + 2 K/S) (D&H 1996 §4.1) is the stored R_inf.
-            EXPECT_NEAR(patina::km_r_infinity(K / S), m.spectral.r_infinity[i], 1e-4f) << m.name;
+            EXPECT_NEAR(patina::shading::km_r_infinity(K / S), m.spectral.r_infinity[i], 1e-4f) << m.name;
         }
     }
     // The uplifted R_inf of a plain layer has its colour: RGB of the spectrum under D65
