@@ -45,11 +45,11 @@ add_executable(core_user main.cpp)
 target_link_libraries(core_user PRIVATE Patina::core Patina::formats)
 ]=])
 file(WRITE "${WORK_DIR}/core_user/main.cpp" [=[
-#include "core/kubelka_munk.h"
+#include "core/spectrum.h"
 #include "formats/stone_volume/stone_volume.h"
 #include <cstdio>
-// R_inf of K/S = 0.5: 1 + 0.5 - sqrt(0.25 + 1) = 0.381966 (D&H 1996 section 4.1); a stone
-// volume's bounds part written and read back (ny = 3).
+// D65 at 560 nm: 100 (CIE 15:2004, the table's normalisation); a stone volume's bounds part
+// written and read back (ny = 3).
 int main()
 {
     patina::formats::VolumeGrid g;
@@ -58,15 +58,15 @@ int main()
     g.n = {2, 3, 4};
     const auto px = patina::formats::volume_bounds_pixels(g);
     const auto r = patina::formats::read_volume_bounds("v.exr", 3, 4, 1, px.data());
-    std::printf("%.6f ny=%d", patina::km_r_infinity(0.5f), r.n[1]);
+    std::printf("%.6f ny=%d", patina::d65(560.0f), r.n[1]);
 }
 ]=])
 run(${CMAKE_COMMAND} -S "${WORK_DIR}/core_user" -B "${WORK_DIR}/core_user/build" -G Ninja
     -DCMAKE_PREFIX_PATH=${prefix} -DCMAKE_BUILD_TYPE=Release)
 run(${CMAKE_COMMAND} --build "${WORK_DIR}/core_user/build")
 run("${WORK_DIR}/core_user/build/core_user")
-string(FIND "${LAST_OUTPUT}" "0.381966 ny=3" pos)
+string(FIND "${LAST_OUTPUT}" "100.000000 ny=3" pos)
 if(pos EQUAL -1)
-  message(FATAL_ERROR "Patina::core consumer printed '${LAST_OUTPUT}', expected 0.381966 ny=3")
+  message(FATAL_ERROR "Patina::core consumer printed '${LAST_OUTPUT}', expected 100.000000 ny=3")
 endif()
 message(STATUS "out-of-tree plugin built and listed; Patina::core linked and ran")
