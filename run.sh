@@ -27,4 +27,4 @@ echo "wrote out/conservation/ (years to a just-noticeable fade of a watercolour 
 samples/lookdev/lookdev.sh "$build"
 echo "wrote out/lookdev/ (the measured ColorChecker, the lookdev scene under a clear sky, and copper.mp4: the copper ball from 0 to 30 years) and out/viewer/copper/index.html (the series in the browser)"
 SPP="${STONE_SPP:-32}" samples/stone/stone.sh "$build"
-echo "wrote out/stone/ (weathered sandstone column and marble statue, 0-60 cycles), out/stone/{column,marble}_strip.png and out/export/column.NNNN.vdb (the column's steps as OpenVDB)"
+echo "wrote out/stone/ (weathered sandstone column and marble statue, 0-60 cycles), out/stone/{column,marble}_strip.png and out/export/column.NNNN.vdb (the column's steps as an OpenVDB sequence, frames 1-3)"

@@ -120,7 +120,8 @@ render_series column back "[0.0, 1.05, -5.6]" "[0.0, 1.0, 0.0]" 22 180 420 "$out
     "$sandstone" "eta = 1.55
 roughness_exponent = 3.0"
 
-# The column's steps as an OpenVDB sequence (column.0000.vdb, ...) with its boundary meshes,
+# The column's steps as an OpenVDB sequence (column.0001.vdb, ...; column.frames.toml says
+# which cycle each holds) with its boundary meshes,
 # coloured by the medium the renders use.
 mkdir -p "$root/out/export"
 "$texgen" export "$out/column" -o "$root/out/export/column.vdb" \

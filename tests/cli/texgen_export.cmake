@@ -16,6 +16,8 @@ expect_valid_gltf("${WORK_DIR}/urban.glb")
 expect_in("${LAST_VALIDATOR_REPORT}" "KHR_materials_variants")
 expect_in("${LAST_VALIDATOR_REPORT}" "KHR_materials_clearcoat")
 expect_in("${LAST_VALIDATOR_REPORT}" "materials: 3")
+# A coat where the patina is (6 and 30 years), none on the bare copper of year 0.
+expect_in("${LAST_VALIDATOR_REPORT}" "KHR_materials_clearcoat 2 of 3")
 # The variants are named by age (the JSON chunk starts after the 20 bytes of GLB header).
 file(READ "${WORK_DIR}/urban.glb" glb OFFSET 20 LIMIT 8192)
 expect_in("${glb}" "\"name\":\"0 y\"")

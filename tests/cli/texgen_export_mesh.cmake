@@ -75,6 +75,12 @@ expect_success("${PATINA_TEXGEN}" fade --exposure "${WORK_DIR}/sun/exposure.exr"
   --material newsprint --out "${WORK_DIR}/page" --entries 8 --quiet)
 expect_success("${PATINA_TEXGEN}" export "${WORK_DIR}/page" -o "${WORK_DIR}/page.glb")
 expect_valid_gltf("${WORK_DIR}/page.glb")
+# A faded page has no coat: no clearcoat extension anywhere in the asset.
+expect_in("${LAST_VALIDATOR_REPORT}" "materials with an extension: none")
+string(FIND "${LAST_VALIDATOR_REPORT}" "KHR_materials_clearcoat" coat_at)
+if(NOT coat_at EQUAL -1)
+  message(FATAL_ERROR "page.glb declares KHR_materials_clearcoat without a coat:\n${LAST_VALIDATOR_REPORT}")
+endif()
 expect_success("${PATINA_TEXGEN}" export "${WORK_DIR}/page" -o "${WORK_DIR}/page_unreal"
   --preset unreal --quiet)
 if(NOT EXISTS "${WORK_DIR}/page_unreal/page_unreal_page_BaseColor.png")

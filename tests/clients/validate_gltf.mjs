@@ -37,4 +37,17 @@ if (report.info) {
                 `materials: ${report.info.materialCount}; images: ${images.length} ` +
                 `(${[...new Set(sizes)].join(', ')}); triangles: ${report.info.totalTriangleCount}`);
 }
+// Which materials carry which extension ("KHR_materials_clearcoat 2 of 3"): the asset's own
+// JSON (a .glb's first chunk, or the .gltf), for tests that check an extension is where it
+// does something and nowhere else.
+const json = JSON.parse(bytes.readUInt32LE(0) === 0x46546c67
+    ? bytes.subarray(20, 20 + bytes.readUInt32LE(12)).toString('utf8')
+    : bytes.toString('utf8'));
+const materials = json.materials ?? [];
+const counts = new Map();
+for (const m of materials)
+    for (const name of Object.keys(m.extensions ?? {}))
+        counts.set(name, (counts.get(name) ?? 0) + 1);
+console.log(`  materials with an extension: ${[...counts].map(([n, c]) =>
+    `${n} ${c} of ${materials.length}`).join(', ') || 'none'}`);
 process.exit(issues.numErrors + issues.numWarnings > 0 ? 1 : 0);

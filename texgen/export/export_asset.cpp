@@ -254,11 +254,10 @@ ExportResult write_export(std::vector<ExportStep>& steps, const ExportGeometry& 
     }
 
     gltf::Document doc;
-    doc.use_extension("KHR_materials_clearcoat");
     const std::string mesh_name = output.stem().string();
     const int sampler = doc.add_sampler(gltf::kClampToEdge);
 
-    // One texture per map and step, identical ones shared (a clearcoat of zeros).
+    // One texture per map and step, identical ones shared.
     std::map<std::string, int> textures_by_bytes;  // the PNG's bytes -> its texture
     size_t texture_count = 0;
     auto texture = [&](const ExportStep& step, size_t tile, const std::string& map,
@@ -311,7 +310,8 @@ ExportResult write_export(std::vector<ExportStep>& steps, const ExportGeometry& 
             for (const auto& [map, png] : step.pngs[tile])
                 tex[map] = texture(step, tile, map, png);
             const int base_tex = tex.at("base_color"), mr_tex = tex.at("metallic_roughness"),
-                      normal_tex = tex.at("normal"), coat_tex = tex.at("clearcoat");
+                      normal_tex = tex.at("normal");
+            const auto coat_tex = tex.find(kGltfPresetCoat);  // none: no coat here
             json patina = step.extras;
             if (tiled)
                 patina["udim"] = udims[tile];
@@ -329,13 +329,15 @@ ExportResult write_export(std::vector<ExportStep>& steps, const ExportGeometry& 
                      {{"baseColorTexture", info(base_tex)},
                       {"metallicRoughnessTexture", info(mr_tex)}}},
                     {"normalTexture", info(normal_tex)},
-                    {"extensions",
-                     {{"KHR_materials_clearcoat",
-                       {{"clearcoatFactor", 1.0},
-                        {"clearcoatTexture", info(coat_tex)},
-                        {"clearcoatRoughnessFactor", 1.0},
-                        {"clearcoatRoughnessTexture", info(coat_tex)}}}}},
                     {"extras", {{"patina", patina}}}};
+                if (coat_tex != tex.end()) {
+                    doc.use_extension("KHR_materials_clearcoat");
+                    material["extensions"]["KHR_materials_clearcoat"] = {
+                        {"clearcoatFactor", 1.0},
+                        {"clearcoatTexture", info(coat_tex->second)},
+                        {"clearcoatRoughnessFactor", 1.0},
+                        {"clearcoatRoughnessTexture", info(coat_tex->second)}};
+                }
                 materials[k].push_back(doc.add("materials", std::move(material)));
             }
         }

@@ -93,7 +93,13 @@ std::vector<PresetMap> preset_maps(const std::string& preset, const FlattenedSta
         maps.push_back({"base_color", {"R", "G", "B"}, srgb_base(), true, 8});
         maps.push_back({"metallic_roughness", {"R", "G", "B"}, mr, false, 8});
         maps.push_back({"normal", {"R", "G", "B"}, normal, false, 8});
-        maps.push_back({"clearcoat", {"R", "G", "B"}, coat, false, 8});
+        // A tile with no coat anywhere (bare metal, a faded page) has no clearcoat map, so
+        // that its material carries no KHR_materials_clearcoat that does nothing.
+        bool has_coat = false;
+        for (size_t t = 0; t < texels && !has_coat; ++t)
+            has_coat = coat[t * 3] > 0.0f;
+        if (has_coat)
+            maps.push_back({kGltfPresetCoat, {"R", "G", "B"}, coat, false, 8});
     } else if (preset == "unreal") {
         maps.push_back({"BaseColor", {"R", "G", "B"}, srgb_base(), true, 8});
         // ORM: R ambient occlusion, G roughness, B metallic (Unreal's packed mask).

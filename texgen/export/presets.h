@@ -14,6 +14,10 @@ namespace patina::texgen {
 
 /// One map of a preset, for one step and tile: texels (row 0 at the top, channels
 /// interleaved) ready to be written, in [0, 1] unless `linear_float`.
+/// The gltf preset's clearcoat map (KHR_materials_clearcoat's texture), absent from a tile
+/// whose coat is 0 everywhere.
+inline constexpr const char* kGltfPresetCoat = "clearcoat";
+
 struct PresetMap {
     std::string name;                    ///< $map of the file-name template
     std::vector<std::string> channels;   ///< R, G, B, A or named (EXR)

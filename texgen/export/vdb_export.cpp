@@ -1,6 +1,7 @@
 #include "texgen/export/vdb_export.h"
 
 #include "formats/toml_location.h"
+#include "formats/vdb_sequence/vdb_sequence.h"
 
 #include "core/cancel.h"
 #include "core/image_io.h"
@@ -51,8 +52,13 @@ namespace {
         return out;
     }
 
+    /// A frame's place in the sequence, for the file's metadata (none for a lone volume).
+    struct FrameTag {
+        int frame = -1, cycle = -1;
+    };
+
     void write_vdb(const fs::path& path, const stone::WorldVolume& v, const VdbOptions& o,
-                   const float albedo_rec709[4][3])
+                   const float albedo_rec709[4][3], FrameTag tag)
     {
         const double h = (v.bounds.max.x - v.bounds.min.x) / v.nx;  // cubic voxels
         // Index (i, j, k) is the voxel centred at min + (i + 1/2, j + 1/2, k + 1/2) h.
@@ -107,7 +113,7 @@ namespace {
                     for (int m = 0; m < 4; ++m)
                         rgb += openvdb::Vec3s(albedo_rec709[m][0], albedo_rec709[m][1],
                                               albedo_rec709[m][2]) * w[m];
-                    a.setValue(ijk, rgb);
+                    a.setValue(ijk, rgb);  // each albedo is in [0, 1], so is their mix
                 }
         }
         openvdb::GridPtrVec grids = {density, color, crust, iron, salt};
@@ -123,7 +129,12 @@ namespace {
             outputs = &own.emplace();
         openvdb::io::File file(outputs->stage(path).string());
         file.setCompression(openvdb::io::COMPRESS_ZIP | openvdb::io::COMPRESS_ACTIVE_MASK);
-        file.write(grids);
+        openvdb::MetaMap meta;
+        if (tag.frame >= 0) {
+            meta.insertMeta(formats::kVdbFrameMeta, openvdb::Int32Metadata(tag.frame));
+            meta.insertMeta(formats::kVdbCycleMeta, openvdb::Int32Metadata(tag.cycle));
+        }
+        file.write(grids, meta);
         file.close();
         if (own)
             own->commit();
@@ -208,19 +219,46 @@ std::vector<fs::path> export_stone_vdb(const fs::path& input, const fs::path& ou
 {
     openvdb::initialize();
     const std::vector<std::pair<int, fs::path>> volumes = volumes_of(input);
+    // The albedos a renderer reading Rec.709 can use: the medium's (working space) in
+    // linear Rec.709, each channel clamped to [0, 1] (an albedo above 1 gains energy in a
+    // renderer that does not clamp; the stone sample's sandstone, 0.99 0.96 0.90 in ACEScg,
+    // is red 1.016 in Rec.709).
     float albedo[4][3];
     for (int m = 0; m < 4; ++m) {
         std::copy(options.albedo[m], options.albedo[m] + 3, albedo[m]);
         colors.convert(colors.working_space(), "lin_rec709", albedo[m], 1);
+        for (float& c : albedo[m])
+            c = std::clamp(c, 0.0f, 1.0f);
     }
     std::vector<fs::path> written;
-    for (const auto& [frame, file] : volumes) {
+    formats::VdbSequence sequence;
+    sequence.source = input.string();
+    const stone::WorldVolume* first = nullptr;
+    std::optional<stone::WorldVolume> first_volume;
+    for (size_t i = 0; i < volumes.size(); ++i) {
+        const auto& [cycle, file] = volumes[i];
+        // Frames numbered 1, 2, 3, ... (Blender and Houdini read consecutive numbers as a
+        // sequence); the cycle each holds goes into its metadata and the manifest.
+        const int frame = cycle < 0 ? -1 : static_cast<int>(i) + 1;
         const fs::path path =
-            frame < 0 ? output
-                      : output.parent_path() /
-                            fmt::format("{}.{:04}.vdb", output.stem().string(), frame);
-        write_vdb(path, stone::read_world_volume(file), options, albedo);
+            frame < 0 ? output : output.parent_path() / formats::vdb_frame_name(output, frame);
+        stone::WorldVolume volume = stone::read_world_volume(file);
+        if (first && (volume.nx != first->nx || volume.ny != first->ny ||
+                      volume.nz != first->nz || volume.bounds != first->bounds))
+            throw std::runtime_error(fmt::format(
+                "export of '{}': the steps disagree: '{}' is {}x{}x{} voxels over [{:.6g}, "
+                "{:.6g}, {:.6g}] to [{:.6g}, {:.6g}, {:.6g}] m, '{}' {}x{}x{} over [{:.6g}, "
+                "{:.6g}, {:.6g}] to [{:.6g}, {:.6g}, {:.6g}] m; a sequence is one grid",
+                input.string(), volumes.front().second.parent_path().filename().string(),
+                first->nx, first->ny, first->nz, first->bounds.min.x, first->bounds.min.y,
+                first->bounds.min.z, first->bounds.max.x, first->bounds.max.y,
+                first->bounds.max.z, file.parent_path().filename().string(), volume.nx,
+                volume.ny, volume.nz, volume.bounds.min.x, volume.bounds.min.y,
+                volume.bounds.min.z, volume.bounds.max.x, volume.bounds.max.y,
+                volume.bounds.max.z));
+        write_vdb(path, volume, options, albedo, {frame, cycle});
         written.push_back(path);
+        formats::VdbSequenceFrame entry{frame, cycle, path.filename().string(), {}};
         // The boundary (the eroded surface the run extracted from the same volume, in the
         // same frame and metres) beside it, for a renderer that wants the surface too.
         std::error_code ec;
@@ -235,7 +273,19 @@ std::vector<fs::path> export_stone_vdb(const fs::path& input, const fs::path& ou
             obj.replace_extension(".obj");
             write_file_atomic(obj, {text}, "boundary mesh");
             written.push_back(obj);
+            entry.boundary = obj.filename().string();
         }
+        if (!first) {
+            first_volume = std::move(volume);
+            first = &*first_volume;
+        }
+        if (frame >= 0)
+            sequence.frames.push_back(std::move(entry));
+    }
+    if (!sequence.frames.empty()) {
+        const fs::path manifest = formats::vdb_sequence_path(output);
+        write_file_atomic(manifest, {formats::vdb_sequence_text(sequence)}, "frame manifest");
+        written.push_back(manifest);
     }
     return written;
 }
