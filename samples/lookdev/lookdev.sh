@@ -36,9 +36,11 @@ sky_toml=$("$texgen" sky -o "$out/sky.exr" --sun-elevation 35 --sun-azimuth 150 
 "$texgen" fade --dose 8.64e6 --duration 1d --illuminant F11 --material congo_red \
     --entries 64 --out "$out/congo_red" --quiet
 
-# scene STACK OUTPUT WIDTH HEIGHT: the lookdev scene with the copper of STACK.
+# scene STACK OUTPUT WIDTH HEIGHT [DISPLAY]: the lookdev scene with the copper of STACK.
+# Light scattered twice or more is clamped at 4 (about ten times the floor's radiance): the
+# polished balls' caustics on the floor are fireflies at these samples (docs/scene-format.md).
 scene() {
-  local stack=$1 output=$2 width=$3 height=$4
+  local stack=$1 output=$2 width=$3 height=$4 display=${5:-sRGB}
   cat <<EOF
 # Written by samples/lookdev/lookdev.sh: the lookdev scene (docs/lookdev.md).
 [film]
@@ -47,6 +49,7 @@ height = $height
 spp = $spp
 seed = 1
 max_depth = 6
+clamp_indirect = 4
 
 [camera]
 from = [0.0, 0.55, 2.6]
@@ -55,7 +58,7 @@ fov_deg = 30
 
 [output]
 file = "$output"
-display = "sRGB"
+display = "$display"
 view = "$view"
 
 $sky_toml
@@ -149,18 +152,12 @@ frame=0
 for t in 00 06 12 18 24 30; do
   frame=$((frame + 1))
   f=$(printf %04d "$frame")
-  scene "$out/copper/t$t/stack.toml" "frame.$f.exr" 320 180 > "$out/frames/frame.$f.toml"
+  scene "$out/copper/t$t/stack.toml" "frame.$f.exr" 320 180 "Rec.1886 Rec.709" \
+    > "$out/frames/frame.$f.toml"
 done
 "$render" "$out/frames/frame.####.toml" --frames "1-$frame" --quiet
-ffmpeg -y -loglevel error -framerate 2 -i "$out/frames/frame.%04d.png" -c:v libx264 \
-    -pix_fmt yuv420p -vf "pad=ceil(iw/2)*2:ceil(ih/2)*2" "$out/copper.tmp.mp4"
-frames=$(ffprobe -v error -count_frames -select_streams v:0 -show_entries stream=nb_read_frames \
-         -of csv=p=0 "$out/copper.tmp.mp4")
-if [[ "$frames" != "$frame" ]]; then
-  echo "lookdev: copper.mp4 holds $frames frames, not $frame" >&2
-  exit 1
-fi
-mv "$out/copper.tmp.mp4" "$out/copper.mp4"
+# Frames for a video display, into a movie tagged BT.709.
+"$root/scripts/make_movie.sh" "$out/frames/frame.%04d.png" 2 "$out/copper.mp4" "$frame"
 
 # The series in the browser: exported as glTF variants, then the viewer's folder.
 mkdir -p "$root/out/viewer"

@@ -139,8 +139,9 @@ SampledSpectrum trace_path(const Scene& scene, Ray ray, const std::optional<Hit>
                 const PatinaVec3 wo = to_abi(-ray.dir);
                 const Scatterer phase{medium, &mctx, nullptr, wo};
                 if (scene.film.mis && scene.lights.has_sampled_lights())
-                    L += beta * sample_direct(scene, phase, P, nullptr, nullptr, ray.dir, medium,
-                                              wl, sky, rng);
+                    L += clamp_indirect(beta * sample_direct(scene, phase, P, nullptr, nullptr,
+                                                             ray.dir, medium, wl, sky, rng),
+                                        depth + 1, scene.film.clamp_indirect);
                 PatinaVec3 wi{};
                 float p[PATINA_MAX_WAVELENGTHS] = {};
                 const Imath::V2f u{rng.uniform_float(), rng.uniform_float()};
@@ -160,7 +161,8 @@ SampledSpectrum trace_path(const Scene& scene, Ray ray, const std::optional<Hit>
 
         // Paths that escape see the infinite lights.
         if (!hit) {
-            L += beta * escaped(scene, ray, prev, wl, sky);
+            L += clamp_indirect(beta * escaped(scene, ray, prev, wl, sky), depth,
+                                scene.film.clamp_indirect);
             break;
         }
         SurfacePoint sp;
@@ -202,7 +204,8 @@ SampledSpectrum trace_path(const Scene& scene, Ray ray, const std::optional<Hit>
                     const LightHit lh{sp.P, sp.Ng, hit->prim_id};
                     light_pdf = scene.lights.pmf(area) * area->pdf(prev.P, ray.dir, &lh);
                 }
-                L += beta * Le * emission_mis_weight(scene, prev, light_pdf);
+                L += clamp_indirect(beta * Le * emission_mis_weight(scene, prev, light_pdf),
+                                    depth, scene.film.clamp_indirect);
             }
         }
         if (!obj.bsdf || depth >= scene.film.max_depth)
@@ -212,8 +215,9 @@ SampledSpectrum trace_path(const Scene& scene, Ray ray, const std::optional<Hit>
         // medium there is this one unless it crosses into the object's interior.
         if (scene.film.mis && scene.lights.has_sampled_lights()) {
             const Scatterer surface{obj.bsdf.get(), &frame.ctx, &frame, wo};
-            L += beta * sample_direct(scene, surface, sp.P, &sp, &obj, ray.dir, medium, wl, sky,
-                                      rng);
+            L += clamp_indirect(beta * sample_direct(scene, surface, sp.P, &sp, &obj, ray.dir,
+                                                     medium, wl, sky, rng),
+                                depth + 1, scene.film.clamp_indirect);
         }
 
         // Sample the BSDF for the next direction.

@@ -24,6 +24,19 @@ inline Imath::V3f from_abi(const PatinaVec3& v) { return {v.x, v.y, v.z}; }
 // checks for tiny vectors); v must not be 0.
 inline Imath::V3f unit(const Imath::V3f& v) { return v * (1.0f / std::sqrt(v.dot(v))); }
 
+// A contribution to a path's radiance after `bounces` scatterings of its light, clamped as
+// FilmSettings::clamp_indirect says: light scattered more than once (bounces >= 2), whose
+// largest wavelength exceeds the limit, is scaled down to it (its hue kept). Cycles' "Clamp
+// Indirect": a biased cure for the fireflies of caustic paths (a diffuse floor seeing the
+// sun in a polished sphere) that unidirectional sampling finds too rarely to converge.
+inline SampledSpectrum clamp_indirect(const SampledSpectrum& c, int bounces, float limit)
+{
+    if (!(limit > 0.0f) || bounces < 2)
+        return c;
+    const float m = c.max_value();
+    return m > limit ? c * (limit / m) : c;
+}
+
 // What the previous scattering vertex knows, for MIS weights of emission found by BSDF
 // or phase sampling (pbrt-v4 §13.4 and §14.2, VolPathIntegrator).
 struct PrevVertex {

@@ -68,7 +68,7 @@ Scene build_scene(const SceneFile& file, const PluginRegistry& registry, const H
     // Film
     const toml::table& film = w.table(root, "film") ? *w.table(root, "film") : kEmpty;
     w.check_keys(film, "film", {"width", "height", "spp", "seed", "max_depth", "wavelengths",
-                                "aovs", "integrator"});
+                                "aovs", "integrator", "clamp_indirect"});
     if (const std::string integ = w.string(film, "integrator", "mis", "film"); integ == "bsdf")
         scene.film.mis = false;
     else if (integ != "mis")
@@ -81,6 +81,8 @@ Scene build_scene(const SceneFile& file, const PluginRegistry& registry, const H
     scene.film.max_depth = w.integer(film, "max_depth", scene.film.max_depth, 1, 1024, "film");
     scene.film.wavelengths =
         w.integer(film, "wavelengths", scene.film.wavelengths, 1, PATINA_MAX_WAVELENGTHS, "film");
+    scene.film.clamp_indirect =
+        static_cast<float>(w.number(film, "clamp_indirect", 0.0, 0.0, 1e30, "film"));
 
     if (const toml::node* n = film.get("aovs")) {
         const toml::array* a = n->as_array();

@@ -33,6 +33,9 @@ struct FilmSettings {
     bool aov_normal = false;  ///< first-hit world shading normal (N.X/Y/Z)
     bool aov_depth = false;   ///< first-hit distance along the camera ray (Z)
     bool mis = true;          ///< light sampling + BSDF sampling with MIS; false: BSDF only
+    /// The largest radiance (any wavelength) light scattered more than once may add to a
+    /// path; 0: no limit (path_common.h, clamp_indirect).
+    float clamp_indirect = 0.0f;
 };
 
 struct OutputSettings {

@@ -29,7 +29,8 @@ namespace {
         nee = LightSampleState::none;
         const PatinaWavelengths& wl = p.wl;
         if (!found) {
-            p.L += p.beta * escaped(scene, p.ray, p.prev, wl, p.sky);
+            p.L += clamp_indirect(p.beta * escaped(scene, p.ray, p.prev, wl, p.sky), p.depth,
+                                  scene.film.clamp_indirect);
             return false;
         }
         const Hit& hit = *found;
@@ -64,7 +65,8 @@ namespace {
                     const LightHit lh{sp.P, sp.Ng, hit.prim_id};
                     light_pdf = scene.lights.pmf(area) * area->pdf(p.prev.P, p.ray.dir, &lh);
                 }
-                p.L += p.beta * Le * emission_mis_weight(scene, p.prev, light_pdf);
+                p.L += clamp_indirect(p.beta * Le * emission_mis_weight(scene, p.prev, light_pdf),
+                                      p.depth, scene.film.clamp_indirect);
             }
         }
         if (!obj.bsdf || p.depth >= scene.film.max_depth)
@@ -76,6 +78,7 @@ namespace {
             nee = LightSampleState::zero;
             p.nee_beta = p.beta;
             p.nee_value = SampledSpectrum(wl.count, 0.0f);
+            p.nee_bounces = p.depth + 1;
             const Scatterer at{obj.bsdf.get(), &frame.ctx, &frame, wo};
             const float u_light = p.rng.uniform_float();
             const Imath::V2f u{p.rng.uniform_float(), p.rng.uniform_float()};
@@ -146,9 +149,11 @@ namespace {
     // The light sample's contribution once its shadow ray is answered: trace_path's
     // L += beta * sample_direct(...), with a zero value when occluded.
     [[gnu::target_clones("avx2", "default")]]
-    void add_light_sample(WavefrontPath& p, bool visible)
+    void add_light_sample(WavefrontPath& p, bool visible, float clamp)
     {
-        p.L += p.nee_beta * (visible ? p.nee_value : SampledSpectrum(p.wl.count, 0.0f));
+        p.L += clamp_indirect(
+            p.nee_beta * (visible ? p.nee_value : SampledSpectrum(p.wl.count, 0.0f)),
+            p.nee_bounces, clamp);
     }
 
 }  // namespace
@@ -196,12 +201,13 @@ void trace_wavefront(const Scene& scene, std::span<WavefrontPath> paths, bool wa
             if (nee == LightSampleState::shadow_ray)
                 s.shadow_owner[nshadow++] = i;
             else if (nee == LightSampleState::zero)
-                add_light_sample(p, false);
+                add_light_sample(p, false, scene.film.clamp_indirect);
         }
         scene.geometry->trace_shadow_rays(std::span(s.shadows.data(), nshadow),
                                           std::span(s.visible.data(), nshadow));
         for (size_t k = 0; k < nshadow; ++k)
-            add_light_sample(paths[s.shadow_owner[k]], s.visible[k] != 0);
+            add_light_sample(paths[s.shadow_owner[k]], s.visible[k] != 0,
+                             scene.film.clamp_indirect);
         // Trace the next closest-hit rays of the paths that go on.
         scene.geometry->intersect_incoherent(std::span(s.queries.data(), m),
                                              std::span(s.hits.data(), m));

@@ -32,6 +32,7 @@ struct WavefrontPath {
     // The path's own state between stages.
     SampledSpectrum beta;
     SampledSpectrum nee_beta, nee_value;  ///< this vertex's light sample, until its shadow ray
+    int nee_bounces = 0;                  ///< the scatterings of that light (clamp_indirect)
     path::UniformSky sky;
     path::PrevVertex prev;
     int depth = 0;
