@@ -5,10 +5,18 @@
 //   node viewer_page.mjs DIR probe AGE X Y W H VIEW        mean canvas colour of a rectangle
 //                                                          (fractions of the canvas)
 //   node viewer_page.mjs DIR frames N [VIEW [AGE]]          frame times of N frames
-//   node viewer_page.mjs DIR compare AGE VIEW REF.png X Y W H FX FY FZ TX TY TZ FOV
-//        the camera at F looking at T (vertical field of view FOV degrees), the canvas and
+//   node viewer_page.mjs DIR compare AGE VIEW REF.png X Y W H FX FY FZ TX TY TZ FOV [ENV]
+//        the camera at F looking at T (vertical field of view FOV degrees) under the
+//        viewer's environment ENV (an index, default 0: the lookdev sky), the canvas and
 //        REF.png (a patina-render display PNG of the same view) measured in the same
 //        rectangle: their CIELAB and CIEDE2000
+//   node viewer_page.mjs DIR layout W H                    at a W x H window: the asset's
+//        bounding box as drawn, the canvas's and the control panel's rectangles (page px)
+//   node viewer_page.mjs DIR aliasing                      the canvas with antialiasing on
+//        and off: the staircase corners of slanted edges, counted in each: pixels with a
+//        hard step (luma differing by more than 0.7 of the picture's largest step between
+//        neighbours) both to a side and above or below (a straight edge along the pixel
+//        grid has none)
 // Fails (exit 1) on a console error, a page error or a viewer that reports a failure.
 import { chromium } from 'playwright-core';
 import path from 'node:path';
@@ -124,12 +132,13 @@ if (!failed) {
     out.hue_deg = (Math.atan2(out.lab[2], out.lab[1]) * 180 / Math.PI + 360) % 360;
   } else if (action === 'compare') {
     const [age, view, ref, x, y, w, h, ...cam] = args;
-    const [fx, fy, fz, tx, ty, tz, fov] = cam.map(Number);
-    await page.evaluate(([a, v, c]) => {
+    const [fx, fy, fz, tx, ty, tz, fov, env] = cam.map(Number);
+    await page.evaluate(([a, v, c, e]) => {
       window.patinaViewer.setAge(a);
       window.patinaViewer.setView(v);
+      window.patinaViewer.setEnvironment(e);
       window.patinaViewer.setCamera(c.slice(0, 3), c.slice(3, 6), c[6]);
-    }, [Number(age), view, [fx, fy, fz, tx, ty, tz, fov]]);
+    }, [Number(age), view, [fx, fy, fz, tx, ty, tz, fov], env || 0]);
     await frames(3);
     const png = await page.locator('#view').screenshot();
     out.viewer = srgbToLab(await regionMean(png, x, y, w, h));
@@ -137,6 +146,54 @@ if (!failed) {
     out.de2000 = deltaE2000(out.viewer, out.render);
     out.hue_viewer = (Math.atan2(out.viewer[2], out.viewer[1]) * 180 / Math.PI + 360) % 360;
     out.hue_render = (Math.atan2(out.render[2], out.render[1]) * 180 / Math.PI + 360) % 360;
+  } else if (action === 'layout') {
+    await page.setViewportSize({ width: Number(args[0]), height: Number(args[1]) });
+    await frames(3);
+    Object.assign(out, await page.evaluate(() => window.patinaViewer.assetRect()));
+    out.panel = await page.evaluate(() => {
+      const r = document.getElementById('panel').getBoundingClientRect();
+      return [r.left, r.top, r.right, r.bottom];
+    });
+    out.window = [Number(args[0]), Number(args[1])];
+  } else if (action === 'aliasing') {
+    const shots = {};
+    for (const on of [false, true]) {
+      await page.evaluate((a) => window.patinaViewer.setAntialias(a), on);
+      await frames(3);
+      shots[on] = await page.locator('#view').screenshot();
+    }
+    const steps = await page.evaluate(async ([off, on]) => {
+      const luma = async (b64) => {
+        const img = new Image();
+        img.src = `data:image/png;base64,${b64}`;
+        await img.decode();
+        const c = new OffscreenCanvas(img.width, img.height);
+        const g = c.getContext('2d');
+        g.drawImage(img, 0, 0);
+        const d = g.getImageData(0, 0, img.width, img.height).data;
+        const y = new Float32Array(img.width * img.height);
+        for (let i = 0; i < y.length; ++i) y[i] = 0.2126 * d[4 * i] + 0.7152 * d[4 * i + 1] + 0.0722 * d[4 * i + 2];
+        return { y, w: img.width, h: img.height };
+      };
+      const a = await luma(off), b = await luma(on);
+      let largest = 0;
+      for (let i = 0; i + 1 < a.y.length; ++i) {
+        if ((i + 1) % a.w) largest = Math.max(largest, Math.abs(a.y[i] - a.y[i + 1]));
+        if (i + a.w < a.y.length) largest = Math.max(largest, Math.abs(a.y[i] - a.y[i + a.w]));
+      }
+      const corners = ({ y, w, h }) => {
+        const hard = (i, j) => Math.abs(y[i] - y[j]) > 0.7 * largest;
+        let n = 0;
+        for (let r = 1; r + 1 < h; ++r)
+          for (let c = 1; c + 1 < w; ++c) {
+            const i = r * w + c;
+            if ((hard(i, i - 1) || hard(i, i + 1)) && (hard(i, i - w) || hard(i, i + w))) ++n;
+          }
+        return n;
+      };
+      return { largest, off: corners(a), on: corners(b) };
+    }, [Buffer.from(shots[false]).toString('base64'), Buffer.from(shots[true]).toString('base64')]);
+    Object.assign(out, steps);
   } else if (action === 'frames') {
     // A view and an age for the viewer (the bare page of the benchmark has neither).
     await page.evaluate(([v, a]) => {

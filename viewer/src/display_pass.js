@@ -1,8 +1,11 @@
 // The OCIO display transform as the last pass: the scene, rendered in linear Rec.709 into a
 // half-float target, times the exposure, through the view's GLSL (data.js): OCIO's own
 // shader, or for a long one (the ACES output transform) a 3D LUT that OCIO baked and its
-// lookup. Written to the canvas as it is.
+// lookup. Then, when on, antialiasing: FXAA (three.js's port of NVIDIA's FXAA) on the
+// display-encoded picture, where edges are judged as the eye sees them (after the tone
+// curve, an edge between two highlights is no longer a hard step). Written to the canvas.
 import * as THREE from 'three';
+import { FXAAShader } from 'three/examples/jsm/shaders/FXAAShader.js';
 
 export class DisplayPass {
   constructor(views) {
@@ -13,6 +16,21 @@ export class DisplayPass {
     this.luts = new Map();
     this.mesh = new THREE.Mesh(new THREE.PlaneGeometry(2, 2), null);
     this.scene.add(this.mesh);
+    // The display-encoded picture (8 bits, as the canvas holds it) and FXAA on it.
+    this.encoded = new THREE.WebGLRenderTarget(1, 1, { type: THREE.UnsignedByteType });
+    this.fxaa = new THREE.ShaderMaterial({
+      name: FXAAShader.name,
+      uniforms: THREE.UniformsUtils.clone(FXAAShader.uniforms),
+      vertexShader: FXAAShader.vertexShader,
+      fragmentShader: FXAAShader.fragmentShader,
+      depthTest: false,
+      depthWrite: false,
+    });
+    this.fxaaScene = new THREE.Scene();
+    const quad = new THREE.Mesh(new THREE.PlaneGeometry(2, 2), this.fxaa);
+    quad.position.z = -0.5;  // inside the camera's [0, 1] depth range
+    this.fxaaScene.add(quad);
+    this.antialias = true;
   }
 
   setView(name) {
@@ -67,7 +85,18 @@ export class DisplayPass {
   render(renderer, target, exposure) {
     this.uniforms.scene.value = target.texture;
     this.uniforms.exposure.value = exposure;
-    renderer.setRenderTarget(null);
+    if (!this.antialias) {
+      renderer.setRenderTarget(null);
+      renderer.render(this.scene, this.camera);
+      return;
+    }
+    const w = target.width, h = target.height;
+    if (this.encoded.width !== w || this.encoded.height !== h) this.encoded.setSize(w, h);
+    renderer.setRenderTarget(this.encoded);
     renderer.render(this.scene, this.camera);
+    this.fxaa.uniforms.tDiffuse.value = this.encoded.texture;
+    this.fxaa.uniforms.resolution.value.set(1 / w, 1 / h);
+    renderer.setRenderTarget(null);
+    renderer.render(this.fxaaScene, this.camera);
   }
 }

@@ -62,15 +62,36 @@ async function start(data) {
   const materials = await blendAges(gltf, data.ages.length);
   const ages = ageScale(data.ages, data.age_values, data.age_unit);
 
-  // Frame the asset.
+  // Frame the asset: seen a little from above, its bounding box's eight corners inside 90 %
+  // of both fields of view; again when the window changes, until the user moves the camera.
   const box = new THREE.Box3().setFromObject(gltf.scene);
   const centre = box.getCenter(new THREE.Vector3());
   const radius = box.getSize(new THREE.Vector3()).length() / 2 || 1;
-  camera.position.copy(centre).add(new THREE.Vector3(0, radius * 0.9, radius * 2.2));
-  camera.near = radius / 100;
-  camera.far = radius * 100;
-  controls.target.copy(centre);
-  controls.update();
+  let userMoved = false;
+  controls.addEventListener('start', () => { userMoved = true; });
+  function frameAsset() {
+    const back = new THREE.Vector3(0, 0.38, 0.92).normalize();  // from the asset to the camera
+    const right = new THREE.Vector3(0, 1, 0).cross(back).normalize();
+    const up = back.clone().cross(right);
+    const tanV = 0.9 * Math.tan(THREE.MathUtils.degToRad(camera.fov) / 2);
+    const tanH = tanV * camera.aspect;
+    let distance = 0;
+    for (let i = 0; i < 8; ++i) {
+      const o = new THREE.Vector3(i & 1 ? box.max.x : box.min.x, i & 2 ? box.max.y : box.min.y,
+                                  i & 4 ? box.max.z : box.min.z).sub(centre);
+      // A corner at (x, y) across and z towards the camera is in view from the distance
+      // z + |x| / tan(h/2) (and the same for y): the largest over the corners.
+      const z = o.dot(back);
+      distance = Math.max(distance, z + Math.abs(o.dot(right)) / tanH, z + Math.abs(o.dot(up)) / tanV);
+    }
+    distance = Math.max(distance, 1e-3 * radius);
+    camera.position.copy(centre).addScaledVector(back, distance);
+    camera.near = distance / 100;
+    camera.far = distance * 100;
+    camera.updateProjectionMatrix();
+    controls.target.copy(centre);
+    controls.update();
+  }
 
   // Environments: the sky as image-based light (PMREM) and background, its sun a light.
   const pmrem = new THREE.PMREMGenerator(renderer);
@@ -113,6 +134,7 @@ async function start(data) {
   $('environment').addEventListener('change', (e) => setEnvironment(Number(e.target.value)));
   data.views.forEach((v) => $('display-view').add(new Option(v.name, v.name, false, v.name === data.default_view)));
   $('display-view').addEventListener('change', (e) => display.setView(e.target.value));
+  $('antialias').addEventListener('change', (e) => { display.antialias = e.target.checked; });
   setEnvironment(0);
   syncLabels();
 
@@ -123,6 +145,7 @@ async function start(data) {
       target.setSize(w, h);
       camera.aspect = w / h;
       camera.updateProjectionMatrix();
+      if (!userMoved) frameAsset();
     }
   }
 
@@ -177,7 +200,22 @@ async function start(data) {
     setView(name) { display.setView(name); $('display-view').value = name; },
     setExposure(ev) { state.exposure = 2 ** ev; syncLabels(); },
     setEnvironment,
+    setAntialias(on) { display.antialias = on; $('antialias').checked = on; },
+    /// The asset's bounding box as the canvas shows it, in page pixels (left, top, right,
+    /// bottom), and the canvas's own rectangle.
+    assetRect() {
+      const r = canvas.getBoundingClientRect();
+      let x0 = Infinity, y0 = Infinity, x1 = -Infinity, y1 = -Infinity;
+      for (let i = 0; i < 8; ++i) {
+        const p = new THREE.Vector3(i & 1 ? box.max.x : box.min.x, i & 2 ? box.max.y : box.min.y,
+                                    i & 4 ? box.max.z : box.min.z).project(camera);
+        const x = r.left + (p.x + 1) / 2 * r.width, y = r.top + (1 - p.y) / 2 * r.height;
+        x0 = Math.min(x0, x); y0 = Math.min(y0, y); x1 = Math.max(x1, x); y1 = Math.max(y1, y);
+      }
+      return { asset: [x0, y0, x1, y1], canvas: [r.left, r.top, r.right, r.bottom] };
+    },
     setCamera(from, to, fovDeg) {
+      userMoved = true;
       camera.position.set(...from);
       controls.target.set(...to);
       camera.fov = fovDeg;
