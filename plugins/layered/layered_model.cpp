@@ -67,40 +67,11 @@ namespace {
         return g;
     }
 
-    /// Directional albedo tables of a GGX reflection lobe, E(F0, μ) and E for F = 1, by
-    /// stratified sampling of visible normals (weight F G2 / G1: Heitz 2014, 2018).
+    /// The directional albedo tables of a material's lobe (patina/shading/ggx_albedo.h) and
+    /// their rows at the Gauss nodes.
     void tabulate_albedo(CompiledMaterial* m)
     {
-        constexpr int kStrata = 32;
-        std::array<float, kF0Nodes> f0, eta;
-        for (int q = 0; q < kF0Nodes; ++q) {
-            const float x = kF0MinSqrt + (kF0MaxSqrt - kF0MinSqrt) * q / (kF0Nodes - 1);
-            f0[q] = x * x;
-            eta[q] = eta_of_f0(f0[q]);
-        }
-        for (int node = 0; node < kAlbedoNodes; ++node) {
-            const float mu = std::max(1e-3f, static_cast<float>(node) / (kAlbedoNodes - 1));
-            const Vec3 wo(std::sqrt(std::max(0.0f, 1.0f - mu * mu)), 0.0f, mu);
-            std::array<double, kF0Nodes> e{};
-            double one = 0.0;
-            for (int i = 0; i < kStrata; ++i)
-                for (int j = 0; j < kStrata; ++j) {
-                    const Vec2 u((i + 0.5f) / kStrata, (j + 0.5f) / kStrata);
-                    const Vec3 wm = m->distribution.sample_wm(wo, u);
-                    const Vec3 wi = reflect(wo, wm);
-                    if (wi.z <= 0.0f)
-                        continue;
-                    const float w = m->distribution.g(wo, wi) / m->distribution.g1(wo);
-                    const float c = std::clamp(dot(wo, wm), 0.0f, 1.0f);
-                    one += w;
-                    for (int q = 0; q < kF0Nodes; ++q)
-                        e[q] += w * dielectric_fresnel(c, f0[q], eta[q]);
-                }
-            constexpr double kInvCount = 1.0 / (kStrata * kStrata);
-            m->albedo_one[node] = static_cast<float>(one * kInvCount);
-            for (int q = 0; q < kF0Nodes; ++q)
-                m->albedo[q * kAlbedoNodes + node] = static_cast<float>(e[q] * kInvCount);
-        }
+        shading::tabulate_ggx_albedo(m->distribution, m->albedo, m->albedo_one);
         for (int q = 0; q < kF0Nodes; ++q)
             for (int g = 0; g < kGaussNodes; ++g)
                 m->albedo_gauss[q * kGaussNodes + g] =
@@ -200,14 +171,6 @@ GridPos grid_pos(float lambda_nm)
     return p;
 }
 
-float albedo_table(const std::array<float, kAlbedoNodes>& table, float mu)
-{
-    const float x = std::clamp(mu, 0.0f, 1.0f) * (kAlbedoNodes - 1);
-    const int i = std::min(static_cast<int>(x), kAlbedoNodes - 2);
-    const float t = x - static_cast<float>(i);
-    return table[i] + t * (table[i + 1] - table[i]);
-}
-
 LayeredModel::LayeredModel(const StackFile& stack, const std::vector<ThicknessSource>& sources,
                            const PatinaHost* host, const ModelOptions& options)
     : host_(host), options_(options)
@@ -253,39 +216,6 @@ LayeredModel::LayeredModel(const StackFile& stack, const std::vector<ThicknessSo
                 sources[k].channel >= lo && sources[k].channel <= hi)
                 layer_fetch_[k] = {f, sources[k].channel - lo};
     }
-}
-
-float albedo_table(const CompiledMaterial& m, float f0, float mu)
-{
-    const float x = std::clamp(mu, 0.0f, 1.0f) * (kAlbedoNodes - 1);
-    const int i = std::min(static_cast<int>(x), kAlbedoNodes - 2);
-    const float t = x - static_cast<float>(i);
-    if (!(f0 > 0.0f))
-        return 0.0f;
-    const float sqrt_f0 = std::sqrt(std::min(f0, 1.0f));
-    const float y = std::clamp((sqrt_f0 - kF0MinSqrt) / (kF0MaxSqrt - kF0MinSqrt), 0.0f, 1.0f) *
-                    (kF0Nodes - 1);
-    const int q = std::min(static_cast<int>(y), kF0Nodes - 2);
-    const float s = y - static_cast<float>(q);
-    const float* row0 = &m.albedo[q * kAlbedoNodes];
-    const float* row1 = row0 + kAlbedoNodes;
-    const float e0 = row0[i] + t * (row0[i + 1] - row0[i]);
-    const float e1 = row1[i] + t * (row1[i + 1] - row1[i]);
-    const float e = e0 + s * (e1 - e0);
-    return sqrt_f0 < kF0MinSqrt ? e * sqrt_f0 / kF0MinSqrt : e;
-}
-
-float eta_of_f0(float f0)
-{
-    const float s = std::sqrt(std::clamp(f0, 0.0f, 0.99f));
-    return (1.0f + s) / (1.0f - s);
-}
-
-float dielectric_fresnel(float cos_theta, float f0, float eta)
-{
-    if (!(f0 > 0.0f))
-        return 0.0f;  // index-matched: no reflection at any angle
-    return fresnel_dielectric(cos_theta, eta);
 }
 
 SpectralArray LayeredModel::interface_albedo(const Interface& lobe, float mu, int count)

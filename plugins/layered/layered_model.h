@@ -14,6 +14,7 @@
 #include "stack_file.h"
 
 #include <patina/abi.h>
+#include <patina/shading/ggx_albedo.h>
 #include <patina/shading/layer_stack.h>
 #include <patina/shading/microfacet.h>
 #include <patina/shading/spectral.h>
@@ -33,16 +34,15 @@ inline constexpr int kMaxLayers = 16;
 inline constexpr int kGridSize = 95;
 inline constexpr float kGridStartNm = 360.0f;
 inline constexpr float kGridStepNm = 5.0f;
-/// Nodes of the directional albedo tables over cos θ in [0, 1] and over F0 in [0, 1].
-inline constexpr int kAlbedoNodes = 32;
-inline constexpr int kF0Nodes = 24;
+/// The directional albedo tables (patina/shading/ggx_albedo.h).
+using shading::dielectric_fresnel;
+using shading::eta_of_f0;
+using shading::kAlbedoNodes;
+using shading::kF0MaxSqrt;
+using shading::kF0MinSqrt;
+using shading::kF0Nodes;
 /// Gauss-Legendre nodes of the hemispherical mean ḡ (setup_thickness).
 inline constexpr int kGaussNodes = 8;
-/// The F0 rows are uniform in x = √F0 over [kF0MinSqrt, kF0MaxSqrt]: E(F0, μ) is smooth in
-/// x there, but jumps near F0 = 0 at grazing angles (any index > 1 reflects grazing light);
-/// below kF0MinSqrt E is scaled down linearly in x to 0 at F0 = 0.
-inline constexpr float kF0MinSqrt = 0.05f;
-inline constexpr float kF0MaxSqrt = 0.99f;
 
 enum class Model { kubelka_munk, random_walk };
 
@@ -204,13 +204,14 @@ inline float grid_eval(const Grid& g, GridPos p)
     return g[p.i] + p.t * (g[p.i + 1] - g[p.i]);
 }
 /// Linear interpolation in a kAlbedoNodes table over μ in [0, 1].
-float albedo_table(const std::array<float, kAlbedoNodes>& table, float mu);
+inline float albedo_table(const std::array<float, kAlbedoNodes>& table, float mu)
+{
+    return shading::albedo_at(table, mu);
+}
 /// Bilinear interpolation of CompiledMaterial::albedo at (F0, μ).
-float albedo_table(const CompiledMaterial& m, float f0, float mu);
-/// The relative index whose normal-incidence Fresnel reflectance is F0 (Born & Wolf §1.5.2
-/// inverted: η = (1 + √F0) / (1 - √F0)); 1 for F0 = 0, capped for F0 -> 1.
-float eta_of_f0(float f0);
-/// Dielectric Fresnel reflectance for the index of eta_of_f0 (exactly 0 when F0 = 0).
-float dielectric_fresnel(float cos_theta, float f0, float eta);
+inline float albedo_table(const CompiledMaterial& m, float f0, float mu)
+{
+    return shading::albedo_at(m.albedo, f0, mu);
+}
 
 }  // namespace patina::layered
