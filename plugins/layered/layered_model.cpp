@@ -22,20 +22,6 @@ namespace {
     /// model sums rough lobes only).
     constexpr float kMinRoughness = 0.03f;
 
-    /// 8-point Gauss-Legendre nodes and weights over μ in [0, 1] (the mean ḡ in setup).
-    constexpr float kGaussMu[kGaussNodes] = {0.0198550718f, 0.1016667613f, 0.2372337950f,
-                                             0.4082826788f, 0.5917173212f, 0.7627662050f,
-                                             0.8983332387f, 0.9801449282f};
-    constexpr float kGaussWeight[kGaussNodes] = {0.0506142681f, 0.1111905172f, 0.1568533229f,
-                                                 0.1813418917f, 0.1813418917f, 0.1568533229f,
-                                                 0.1111905172f, 0.0506142681f};
-    /// The quadrature's factor 2 μ w per node (ḡ = 2 ∫ g(μ) μ dμ).
-    constexpr float kGaussMeanWeight[kGaussNodes] = {
-        2.0f * kGaussMu[0] * kGaussWeight[0], 2.0f * kGaussMu[1] * kGaussWeight[1],
-        2.0f * kGaussMu[2] * kGaussWeight[2], 2.0f * kGaussMu[3] * kGaussWeight[3],
-        2.0f * kGaussMu[4] * kGaussWeight[4], 2.0f * kGaussMu[5] * kGaussWeight[5],
-        2.0f * kGaussMu[6] * kGaussWeight[6], 2.0f * kGaussMu[7] * kGaussWeight[7]};
-
     /// Where μ falls in an albedo table row: node n and weight t.
     struct MuPos {
         int n;

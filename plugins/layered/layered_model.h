@@ -38,11 +38,13 @@ inline constexpr float kGridStepNm = 5.0f;
 using shading::dielectric_fresnel;
 using shading::eta_of_f0;
 using shading::kAlbedoNodes;
+using shading::kGaussMeanWeight;
+using shading::kGaussMu;
+using shading::kGaussNodes;
+using shading::kGaussWeight;
 using shading::kF0MaxSqrt;
 using shading::kF0MinSqrt;
 using shading::kF0Nodes;
-/// Gauss-Legendre nodes of the hemispherical mean ḡ (setup_thickness).
-inline constexpr int kGaussNodes = 8;
 
 enum class Model { kubelka_munk, random_walk };
 

@@ -33,6 +33,8 @@ expect_failure("no such file" "${PATINA_TEXGEN}" flatten "${WORK_DIR}/nowhere"
   -o "${WORK_DIR}/bad1")
 expect_failure("--color-space" "${PATINA_TEXGEN}" flatten "${WORK_DIR}/urban"
   -o "${WORK_DIR}/bad2" --color-space rec2020)
+expect_failure("--target 'maya': expected khronos" "${PATINA_TEXGEN}" flatten "${WORK_DIR}/urban"
+  -o "${WORK_DIR}/bad2" --target maya)
 file(COPY "${WORK_DIR}/urban/" DESTINATION "${WORK_DIR}/broken")
 file(REMOVE "${WORK_DIR}/broken/layer03_patina_urban_3.exr")
 expect_failure("map 'layer03_patina_urban_3': file" "${PATINA_TEXGEN}" flatten

@@ -50,4 +50,8 @@ for (const m of materials)
         counts.set(name, (counts.get(name) ?? 0) + 1);
 console.log(`  materials with an extension: ${[...counts].map(([n, c]) =>
     `${n} ${c} of ${materials.length}`).join(', ') || 'none'}`);
-process.exit(issues.numErrors + issues.numWarnings > 0 ? 1 : 0);
+// A material extension the asset declares but no material uses does nothing: a defect.
+const unused = (json.extensionsUsed ?? []).filter((n) => n.startsWith('KHR_materials_') &&
+    n !== 'KHR_materials_variants' && !counts.has(n));
+console.log(`  material extensions declared and unused: ${unused.join(', ') || 'none'}`);
+process.exit(issues.numErrors + issues.numWarnings + unused.length > 0 ? 1 : 0);

@@ -140,6 +140,11 @@ void register_export_command(CLI::App& app)
                     "height exaggeration of the normal map")
         ->check(CLI::Range(0.0, 1000.0))
         ->capture_default_str();
+    cmd->add_option("--target", o->exporting.target,
+                    "the renderer the glTF material is fitted for: khronos (three.js, "
+                    "Babylon.js, the Khronos sample viewer: glTF's reference BRDF) or blender "
+                    "(Blender 3.4's Principled BSDF, which adds its lobes to the diffuse)")
+        ->capture_default_str();
     cmd->add_option("--mesh", o->exporting.mesh,
                     "the mesh a stack was grown on (default: the path the stack records)")
         ->check(CLI::ExistingFile);

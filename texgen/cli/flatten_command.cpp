@@ -24,6 +24,7 @@ struct FlattenCommandOptions {
     fs::path stack;
     fs::path out_dir;
     FlattenOptions flatten;
+    std::string target = "khronos";
     bool quiet = false;
 };
 
@@ -31,10 +32,12 @@ void run_flatten(const FlattenCommandOptions& o)
 {
     const auto start = std::chrono::steady_clock::now();
     flatten_colorspace(o.flatten.color_space);  // a bad option fails before any work
+    FlattenOptions options = o.flatten;
+    options.target = gltf_target(o.target);
     ColorManager colors(ColorManager::default_config_path());
     const PatinaStackFiles stack = read_patina_stack(o.stack);
-    const FlattenedStack flat = flatten_stack(stack, colors, o.flatten);
-    const auto written = write_flattened(o.out_dir, flat, stack, o.flatten, colors);
+    const FlattenedStack flat = flatten_stack(stack, colors, options);
+    const auto written = write_flattened(o.out_dir, flat, stack, options, colors);
     if (!o.quiet) {
         const double seconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -71,6 +74,10 @@ void register_flatten_command(CLI::App& app)
     cmd->add_option("--normal-scale", o->flatten.normal_scale,
                     "height exaggeration of the normal map (1: true relief)")
         ->capture_default_str()->check(patina::positive);
+    cmd->add_option("--target", o->target,
+                    "the renderer the gltf_* maps are fitted for: khronos (glTF's reference "
+                    "BRDF: three.js, Babylon.js) or blender (Blender 3.4's Principled BSDF)")
+        ->capture_default_str();
     cmd->add_flag("--half", o->flatten.half, "write half-float maps");
     cmd->add_flag("-q,--quiet", o->quiet, "no summary line");
     cmd->callback([o] { run_flatten(*o); });

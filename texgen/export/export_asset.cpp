@@ -7,6 +7,7 @@
 #include "texgen/export/png_encode.h"
 #include "texgen/export/source_material.h"
 #include "texgen/export/presets.h"
+#include "texgen/flatten/gltf_albedo.h"
 
 #include "core/cancel.h"
 #include "core/image_io.h"
@@ -164,6 +165,7 @@ void check_export_options(ExportOptions& options, const fs::path& output)
     if (options.bits == 0)
         options.bits = options.preset == "exr" ? 32 : 8;
     check_preset(options.preset);
+    gltf_target(options.target);  // throws naming --target
     const bool textures = preset_writes_textures(options.preset);
     if (textures ? !(options.bits == 8 || options.bits == 16 || options.bits == 32)
                  : options.bits != 8)

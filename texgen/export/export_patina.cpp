@@ -97,6 +97,7 @@ ExportResult export_patina(const fs::path& input, const fs::path& output,
     }
     flatten.resolution = options.resolution;
     flatten.normal_scale = options.normal_scale;
+    flatten.target = gltf_target(options.target);
     flatten.only.assign(formats::kGltfExportMaps.begin(), formats::kGltfExportMaps.end());
     // The steps must be of one strip or mesh (the maps' sizes are checked with the rest).
     for (const Step& step : steps)

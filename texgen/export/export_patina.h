@@ -21,6 +21,9 @@ struct ExportOptions {
     bool separate = false;        ///< .gltf with .bin and PNGs beside it, not one .glb
     int resolution = 0;           ///< texels per tile side; 0: the stack's
     double normal_scale = 1.0;    ///< height exaggeration of the normal map
+    /// The renderer the glTF material is fitted for: "khronos" (three.js, Babylon.js, the
+    /// Khronos sample viewer) or "blender" (Blender 3.4's Principled BSDF); docs/export.md.
+    std::string target = "khronos";
     /// File names of the maps with --separate: $mesh (the output's stem), $material (the
     /// step, e.g. "t30"), $map (base_color, ...), $udim (the tile).
     std::string name_template = "$mesh_$material_$map";

@@ -3,11 +3,13 @@
 #include "core/spectrum.h"
 
 #include <patina/shading/fresnel.h>
+#include <patina/shading/microfacet.h>
 #include <patina/shading/layer_stack.h>
 #include <patina/shading/spectral.h>
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace patina::texgen {
@@ -113,6 +115,26 @@ BandStack band_stack(const PatinaStackFiles& stack)
     for (const StackLayerFiles& l : stack.layers)
         layers.push_back(l.material);
     return make_band_stack(stack.base, layers, stack.materials, stack.manifest);
+}
+
+void tabulate_lobe_albedos(BandStack& stack, const BandsToRgb& to_rgb)
+{
+    for (auto& [name, m] : stack.materials) {
+        // As layered_km compiles the material: roughness at least 0.03, α = r².
+        const float alpha =
+            shading::TrowbridgeReitz::roughness_to_alpha(std::max(m.roughness, 0.03f));
+        std::array<float, shading::kF0Nodes * shading::kAlbedoNodes> table;
+        std::array<float, shading::kAlbedoNodes> one;
+        shading::tabulate_ggx_albedo(shading::TrowbridgeReitz(alpha, alpha), table, one);
+        for (int g = 0; g < shading::kGaussNodes; ++g) {
+            const float mu = shading::kGaussMu[g];
+            Bands e{};
+            for (int i = 0; i < kBandCount; ++i)
+                node(e, i) = m.metal ? node(m.base_reflectance, i) * shading::albedo_at(one, mu)
+                                     : shading::albedo_at(table, node(m.specular, i), mu);
+            m.lobe_albedo[static_cast<size_t>(g)] = to_rgb(e);
+        }
+    }
 }
 
 BandsToRgb::BandsToRgb(const ColorManager& colors)

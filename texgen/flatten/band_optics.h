@@ -15,6 +15,7 @@
 #include "formats/texture_stack/texture_stack.h"
 #include "texgen/flatten/patina_stack_files.h"
 
+#include <patina/shading/ggx_albedo.h>
 #include <patina/shading/lanes.h>
 
 #include <Imath/ImathVec.h>
@@ -58,6 +59,11 @@ struct BandMaterial {
     /// (patina/shading/layer_stack.h): R∞ of a dielectric, a metal's hemispherical
     /// reflectance.
     Bands base_reflectance{};
+    /// The directional albedo of its interface's glossy lobe at the Gauss cosines of
+    /// patina/shading/ggx_albedo.h, as a colour (layered_km's E(F0, μ) at each band, or for
+    /// a metal its hemispherical reflectance times the F = 1 albedo): filled by
+    /// tabulate_lobe_albedos, for the albedo of a texel (flat_texel.h).
+    std::array<Imath::V3f, shading::kGaussNodes> lobe_albedo;  ///< (Imath: uninitialised until then)
 };
 
 /// `optics` at the bands. Throws std::runtime_error naming the material for a table whose
@@ -84,6 +90,11 @@ struct BandStack {
 /// of, or a table of the wrong length.
 BandStack band_stack(const formats::PatinaTable& patina, const std::filesystem::path& manifest);
 BandStack band_stack(const PatinaStackFiles& stack);
+
+class BandsToRgb;
+
+/// Fills every material's lobe_albedo (a GGX table per material: a few milliseconds each).
+void tabulate_lobe_albedos(BandStack& stack, const BandsToRgb& to_rgb);
 
 /// A reflectance at the bands as linear Rec.709 under D65 (see the top of this file).
 class BandsToRgb {

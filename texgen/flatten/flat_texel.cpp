@@ -1,5 +1,7 @@
 #include "texgen/flatten/flat_texel.h"
 
+#include "texgen/flatten/gltf_fit.h"
+
 #include <patina/shading/layer_stack.h>
 
 #include <algorithm>
@@ -61,7 +63,7 @@ Bands stack_diffuse(const BandStack& stack, std::span<const float> thickness_um,
 }
 
 FlatTexel flatten_texel(const BandStack& stack, std::span<const float> thickness_um,
-                        const BandsToRgb& to_rgb)
+                        const BandsToRgb& to_rgb, const GltfFitting& fitting)
 {
     const size_t n = stack.layers.size();
     FlatTexel out;
@@ -72,18 +74,23 @@ FlatTexel flatten_texel(const BandStack& stack, std::span<const float> thickness
     }
     // §4.3: each interface's specular reflectance "multiplied twice by diffuse
     // transmittance of the intervening layers calculated using the KM equations".
-    auto lobe_colour = [&](const BandMaterial& m, const auto& above, float fade) {
-        Bands s;
-        for (int g = 0; g < kBandGroups; ++g)
-            s[g] = m.specular[g] * above[g].attenuation(fade);
-        return to_rgb(s);
+    auto set_lobe = [&](InterfaceLobe& lobe, const BandMaterial& m, const auto& above, float fade) {
+        Bands a, s;
+        for (int g = 0; g < kBandGroups; ++g) {
+            a[g] = above[g].attenuation(fade);
+            s[g] = m.specular[g] * a[g];
+        }
+        lobe.specular = to_rgb(s);
+        lobe.material = &m;
+        if (fitting.model)
+            lobe.attenuation = to_rgb(a);
     };
     const auto above = walk(stack, thickness_um, [&](size_t k, const auto& layers_above, float fade) {
-        out.interfaces[k + 1].specular = lobe_colour(*stack.layers[k], layers_above, fade);
+        set_lobe(out.interfaces[k + 1], *stack.layers[k], layers_above, fade);
     });
     // The base's own interface, under every layer.
     const BandMaterial& base = *stack.base;
-    out.interfaces[0].specular = lobe_colour(base, above, 1.0f);
+    set_lobe(out.interfaces[0], base, above, 1.0f);
     out.interfaces[0].roughness = base.roughness;
     // Diffuse: the whole stack over the opaque base (§4.2); a metal's once-through
     // reflection is the base lobe.
@@ -98,7 +105,45 @@ FlatTexel flatten_texel(const BandStack& stack, std::span<const float> thickness
             break;
         }
     out.two_lobe = reduce_to_two_lobes(base.metal, out.diffuse, out.interfaces, top);
+    if (fitting.model)
+        out.two_lobe = fit_gltf(*fitting.model, fitting.target, texel_albedo(out), out.two_lobe);
     return out;
+}
+
+AlbedoParts texel_albedo(const FlatTexel& texel)
+{
+    using shading::kGaussNodes;
+    // layered_km's albedo (LayeredModel::albedo, setup_thickness), per channel: the lobes
+    // from the top interface down, each seen through the coupling of the dielectric lobes
+    // above it, 1 − a E; under them the diffuse lobe R_d / (1 − R_d ḡ) of albedo
+    // (1 − g(μ)) (1 − ḡ), with g = 1 − Π (1 − a E) and ḡ its cosine-weighted mean.
+    AlbedoParts parts;  // Imath's V3f starts uninitialised
+    parts.glossy.fill(Imath::V3f(0.0f));
+    std::array<Imath::V3f, kGaussNodes> pass;
+    pass.fill(Imath::V3f(1.0f));
+    for (size_t j = texel.interfaces.size(); j-- > 0;) {
+        const InterfaceLobe& lobe = texel.interfaces[j];
+        if (!lobe.material)
+            continue;
+        for (int g = 0; g < kGaussNodes; ++g) {
+            const Imath::V3f ae = lobe.attenuation * lobe.material->lobe_albedo[static_cast<size_t>(g)];
+            parts.glossy[static_cast<size_t>(g)] += pass[static_cast<size_t>(g)] * ae;
+            if (!lobe.material->metal)  // a metal base's reflection is not taken from below
+                pass[static_cast<size_t>(g)] *= Imath::V3f(1.0f) - ae;
+        }
+    }
+    Imath::V3f pass_mean(0.0f);
+    for (int g = 0; g < kGaussNodes; ++g)
+        pass_mean += shading::kGaussMeanWeight[g] * pass[static_cast<size_t>(g)];
+    for (int c = 0; c < 3; ++c) {
+        const float g_mean = std::clamp(1.0f - pass_mean[c], 0.0f, 1.0f);
+        const float rd = texel.diffuse[c];
+        const float denom = 1.0f - rd * g_mean;
+        const float diffuse_albedo = denom > 1e-6f ? rd / denom * (1.0f - g_mean) : 0.0f;
+        for (int g = 0; g < kGaussNodes; ++g)
+            parts.diffuse[static_cast<size_t>(g)][c] = pass[static_cast<size_t>(g)][c] * diffuse_albedo;
+    }
+    return parts;
 }
 
 TwoLobe reduce_to_two_lobes(bool metal_base, const Imath::V3f& diffuse,

@@ -10,6 +10,8 @@
 #pragma once
 
 #include "texgen/flatten/band_optics.h"
+#include "texgen/flatten/gltf_albedo.h"
+#include "texgen/flatten/gltf_fit.h"
 
 #include <Imath/ImathVec.h>
 
@@ -28,6 +30,10 @@ struct InterfaceLobe {
     /// the layer above it (the same material: no interface between them).
     Imath::V3f specular{0.0f};
     float roughness = 0.5f;  ///< the material's roughness (constant per interface)
+    /// fade T_above² as a colour (what the lobe's reflection keeps on its way out), and the
+    /// material below the interface; both 0 / null where the interface is absent.
+    Imath::V3f attenuation{0.0f};
+    const BandMaterial* material = nullptr;
 };
 
 /// The two-lobe reduction, glTF 2.0 metallic-roughness + KHR_materials_clearcoat.
@@ -53,10 +59,25 @@ struct FlatTexel {
 /// 0.04, KHR_materials_clearcoat): the coat weight is the exposed layer's specular over it.
 inline constexpr float kClearcoatF0 = 0.04f;
 
+/// How flatten makes the glTF material of a texel: the two-lobe reduction alone, or with
+/// its base colour fitted to the texel's albedo for a target renderer (gltf_fit.h; the
+/// stack's lobe albedos must be tabulated: tabulate_lobe_albedos).
+struct GltfFitting {
+    const GltfAlbedo* model = nullptr;  ///< null: the reduction alone
+    GltfTarget target = GltfTarget::khronos;
+};
+
 /// Flatten one texel of `stack`, its layers' thickness here (µm, >= 0, bottom to top;
 /// thickness_um.size() == stack.layers.size()), colours through `to_rgb`.
 FlatTexel flatten_texel(const BandStack& stack, std::span<const float> thickness_um,
-                        const BandsToRgb& to_rgb);
+                        const BandsToRgb& to_rgb, const GltfFitting& fitting = {});
+
+/// The directional albedo of a flattened texel's layered BRDF at the Gauss cosines of
+/// patina/shading/ggx_albedo.h, as layered_km computes it (LayeredModel::albedo: each
+/// interface's lobe, coupled to those above it, and the diffuse lobe under them all,
+/// D&H 1996 §4.3 with the shader's energy coupling), per colour channel: the lobes' albedos
+/// are the materials' (tabulate_lobe_albedos) times the interfaces' attenuation colours.
+AlbedoParts texel_albedo(const FlatTexel& texel);
 
 /// The diffuse reflectance alone at the bands (FlatTexel::diffuse before its conversion to
 /// colour), over a metal base with (`keep_metal_reflection`, what a preview shows) or

@@ -93,8 +93,19 @@ FlattenedStack flatten_stack(const PatinaStackFiles& stack, const ColorManager& 
                              const FlattenOptions& options)
 {
     const size_t n = stack.layers.size();
-    const BandStack materials = band_stack(stack);
+    BandStack materials = band_stack(stack);
     const BandsToRgb to_rgb(colors);
+    // The glTF maps fitted for the target renderer, when they are asked for.
+    GltfFitting fitting;
+    auto wanted = [&](const char* map) {
+        return options.only.empty() ||
+               std::find(options.only.begin(), options.only.end(), map) != options.only.end();
+    };
+    if (wanted(formats::kGltfBaseColorMap)) {
+        tabulate_lobe_albedos(materials, to_rgb);
+        fitting.model = &gltf_albedo_model();
+        fitting.target = options.target;
+    }
 
     FlattenedStack flat;
     flat.udims = stack.udims;
@@ -194,7 +205,7 @@ FlattenedStack flatten_stack(const PatinaStackFiles& stack, const ColorManager& 
             for (size_t t = range.begin(); t != range.end(); ++t) {
                 for (size_t l = 0; l < n; ++l)
                     d[l] = thickness[l][t];
-                const FlatTexel f = flatten_texel(materials, d, to_rgb);
+                const FlatTexel f = flatten_texel(materials, d, to_rgb, fitting);
                 size_t m = 0;
                 auto put3 = [&](const Imath::V3f& v) {
                     std::vector<float>& texels_of = flat.maps[m++].tiles[tile];

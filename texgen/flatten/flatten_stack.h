@@ -3,6 +3,7 @@
 #pragma once
 
 #include "core/color_management.h"
+#include "texgen/flatten/gltf_albedo.h"
 #include "texgen/flatten/patina_stack_files.h"
 
 #include <filesystem>
@@ -19,6 +20,9 @@ struct FlattenOptions {
     bool half = false;           ///< half-float EXRs
     double texel_size_m = 0.0;   ///< world size of a texel; 0: from a strip's strip_size_m
     double normal_scale = 1.0;   ///< height exaggeration of the normal map (1: true relief)
+    /// The renderer the glTF maps are fitted for (gltf_fit.h): their base colour makes that
+    /// renderer's glTF BRDF reflect what layered_km's does at every angle.
+    GltfTarget target = GltfTarget::khronos;
     /// The maps to fill (by name; "normal" fills "height" too, which it is made from);
     /// empty: all. The others are listed with no texels, and their memory is never touched
     /// (export needs the glTF maps, normal and height only).

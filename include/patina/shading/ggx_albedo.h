@@ -29,6 +29,21 @@ inline constexpr int kF0Nodes = 24;
 inline constexpr float kF0MinSqrt = 0.05f;
 inline constexpr float kF0MaxSqrt = 0.99f;
 
+/// 8-point Gauss-Legendre nodes and weights over μ in [0, 1], and the weights 2 μ w of the
+/// cosine-weighted mean over the hemisphere (ḡ = 2 ∫ g(μ) μ dμ = Σ kGaussMeanWeight g(μ)).
+inline constexpr int kGaussNodes = 8;
+inline constexpr float kGaussMu[kGaussNodes] = {0.0198550718f, 0.1016667613f, 0.2372337950f,
+                                                0.4082826788f, 0.5917173212f, 0.7627662050f,
+                                                0.8983332387f, 0.9801449282f};
+inline constexpr float kGaussWeight[kGaussNodes] = {0.0506142681f, 0.1111905172f, 0.1568533229f,
+                                                    0.1813418917f, 0.1813418917f, 0.1568533229f,
+                                                    0.1111905172f, 0.0506142681f};
+inline constexpr float kGaussMeanWeight[kGaussNodes] = {
+    2.0f * kGaussMu[0] * kGaussWeight[0], 2.0f * kGaussMu[1] * kGaussWeight[1],
+    2.0f * kGaussMu[2] * kGaussWeight[2], 2.0f * kGaussMu[3] * kGaussWeight[3],
+    2.0f * kGaussMu[4] * kGaussWeight[4], 2.0f * kGaussMu[5] * kGaussWeight[5],
+    2.0f * kGaussMu[6] * kGaussWeight[6], 2.0f * kGaussMu[7] * kGaussWeight[7]};
+
 /// The relative index whose normal-incidence Fresnel reflectance is F0 (Born & Wolf §1.5.2
 /// inverted: η = (1 + √F0) / (1 - √F0)); 1 for F0 = 0, capped for F0 -> 1.
 inline float eta_of_f0(float f0)

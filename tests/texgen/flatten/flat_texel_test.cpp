@@ -319,3 +319,48 @@ TEST_F(FlatTexelTest, AMaterialWithoutOpticsIsNamed)
 
 }  // namespace
 }  // namespace patina::texgen
+
+namespace patina::texgen {
+namespace {
+
+TEST_F(FlatTexelTest, TheFittedGltfMaterialReflectsWhatTheStackDoes)
+{
+    // The fit (gltf_fit.h) against the texel's albedo, for both renderers: the material's
+    // albedo in its target's model against the stack's, as cosine-weighted RMS over the 8
+    // cosines, of the whole and of the diffuse lobe; the fit against the two-lobe reduction
+    // it starts from. Copper under tarnish and green, and a dielectric base under them.
+    auto rms = [](auto&& error) {
+        double sum = 0.0;
+        for (int g = 0; g < shading::kGaussNodes; ++g)
+            for (int c = 0; c < 3; ++c)
+                sum += shading::kGaussMeanWeight[g] * error(g, c) * error(g, c) / 3.0;
+        return std::sqrt(sum);
+    };
+    for (const bool metal : {true, false}) {
+        BandStack stack = test_stack(metal ? copper_ : stone_, {brown_, green_});
+        tabulate_lobe_albedos(stack, to_rgb_);
+        for (const GltfTarget target : {GltfTarget::khronos, GltfTarget::blender}) {
+            const std::vector<float> d{0.3f, 0.6f};
+            const FlatTexel f = flatten_texel(stack, d, to_rgb_, {&gltf_albedo_model(), target});
+            const FlatTexel reduced = flatten_texel(stack, d, to_rgb_);
+            const AlbedoParts want = texel_albedo(f);
+            auto whole = [&](const TwoLobe& m) {
+                const auto got = gltf_albedo_of(gltf_albedo_model(), target, m);
+                return rms([&](int g, int c) {
+                    return got[g][c] - (want.diffuse[g][c] + want.glossy[g][c]);
+                });
+            };
+            const double fitted = whole(f.two_lobe), before = whole(reduced.two_lobe);
+            std::printf("[ fit ] %s, %s base: albedo RMS %.4f fitted, %.4f reduced\n",
+                        gltf_target_name(target), metal ? "metal" : "dielectric", fitted, before);
+            EXPECT_LT(fitted, before);
+            EXPECT_LT(fitted, 0.06);
+            EXPECT_GE(f.two_lobe.coat_weight, 0.0f);
+            EXPECT_LE(f.two_lobe.coat_weight, 1.0f);
+        }
+    }
+    EXPECT_THROW(gltf_target("maya"), std::runtime_error);
+}
+
+}  // namespace
+}  // namespace patina::texgen

@@ -108,8 +108,10 @@ TEST_F(FlattenStack, MapsHoldTheTexelsOfFlattenTexel)
     const auto files = flatten_to(out);
     EXPECT_EQ(files.size(), 1 + 2 * 3 + 5 + 1u);  // + the manifest
 
-    const BandStack stack = band_stack(read_patina_stack(dir_ / "stack"));
+    BandStack stack = band_stack(read_patina_stack(dir_ / "stack"));
     const BandsToRgb to_rgb(colors_);
+    tabulate_lobe_albedos(stack, to_rgb);  // the glTF maps are fitted (khronos, the default)
+    const GltfFitting fitting{&gltf_albedo_model(), GltfTarget::khronos};
     const ImageData diffuse = read_image(out / "diffuse_albedo.exr");
     const ImageData spec0 = read_image(out / "interface00_copper_specular.exr");
     const ImageData rough1 = read_image(out / "interface01_tarnish_roughness.exr");
@@ -119,7 +121,7 @@ TEST_F(FlattenStack, MapsHoldTheTexelsOfFlattenTexel)
     ASSERT_EQ(diffuse.width, kSize);
     for (int x = 0; x < kSize; x += 5) {
         const float d[2] = {0.5f * x / (kSize - 1), 2.0f};
-        const FlatTexel f = flatten_texel(stack, d, to_rgb);
+        const FlatTexel f = flatten_texel(stack, d, to_rgb, fitting);
         // Colour maps are sRGB-encoded through OCIO (lin_rec709 -> srgb_texture).
         Imath::V3f want = f.diffuse, want_spec = f.interfaces[0].specular;
         colors_.convert("lin_rec709", "srgb_texture", &want.x, 1);
@@ -132,7 +134,7 @@ TEST_F(FlattenStack, MapsHoldTheTexelsOfFlattenTexel)
         EXPECT_FLOAT_EQ(height.at(x, 3, 0), d[0] + d[1]);
         EXPECT_FLOAT_EQ(mr.at(x, 3, mr.channel("G")), f.two_lobe.roughness);
         EXPECT_FLOAT_EQ(mr.at(x, 3, mr.channel("B")), f.two_lobe.metallic);
-        EXPECT_FLOAT_EQ(coat.at(x, 3, coat.channel("R")), 1.0f);  // the patina is on top
+        EXPECT_FLOAT_EQ(coat.at(x, 3, coat.channel("R")), f.two_lobe.coat_weight);
     }
 
     // The manifest says what each map is and how it is encoded.
