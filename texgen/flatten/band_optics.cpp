@@ -132,7 +132,8 @@ void tabulate_lobe_albedos(BandStack& stack, const BandsToRgb& to_rgb)
             for (int i = 0; i < kBandCount; ++i)
                 node(e, i) = m.metal ? node(m.base_reflectance, i) * shading::albedo_at(one, mu)
                                      : shading::albedo_at(table, node(m.specular, i), mu);
-            m.lobe_albedo[static_cast<size_t>(g)] = to_rgb(e);
+            const Imath::V3f c = to_rgb(e);
+            m.lobe_albedo[static_cast<size_t>(g)] = shading::simd::V4{c.x, c.y, c.z, 0.0f};
         }
     }
 }

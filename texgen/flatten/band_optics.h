@@ -62,8 +62,8 @@ struct BandMaterial {
     /// The directional albedo of its interface's glossy lobe at the Gauss cosines of
     /// patina/shading/ggx_albedo.h, as a colour (layered_km's E(F0, μ) at each band, or for
     /// a metal its hemispherical reflectance times the F = 1 albedo): filled by
-    /// tabulate_lobe_albedos, for the albedo of a texel (flat_texel.h).
-    std::array<Imath::V3f, shading::kGaussNodes> lobe_albedo;  ///< (Imath: uninitialised until then)
+    /// tabulate_lobe_albedos, for the albedo of a texel (flat_texel.h). R, G, B in lanes 0-2.
+    std::array<shading::simd::V4, shading::kGaussNodes> lobe_albedo{};
 };
 
 /// `optics` at the bands. Throws std::runtime_error naming the material for a table whose

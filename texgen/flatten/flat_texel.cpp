@@ -65,9 +65,18 @@ Bands stack_diffuse(const BandStack& stack, std::span<const float> thickness_um,
 FlatTexel flatten_texel(const BandStack& stack, std::span<const float> thickness_um,
                         const BandsToRgb& to_rgb, const GltfFitting& fitting)
 {
-    const size_t n = stack.layers.size();
     FlatTexel out;
-    out.interfaces.resize(n + 1);
+    flatten_texel(stack, thickness_um, to_rgb, fitting, out);
+    return out;
+}
+
+void flatten_texel(const BandStack& stack, std::span<const float> thickness_um,
+                   const BandsToRgb& to_rgb, const GltfFitting& fitting, FlatTexel& out)
+{
+    const size_t n = stack.layers.size();
+    out.diffuse = Imath::V3f(0.0f);
+    out.height_um = 0.0f;
+    out.interfaces.assign(n + 1, InterfaceLobe{});
     for (size_t i = 0; i < n && i < thickness_um.size(); ++i) {
         out.height_um += thickness_um[i];
         out.interfaces[i + 1].roughness = stack.layers[i]->roughness;
@@ -107,42 +116,42 @@ FlatTexel flatten_texel(const BandStack& stack, std::span<const float> thickness
     out.two_lobe = reduce_to_two_lobes(base.metal, out.diffuse, out.interfaces, top);
     if (fitting.model)
         out.two_lobe = fit_gltf(*fitting.model, fitting.target, texel_albedo(out), out.two_lobe);
-    return out;
 }
 
 AlbedoParts texel_albedo(const FlatTexel& texel)
 {
     using shading::kGaussNodes;
-    // layered_km's albedo (LayeredModel::albedo, setup_thickness), per channel: the lobes
-    // from the top interface down, each seen through the coupling of the dielectric lobes
-    // above it, 1 − a E; under them the diffuse lobe R_d / (1 − R_d ḡ) of albedo
-    // (1 − g(μ)) (1 − ḡ), with g = 1 − Π (1 − a E) and ḡ its cosine-weighted mean.
-    AlbedoParts parts;  // Imath's V3f starts uninitialised
-    parts.glossy.fill(Imath::V3f(0.0f));
-    std::array<Imath::V3f, kGaussNodes> pass;
-    pass.fill(Imath::V3f(1.0f));
+    using shading::simd::splat;
+    using shading::simd::V4;
+    // layered_km's albedo (LayeredModel::albedo, setup_thickness), per channel (the lanes):
+    // the lobes from the top interface down, each seen through the coupling of the
+    // dielectric lobes above it, 1 − a E; under them the diffuse lobe R_d / (1 − R_d ḡ) of
+    // albedo (1 − g(μ)) (1 − ḡ), with g = 1 − Π (1 − a E) and ḡ its cosine-weighted mean.
+    AlbedoParts parts;
+    std::array<V4, kGaussNodes> pass;
+    pass.fill(splat(1.0f));
     for (size_t j = texel.interfaces.size(); j-- > 0;) {
         const InterfaceLobe& lobe = texel.interfaces[j];
         if (!lobe.material)
             continue;
+        const V4 a{lobe.attenuation.x, lobe.attenuation.y, lobe.attenuation.z, 0.0f};
+        const bool coupled = !lobe.material->metal;  // a metal base's reflection is not taken from below
         for (int g = 0; g < kGaussNodes; ++g) {
-            const Imath::V3f ae = lobe.attenuation * lobe.material->lobe_albedo[static_cast<size_t>(g)];
+            const V4 ae = a * lobe.material->lobe_albedo[static_cast<size_t>(g)];
             parts.glossy[static_cast<size_t>(g)] += pass[static_cast<size_t>(g)] * ae;
-            if (!lobe.material->metal)  // a metal base's reflection is not taken from below
-                pass[static_cast<size_t>(g)] *= Imath::V3f(1.0f) - ae;
+            if (coupled)
+                pass[static_cast<size_t>(g)] *= 1.0f - ae;
         }
     }
-    Imath::V3f pass_mean(0.0f);
+    V4 pass_mean = splat(0.0f);
     for (int g = 0; g < kGaussNodes; ++g)
         pass_mean += shading::kGaussMeanWeight[g] * pass[static_cast<size_t>(g)];
-    for (int c = 0; c < 3; ++c) {
-        const float g_mean = std::clamp(1.0f - pass_mean[c], 0.0f, 1.0f);
-        const float rd = texel.diffuse[c];
-        const float denom = 1.0f - rd * g_mean;
-        const float diffuse_albedo = denom > 1e-6f ? rd / denom * (1.0f - g_mean) : 0.0f;
-        for (int g = 0; g < kGaussNodes; ++g)
-            parts.diffuse[static_cast<size_t>(g)][c] = pass[static_cast<size_t>(g)][c] * diffuse_albedo;
-    }
+    const V4 g_mean = shading::simd::clamp4(1.0f - pass_mean, 0.0f, 1.0f);
+    const V4 rd{texel.diffuse.x, texel.diffuse.y, texel.diffuse.z, 0.0f};
+    const V4 denom = 1.0f - rd * g_mean;
+    const V4 diffuse_albedo = denom > splat(1e-6f) ? rd / denom * (1.0f - g_mean) : splat(0.0f);
+    for (int g = 0; g < kGaussNodes; ++g)
+        parts.diffuse[static_cast<size_t>(g)] = pass[static_cast<size_t>(g)] * diffuse_albedo;
     return parts;
 }
 

@@ -71,6 +71,9 @@ struct GltfFitting {
 /// thickness_um.size() == stack.layers.size()), colours through `to_rgb`.
 FlatTexel flatten_texel(const BandStack& stack, std::span<const float> thickness_um,
                         const BandsToRgb& to_rgb, const GltfFitting& fitting = {});
+/// The same into `out`, whose memory a loop over texels reuses.
+void flatten_texel(const BandStack& stack, std::span<const float> thickness_um,
+                   const BandsToRgb& to_rgb, const GltfFitting& fitting, FlatTexel& out);
 
 /// The directional albedo of a flattened texel's layered BRDF at the Gauss cosines of
 /// patina/shading/ggx_albedo.h, as layered_km computes it (LayeredModel::albedo: each

@@ -202,10 +202,11 @@ FlattenedStack flatten_stack(const PatinaStackFiles& stack, const ColorManager& 
         tbb::parallel_for(tbb::blocked_range<size_t>(0, texels, 1024),
                           [&](const tbb::blocked_range<size_t>& range) {
             std::vector<float> d(n);
+            FlatTexel f;
             for (size_t t = range.begin(); t != range.end(); ++t) {
                 for (size_t l = 0; l < n; ++l)
                     d[l] = thickness[l][t];
-                const FlatTexel f = flatten_texel(materials, d, to_rgb, fitting);
+                flatten_texel(materials, d, to_rgb, fitting, f);
                 size_t m = 0;
                 auto put3 = [&](const Imath::V3f& v) {
                     std::vector<float>& texels_of = flat.maps[m++].tiles[tile];

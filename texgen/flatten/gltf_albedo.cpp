@@ -129,12 +129,19 @@ const GltfAlbedo& gltf_albedo_model()
     return model;
 }
 
-float GltfAlbedo::at(const Table& t, float r, int g)
+void GltfAlbedo::locate(float r, int* k, float* s)
 {
     const float x = std::clamp((r - kMinRoughness) / (1.0f - kMinRoughness), 0.0f, 1.0f) *
                     (kRoughnessNodes - 1);
-    const int k = std::min(static_cast<int>(x), kRoughnessNodes - 2);
-    const float s = x - static_cast<float>(k);
+    *k = std::min(static_cast<int>(x), kRoughnessNodes - 2);
+    *s = x - static_cast<float>(*k);
+}
+
+float GltfAlbedo::at(const Table& t, float r, int g)
+{
+    int k;
+    float s;
+    locate(r, &k, &s);
     return t[k][g] + s * (t[k + 1][g] - t[k][g]);
 }
 
@@ -160,6 +167,45 @@ GltfAlbedo::Terms GltfAlbedo::terms(GltfTarget target, float r, float m, float w
         }
     }
     return t;
+}
+
+GltfAlbedo::AffineTerms GltfAlbedo::affine_terms(GltfTarget target, float r, float m,
+                                                 float rc) const
+{
+    // terms() at w = 0 and the change per unit of w, each table row found once.
+    int k, kc;
+    float s, sc;
+    locate(r, &k, &s);
+    locate(rc, &kc, &sc);
+    auto row = [](const Table& t, int k, float s, int g) {
+        return t[k][g] + s * (t[k + 1][g] - t[k][g]);
+    };
+    AffineTerms a;
+    for (int g = 0; g < kGaussNodes; ++g) {
+        const float e1 = row(e1_, k, s, g), e1c = row(e1_, kc, sc, g);
+        if (target == GltfTarget::khronos) {
+            const float e5 = row(e5_, k, s, g);
+            const float x = 1.0f - kGaussMu[g];
+            const float fc = 0.04f + 0.96f * x * x * x * x * x;
+            const float pd = (1.0f - m) * kd_[g], ps = m * (e1 - e5);
+            const float q = (1.0f - m) * (0.04f * e1 + 0.96f * e5) + m * e5;
+            a.at0.Pd[g] = pd;
+            a.at0.Ps[g] = ps;
+            a.at0.Q[g] = q;
+            a.per_w.Pd[g] = -fc * pd;
+            a.per_w.Ps[g] = -fc * ps;
+            a.per_w.Q[g] = fc * (e1c - q);
+        } else {
+            const float eb = row(eb_, k, s, g), ebc = row(eb_, kc, sc, g);
+            a.at0.Pd[g] = (1.0f - m) * row(kb_, k, s, g);
+            a.at0.Ps[g] = m * (e1 - eb);
+            a.at0.Q[g] = (1.0f - m) * (0.04f * e1 + 0.96f * eb) + m * eb;
+            a.per_w.Pd[g] = 0.0f;
+            a.per_w.Ps[g] = 0.0f;
+            a.per_w.Q[g] = 0.25f * (0.04f * e1c + 0.96f * ebc);
+        }
+    }
+    return a;
 }
 
 }  // namespace patina::texgen

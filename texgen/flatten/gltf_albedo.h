@@ -47,6 +47,11 @@ public:
         std::array<float, shading::kGaussNodes> Pd, Ps, Q;
     };
     Terms terms(GltfTarget target, float r, float m, float w, float rc) const;
+    /// The same terms as affine functions of the coat weight: X(w) = X0 + w dX.
+    struct AffineTerms {
+        Terms at0, per_w;
+    };
+    AffineTerms affine_terms(GltfTarget target, float r, float m, float rc) const;
 
     /// The roughness nodes (uniform in r over [kMinRoughness, 1]) and the integrals there,
     /// for tests: E1 = ∫ S cos, E5 = ∫ S (1 − v·h)⁵ cos, Kd = ∫ (1 − Fs(0.04)) cos / π,
@@ -61,6 +66,8 @@ public:
 private:
     using Table = std::array<std::array<float, shading::kGaussNodes>, kRoughnessNodes>;
     static float at(const Table& t, float r, int g);
+    /// Where r falls between the roughness nodes: node k and weight s.
+    static void locate(float r, int* k, float* s);
     Table e1_{}, e5_{}, eb_{}, kb_{};  ///< eb: Blender's Fresnel shape in place of (1 − v·h)⁵
     std::array<float, shading::kGaussNodes> kd_{};
 };

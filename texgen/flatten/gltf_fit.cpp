@@ -12,57 +12,54 @@ using shading::kGaussNodes;
 TwoLobe fit_gltf(const GltfAlbedo& model, GltfTarget target, const AlbedoParts& albedo,
                  const TwoLobe& start)
 {
-    TwoLobe out = start;
-    // The terms are affine in the coat weight: at w = 0 and w = 1, then interpolated.
-    const GltfAlbedo::Terms t0 =
-        model.terms(target, out.roughness, out.metallic, 0.0f, out.coat_roughness);
-    const GltfAlbedo::Terms t1 =
-        model.terms(target, out.roughness, out.metallic, 1.0f, out.coat_roughness);
-    auto lerp = [](float a, float b, float w) { return a + w * (b - a); };
-    float w = start.coat_weight;
-    Imath::V3f c = start.base_color;
-    for (int round = 0; round < 2; ++round) {
-        // The colour given w: min Σ W [(c Pd − D)² + (c Ps + Q − S)²] per channel.
-        for (int k = 0; k < 3; ++k) {
-            double num = 0.0, den = 0.0;
-            for (int g = 0; g < kGaussNodes; ++g) {
-                const double pd = lerp(t0.Pd[g], t1.Pd[g], w), ps = lerp(t0.Ps[g], t1.Ps[g], w);
-                const double q = lerp(t0.Q[g], t1.Q[g], w);
-                const double total = albedo.diffuse[g][k] + albedo.glossy[g][k];
-                num += kGaussMeanWeight[g] * (pd * albedo.diffuse[g][k] + (pd + ps) * (total - q));
-                den += kGaussMeanWeight[g] * (pd * pd + (pd + ps) * (pd + ps));
-            }
-            c[k] = den > 0.0 ? std::clamp(static_cast<float>(num / den), 0.0f, 1.0f) : c[k];
-        }
-        // w given the colour: every residual is r0 + w r1, so w = −Σ W r0 r1 / Σ W r1².
-        double num = 0.0, den = 0.0;
-        for (int k = 0; k < 3; ++k)
-            for (int g = 0; g < kGaussNodes; ++g) {
-                const double d0 = c[k] * t0.Pd[g] - albedo.diffuse[g][k];
-                const double d1 = c[k] * (t1.Pd[g] - t0.Pd[g]);
-                const double s0 = c[k] * (t0.Pd[g] + t0.Ps[g]) + t0.Q[g] -
-                                  (albedo.diffuse[g][k] + albedo.glossy[g][k]);
-                const double s1 = c[k] * (t1.Pd[g] - t0.Pd[g] + t1.Ps[g] - t0.Ps[g]) +
-                                  (t1.Q[g] - t0.Q[g]);
-                num -= kGaussMeanWeight[g] * (d0 * d1 + s0 * s1);
-                den += kGaussMeanWeight[g] * (d1 * d1 + s1 * s1);
-            }
-        if (den > 0.0)
-            w = std::clamp(static_cast<float>(num / den), 0.0f, 1.0f);
-    }
-    // The colour for the final w.
-    for (int k = 0; k < 3; ++k) {
-        double num = 0.0, den = 0.0;
+    // Every term is affine in the coat weight w: X(w) = X0 + w dX (gltf_albedo.h). The
+    // residuals at cosine g, per channel (the lanes), both weighted by W_g = 2 μ_g w_g:
+    //   diffuse  c Pd − D              whole  c (Pd + Ps) + Q − (D + S)
+    using shading::simd::splat;
+    using shading::simd::V4;
+    const GltfAlbedo::AffineTerms t =
+        model.affine_terms(target, start.roughness, start.metallic, start.coat_roughness);
+    const auto& W = kGaussMeanWeight;
+    std::array<V4, kGaussNodes> whole;
+    for (int g = 0; g < kGaussNodes; ++g)
+        whole[g] = albedo.diffuse[g] + albedo.glossy[g];
+
+    // The colour for a coat weight: per channel c = Σ W (pd D + pt (A − q)) / Σ W (pd² + pt²).
+    auto colour = [&](float w, V4 previous) {
+        float den = 0.0f;
+        V4 num = splat(0.0f);
         for (int g = 0; g < kGaussNodes; ++g) {
-            const double pd = lerp(t0.Pd[g], t1.Pd[g], w), ps = lerp(t0.Ps[g], t1.Ps[g], w);
-            const double q = lerp(t0.Q[g], t1.Q[g], w);
-            const double total = albedo.diffuse[g][k] + albedo.glossy[g][k];
-            num += kGaussMeanWeight[g] * (pd * albedo.diffuse[g][k] + (pd + ps) * (total - q));
-            den += kGaussMeanWeight[g] * (pd * pd + (pd + ps) * (pd + ps));
+            const float pd = t.at0.Pd[g] + w * t.per_w.Pd[g];
+            const float pt = pd + t.at0.Ps[g] + w * t.per_w.Ps[g];
+            const float q = t.at0.Q[g] + w * t.per_w.Q[g];
+            num += W[g] * (pd * albedo.diffuse[g] + pt * (whole[g] - q));
+            den += W[g] * (pd * pd + pt * pt);
         }
-        c[k] = den > 0.0 ? std::clamp(static_cast<float>(num / den), 0.0f, 1.0f) : c[k];
+        return den > 0.0f ? shading::simd::clamp4(num / den, 0.0f, 1.0f) : previous;
+    };
+    // The coat weight for a colour: each residual is r0 + w r1, so w = −Σ W r0 r1 / Σ W r1².
+    auto coat = [&](V4 c, float previous) {
+        V4 num = splat(0.0f), den = splat(0.0f);
+        for (int g = 0; g < kGaussNodes; ++g) {
+            const V4 d0 = c * t.at0.Pd[g] - albedo.diffuse[g];
+            const V4 d1 = c * t.per_w.Pd[g];
+            const V4 s0 = c * (t.at0.Pd[g] + t.at0.Ps[g]) + t.at0.Q[g] - whole[g];
+            const V4 s1 = c * (t.per_w.Pd[g] + t.per_w.Ps[g]) + t.per_w.Q[g];
+            num -= W[g] * (d0 * d1 + s0 * s1);
+            den += W[g] * (d1 * d1 + s1 * s1);
+        }
+        const float n = num[0] + num[1] + num[2], d = den[0] + den[1] + den[2];
+        return d > 0.0f ? std::clamp(n / d, 0.0f, 1.0f) : previous;
+    };
+    const Imath::V3f b = start.base_color;
+    V4 c = colour(start.coat_weight, V4{b.x, b.y, b.z, 0.0f});
+    float w = start.coat_weight;
+    for (int round = 0; round < 2; ++round) {
+        w = coat(c, w);
+        c = colour(w, c);
     }
-    out.base_color = c;
+    TwoLobe out = start;
+    out.base_color = Imath::V3f(c[0], c[1], c[2]);
     out.coat_weight = w;
     return out;
 }

@@ -12,6 +12,8 @@
 
 #include "texgen/flatten/gltf_albedo.h"
 
+#include <patina/shading/lanes.h>
+
 #include <Imath/ImathVec.h>
 
 #include <array>
@@ -21,9 +23,9 @@ namespace patina::texgen {
 struct TwoLobe;
 
 /// A texel's directional albedo at the Gauss cosines, its diffuse lobe's and its glossy
-/// lobes' parts.
+/// lobes' parts (R, G, B in lanes 0-2).
 struct AlbedoParts {
-    std::array<Imath::V3f, shading::kGaussNodes> diffuse, glossy;
+    std::array<shading::simd::V4, shading::kGaussNodes> diffuse{}, glossy{};
 };
 
 /// The reduction `start` with its base colour and coat weight fitted to `albedo`.
