@@ -356,13 +356,15 @@ namespace {
         toml_check_keys(file, t, "flatten.",
                         {"stack", "color_space", "diffuse", "height", "normal",
                          "normal_convention", "texel_size_m", "normal_scale", "two_lobe",
-                         "base_color", "metallic_roughness", "clearcoat", "interfaces"});
+                         "gltf_target", "base_color", "metallic_roughness", "clearcoat",
+                         "interfaces"});
         // The typed reads every table of the manifest uses (top of this file).
         FlattenTable f;
         f.stack = optional_string(file, t, "stack", "[flatten]");
         f.color_space = optional_string(file, t, "color_space", "[flatten]");
         f.texel_size_m = optional_number(file, t, "texel_size_m", "[flatten]", 0.0);
         f.normal_scale = optional_number(file, t, "normal_scale", "[flatten]", 1.0);
+        f.gltf_target = optional_string(file, t, "gltf_target", "[flatten]");
         if (const toml::node* n = t.get("interfaces")) {
             const toml::array* a = n->as_array();
             if (!a)
@@ -437,6 +439,7 @@ toml::table to_toml(const FlattenTable& f)
         {"texel_size_m", f.texel_size_m},
         {"normal_scale", f.normal_scale},
         {"two_lobe", kTwoLobe},
+        {"gltf_target", f.gltf_target},
         {"base_color", kGltfBaseColorMap},
         {"metallic_roughness", kGltfMetallicRoughnessMap},
         {"clearcoat", kGltfClearcoatMap},

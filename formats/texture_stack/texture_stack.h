@@ -114,6 +114,9 @@ struct FlattenTable {
     std::string color_space;  ///< of the colour maps
     double texel_size_m = 0.0;
     double normal_scale = 1.0;
+    /// The renderer the glTF maps are fitted for ("khronos", "blender"); empty in a
+    /// manifest written before the fit (the two-lobe reduction alone).
+    std::string gltf_target;
     std::vector<FlattenInterface> interfaces;
 };
 

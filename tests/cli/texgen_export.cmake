@@ -40,6 +40,9 @@ expect_success("${PATINA_TEXGEN}" flatten "${WORK_DIR}/urban/t30" -o "${WORK_DIR
 expect_success("${PATINA_TEXGEN}" export "${WORK_DIR}/flat" -o "${WORK_DIR}/flat.glb")
 expect_in("${LAST_STDERR}" "flattened maps of 32x32")
 expect_valid_gltf("${WORK_DIR}/flat.glb")
+# Maps fitted for one renderer do not export for another.
+expect_failure("fitted for --target khronos; flatten again with --target blender"
+  "${PATINA_TEXGEN}" export "${WORK_DIR}/flat" -o "${WORK_DIR}/flat_blender.glb" --target blender)
 
 # Bad inputs: one message, nothing written.
 expect_failure("--preset 'maya'" "${PATINA_TEXGEN}" export "${WORK_DIR}/urban"

@@ -117,9 +117,17 @@ void write_stack(const fs::path& dir)
     toml::table maps;
     for (const StackMap* m : {&thickness, &total, &ao})
         maps.insert_or_assign(m->name, to_toml(*m));
+    FlattenTable f;
+    f.stack = "../t30";
+    f.color_space = "srgb_texture";
+    f.texel_size_m = 0.00039;
+    f.normal_scale = 2.5;
+    f.gltf_target = "blender";
+    f.interfaces = {{"interface00_copper_specular", "interface00_copper_roughness"}};
     const toml::table root{{"stack", toml::table{{"format", kStackFormatVersion}}},
                            {"maps", maps},
-                           {"patina", to_toml(p)}};
+                           {"patina", to_toml(p)},
+                           {"flatten", to_toml(f)}};
     std::ofstream(dir / kStackManifest) << root << "\n";
 }
 
@@ -182,6 +190,16 @@ TEST(TextureStackFormat, RoundTripsEveryKey)
     EXPECT_EQ(optics_difference(p.materials.at("copper"), metal_optics(), 0.0), "");
     EXPECT_EQ(optics_difference(p.materials.at("green"), layer_optics("green"), 0.0), "");
     EXPECT_EQ(p.materials.at("green").description, "a test layer");
+
+    ASSERT_TRUE(s.flatten);
+    const FlattenTable& f = *s.flatten;
+    EXPECT_EQ(f.stack, "../t30");
+    EXPECT_EQ(f.color_space, "srgb_texture");
+    EXPECT_EQ(f.texel_size_m, 0.00039);
+    EXPECT_EQ(f.normal_scale, 2.5);
+    EXPECT_EQ(f.gltf_target, "blender");
+    ASSERT_EQ(f.interfaces.size(), 1u);
+    EXPECT_EQ(f.interfaces[0].roughness, "interface00_copper_roughness");
 }
 
 TEST(TextureStackFormat, ChannelByIndexOrByNameOrTheFirst)

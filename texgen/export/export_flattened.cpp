@@ -49,6 +49,17 @@ ExportResult export_flattened(const fs::path& input, const fs::path& output,
     const formats::TextureStack stack = formats::read_texture_stack(input);
     // The [flatten] table, as the stack's reader checked it (a flattened stack has one).
     const formats::FlattenTable info = stack.flatten.value_or(formats::FlattenTable{});
+    // The glTF maps are fitted for one renderer when they are made: refuse another.
+    if (info.gltf_target.empty())
+        throw std::runtime_error(fmt::format(
+            "export of '{}': its glTF maps come from an older flatten, fitted for no renderer; "
+            "flatten the stack again (--target {})",
+            stack.manifest.string(), options.target));
+    if (info.gltf_target != options.target)
+        throw std::runtime_error(fmt::format(
+            "export of '{}': its glTF maps are fitted for --target {}; flatten again with "
+            "--target {}, or export with --target {}",
+            stack.manifest.string(), info.gltf_target, options.target, info.gltf_target));
 
     ExportStep step;
     step.manifest = stack.manifest;

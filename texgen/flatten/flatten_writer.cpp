@@ -120,6 +120,7 @@ std::vector<fs::path> write_flattened(const fs::path& out_dir, const FlattenedSt
     info.color_space = colorspace;
     info.texel_size_m = flat.texel_size_m;
     info.normal_scale = options.normal_scale;
+    info.gltf_target = gltf_target_name(options.target);
     for (const FlatMap& map : flat.maps)
         if (map.name.rfind("interface", 0) == 0 && map.name.ends_with("_specular")) {
             const std::string stem = map.name.substr(0, map.name.size() - 9);
