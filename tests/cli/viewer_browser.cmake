@@ -148,8 +148,8 @@ ${sky}")
       string(JSON hue_viewer_${age} GET "${LAST_STDOUT}" hue_viewer)
       string(JSON hue_render_${age} GET "${LAST_STDOUT}" hue_render)
     endif()
-    # Measured 0.6-1.6 (export flattens the stack on the optics the renderer uses); 4
-    # leaves room for the software rasteriser's rounding, not for a wrong colour pipeline,
+    # Measured 0.14-1.45 (export flattens the stack on the optics the renderer uses and
+    # fits the glTF material for glTF's reference BRDF, docs/flatten.md); 4 leaves room for the software rasteriser's rounding, not for a wrong colour pipeline,
     # exposure or light (a missing sRGB decode, view or sky is over 10).
     if(de GREATER 4.0)
       message(FATAL_ERROR "the viewer's strip at ${age} years (${light}) is dE2000 ${de} "
