@@ -9,6 +9,7 @@
 #include "core/color_management.h"
 #include "core/image_io.h"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include "test_util.h"
@@ -179,6 +180,95 @@ TEST_F(BlenderGltf, CyclesRenderLooksLikePatinaRender)
     EXPECT_LE(delta_e("rural"), 1.2);
     ASSERT_FALSE(grow_export_and_open("urban").is_null());
     EXPECT_LE(delta_e("urban"), 2.2);
+}
+
+TEST_F(BlenderGltf, SeriesLooksLikePatinaRenderUnderTwoLights)
+{
+    // Issue 42's aim: the three strips of D&H 1996 §5.1 at every age (0-30 years in 6-year
+    // steps), exported with --target blender, rendered by Cycles and by patina-render under a
+    // uniform white world and under the lookdev sky with its sun (patina-texgen sky), the
+    // strip facing the sky's zenith in both; the mean colours' CIEDE2000. The issue's aim,
+    // mean <= 1.5 and max <= 3, is not met: measured mean 1.88, max 5.09 (white world 0.3-3.8,
+    // sky and sun 0.3-5.1: the urban and marine crusts render darker in Cycles under the sun,
+    // whose light Blender's added lobes send elsewhere). Bare copper agrees to 0.3 under
+    // both lights, which checks the two scenes' lights against each other. The bounds are
+    // the measured values plus 0.3, so that the fit cannot get worse unnoticed.
+    const std::string sky = (dir_ / "sky.exr").string();
+    FILE* pipe = popen((kBin + "/patina-texgen sky -o '" + sky + "'").c_str(), "r");
+    ASSERT_TRUE(pipe);
+    std::string sky_toml;
+    for (char buffer[256]; std::fgets(buffer, sizeof buffer, pipe);)
+        sky_toml += buffer;
+    ASSERT_EQ(pclose(pipe), 0);
+    double sun[3] = {0, 0, 0}, irradiance = 0.0;
+    ASSERT_EQ(std::sscanf(sky_toml.substr(sky_toml.find("direction")).c_str(),
+                          "direction = [%lf, %lf, %lf]", &sun[0], &sun[1], &sun[2]), 3)
+        << sky_toml;
+    ASSERT_EQ(std::sscanf(sky_toml.substr(sky_toml.find("irradiance")).c_str(),
+                          "irradiance = %lf", &irradiance), 1);
+
+    const Imath::V3d white(1.0);
+    auto lab = [&](Imath::V3d c, const char* space) {
+        float v[3] = {float(c.x), float(c.y), float(c.z)}, w[3] = {1.0f, 1.0f, 1.0f};
+        colors_.convert(space, "CIE-XYZ-D65", v, 1);
+        colors_.convert("lin_rec709", "CIE-XYZ-D65", w, 1);
+        return xyz_to_lab(Imath::V3d(v[0], v[1], v[2]), Imath::V3d(w[0], w[1], w[2]));
+    };
+    std::vector<double> all;
+    std::string table = "| strip | age | white world | sky and sun |\n|---|---|---|---|\n";
+    for (const std::string env : {"rural", "urban", "marine"}) {
+        const fs::path stack = dir_ / env;
+        ASSERT_EQ(run(kBin + "/patina-texgen patina '" + kSource + "/samples/copper_strips/" + env +
+                      ".patina' -o '" + stack.string() +
+                      "' --resolution 64 --times 0,6,12,18,24,30 --quiet --no-preview"), 0);
+        ASSERT_EQ(run(kBin + "/patina-texgen export '" + stack.string() + "' -o '" +
+                      (dir_ / (env + ".glb")).string() + "' --target blender --quiet"), 0);
+        const fs::path frames = dir_ / (env + "_frames");
+        fs::create_directories(frames);
+        const std::string blender = fmt::format(
+            "blender -b --factory-startup --python-exit-code 1 --python '{}/tests/clients/"
+            "blender_strip_series.py' -- '{}' '{}' 48 64 '{}' {} {} {} {} > '{}' 2>&1",
+            kSource, (dir_ / (env + ".glb")).string(), frames.string(), sky, sun[0], sun[1],
+            sun[2], irradiance, (dir_ / (env + "_series.log")).string());
+        ASSERT_EQ(run(blender), 0) << "see " << (dir_ / (env + "_series.log")).string();
+        for (int age = 0; age <= 30; age += 6) {
+            const std::string step = fmt::format("t{:02}", age);
+            table += fmt::format("| {} | {} y |", env, age);
+            for (const std::string light : {"white", "sky"}) {
+                const fs::path scene = dir_ / fmt::format("{}_{}_{}.toml", env, step, light);
+                std::ofstream(scene)
+                    << "[film]\nwidth = 48\nheight = 48\nspp = 64\nseed = 1\nmax_depth = 8\n"
+                       "[camera]\nfrom = [0.0, 1.0, 0.0]\nto = [0.0, 0.0, 0.0]\n"
+                       "up = [0.0, 0.0, -1.0]\nfov_deg = 5.0\n"
+                    << (light == "white" ? "[environment]\ncolor = [1.0, 1.0, 1.0]\n"
+                                           "colorspace = \"lin_rec709\"\nintensity = 1.0\n"
+                                         : sky_toml)
+                    << "\n[[shader]]\nname = \"strip\"\ntype = \"layered_km\"\nstack = \""
+                    << (stack / step / "stack.toml").string()
+                    << "\"\n[[object]]\nshape = \"plane\"\nsize = 0.1\nbsdf = \"strip\"\n";
+                const fs::path out = dir_ / fmt::format("{}_{}_{}_patina.exr", env, step, light);
+                ASSERT_EQ(run(kBin + "/patina-render '" + scene.string() + "' -o '" +
+                              out.string() + "' --quiet"), 0);
+                const Lab a = lab(mean_rgb(frames / fmt::format("{} y_{}.exr", age, light)),
+                                  "lin_rec709");
+                const Lab b = lab(mean_rgb(out), "ACEScg");
+                const double de = delta_e2000(a, b);
+                all.push_back(de);
+                table += fmt::format(" {:.2f} (L* {:.1f} / {:.1f}) |", de, a.L, b.L);
+            }
+            table += "\n";
+        }
+    }
+    double mean = 0.0, worst = 0.0;
+    for (double d : all) {
+        mean += d / all.size();
+        worst = std::max(worst, d);
+    }
+    std::printf("[ blender  ] Cycles (--target blender) against patina-render, dE2000 "
+                "(L* Cycles / patina-render):\n%smean %.2f, max %.2f\n",
+                table.c_str(), mean, worst);
+    EXPECT_LE(mean, 2.2);
+    EXPECT_LE(worst, 5.4);
 }
 
 }  // namespace
