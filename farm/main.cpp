@@ -224,11 +224,14 @@ void register_resubmit(CLI::App& app)
             patina::farm::job_kind(*folder) == "render"
                 ? patina::farm::resubmit_render_job(*folder, *options)
                 : patina::farm::resubmit_texgen_job(*folder, *options);
-        if (s.merge_job.empty())
+        // Labelled, one job a line: the tasks run again (when any), then what follows them.
+        if (s.merge_job.empty()) {
             std::printf("nothing to resubmit: every task is done and every frame merged\n");
-        else
-            std::printf("%s %s\n", s.array_job.empty() ? "-" : s.array_job.c_str(),
-                        s.merge_job.c_str());
+            return;
+        }
+        if (!s.array_job.empty())
+            std::printf("array job %s\n", s.array_job.c_str());
+        std::printf("merge job %s\n", s.merge_job.c_str());
     });
 }
 
@@ -236,6 +239,9 @@ void register_resubmit(CLI::App& app)
 
 int main(int argc, char** argv)
 {
+    // First of all: a SIGINT or SIGTERM that arrives while the options are read or the
+    // plugins load must cancel the run (exit 130, nothing written), not kill it untidily.
+    patina::install_cancel_handler();
     CLI::App app{"patina-farm: Patina's renders, bakes and simulations on a render farm"};
     app.set_version_flag("--version", std::string("patina-farm ") + PATINA_VERSION_STRING);
     app.require_subcommand(1);
@@ -250,7 +256,6 @@ int main(int argc, char** argv)
     for (CLI::App* command : app.get_subcommands({}))
         command->footer(patina::manual_footer("farm.md"));
 
-    patina::install_cancel_handler();
     try {
         // Each file is written under a temporary name and renamed at once: a job's scripts
         // must be in place before sbatch starts them.

@@ -13,6 +13,7 @@
 #include <optional>
 #include <span>
 #include <string_view>
+#include <vector>
 
 namespace patina::formats {
 
@@ -82,6 +83,40 @@ T toml_value(const std::filesystem::path& file, const toml::table& table, const 
         toml_fail(file, node ? node : &table,
                   prefix + key + (node ? ": wrong type" : ": missing"));
     return *value;
+}
+
+/// `text` parsed (`source` names it in errors), or std::runtime_error("source:line:column:
+/// <toml++'s description>").
+inline toml::table parse_toml_text(std::string_view text, const std::filesystem::path& source)
+{
+    try {
+        return toml::parse(text, source.string());
+    } catch (const toml::parse_error& e) {
+        throw std::runtime_error(toml_where(source, e.source().begin) + ": " +
+                                 std::string(e.description()));
+    }
+}
+
+/// The tables of the array of tables `key` of `root` ([[key]]), in order; throws
+/// "file:line:column: no [[key]]" when there is none and "...: a [[key]] that is not a
+/// table" for an item of another type.
+inline std::vector<const toml::table*> toml_table_array(const std::filesystem::path& file,
+                                                        const toml::table& root,
+                                                        const char* key)
+{
+    const toml::node* node = root.get(key);
+    const toml::array* array = node ? node->as_array() : nullptr;
+    const std::string name = std::string("[[") + key + "]]";
+    if (!array || array->empty())
+        toml_fail(file, node, "no " + name);
+    std::vector<const toml::table*> out;
+    for (const toml::node& item : *array) {
+        const toml::table* t = item.as_table();
+        if (!t)
+            toml_fail(file, &item, "a " + name + " that is not a table");
+        out.push_back(t);
+    }
+    return out;
 }
 
 /// The parsed file, or std::runtime_error("file:line:column: <toml++'s description>").

@@ -17,6 +17,9 @@
 
 int main(int argc, char** argv)
 {
+    // First of all: a SIGINT or SIGTERM that arrives while the options are read or the
+    // plugins load must cancel the run (exit 130, nothing written), not kill it untidily.
+    patina::install_cancel_handler();
     namespace pt = patina::texgen;
     CLI::App app{"patina-texgen: bake weathering maps onto UV-mapped meshes"};
     app.set_version_flag("--version", std::string("patina-texgen ") + PATINA_VERSION_STRING);
@@ -55,7 +58,6 @@ int main(int argc, char** argv)
           std::pair{"export", "export.md"}, std::pair{"view", "viewer.md"}})
         app.get_subcommand(command)->footer(patina::manual_footer(page));
 
-    patina::install_cancel_handler();
     try {
         // Every file the command writes is staged, and moves into place only when the
         // command has finished without error: all of its outputs, or none.

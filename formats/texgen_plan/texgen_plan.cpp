@@ -76,14 +76,7 @@ TexgenPlan read_texgen_plan(const fs::path& file, const toml::table& header,
     plan.output = toml_value<std::string>(file, header, "output", "");
     if (header.get("chained"))
         plan.chained = toml_value<bool>(file, header, "chained", "");
-    const toml::node* tasks = root.get("task");
-    const toml::array* array = tasks ? tasks->as_array() : nullptr;
-    if (!array || array->empty())
-        toml_fail(file, tasks, "no [[task]]");
-    for (const toml::node& node : *array) {
-        const toml::table* t = node.as_table();
-        if (!t)
-            toml_fail(file, &node, "a [[task]] that is not a table");
+    for (const toml::table* t : toml_table_array(file, root, "task")) {
         const std::string where = "task " + std::to_string(plan.tasks.size()) + ": ";
         toml_check_keys(file, *t, where, {"label", "args", "outputs", "time_years", "folder"});
         TexgenPlanTask task;
@@ -105,13 +98,7 @@ TexgenPlan read_texgen_plan(const fs::path& file, const toml::table& header,
 
 TexgenPlan parse_texgen_plan(std::string_view text, const fs::path& source)
 {
-    toml::table root;
-    try {
-        root = toml::parse(text, source.string());
-    } catch (const toml::parse_error& e) {
-        throw std::runtime_error(toml_where(source, e.source().begin) + ": " +
-                                 std::string(e.description()));
-    }
+    const toml::table root = parse_toml_text(text, source);
     toml_check_keys(source, root, "", {"plan", "task"});
     const toml::table* header = root["plan"].as_table();
     if (!header)

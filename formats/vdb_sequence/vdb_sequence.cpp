@@ -62,14 +62,7 @@ namespace {
                           std::to_string(kVdbSequenceFormat) + ")");
         VdbSequence sequence;
         sequence.source = toml_value<std::string>(file, *header, "source", "sequence.");
-        const toml::node* frames = root.get("frame");
-        const toml::array* array = frames ? frames->as_array() : nullptr;
-        if (!array || array->empty())
-            toml_fail(file, frames, "no [[frame]]");
-        for (const toml::node& node : *array) {
-            const toml::table* t = node.as_table();
-            if (!t)
-                toml_fail(file, &node, "a [[frame]] that is not a table");
+        for (const toml::table* t : toml_table_array(file, root, "frame")) {
             const std::string where = "frame " + std::to_string(sequence.frames.size() + 1) + ": ";
             toml_check_keys(file, *t, where, {"frame", "cycle", "volume", "boundary"});
             VdbSequenceFrame f;
@@ -97,14 +90,7 @@ VdbSequence read_vdb_sequence(const fs::path& file)
 
 VdbSequence parse_vdb_sequence(std::string_view text, const fs::path& source)
 {
-    toml::table root;
-    try {
-        root = toml::parse(text, source.string());
-    } catch (const toml::parse_error& e) {
-        throw std::runtime_error(toml_where(source, e.source().begin) + ": " +
-                                 std::string(e.description()));
-    }
-    return read_root(source, root);
+    return read_root(source, parse_toml_text(text, source));
 }
 
 }  // namespace patina::formats

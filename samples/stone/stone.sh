@@ -124,6 +124,7 @@ roughness_exponent = 3.0"
 # which cycle each holds) with its boundary meshes,
 # coloured by the medium the renders use.
 mkdir -p "$root/out/export"
+rm -f "$root/out/export"/column.[0-9][0-9][0-9][0-9].{vdb,obj}  # an earlier run's frames
 "$texgen" export "$out/column" -o "$root/out/export/column.vdb" \
     --scene "$out/column/cycle_0000/front.toml" --medium stone --quiet
 

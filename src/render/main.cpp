@@ -15,6 +15,9 @@
 
 int main(int argc, char** argv)
 {
+    // First of all: a SIGINT or SIGTERM that arrives while the options are read or the
+    // plugins load must cancel the run (exit 130, nothing written), not kill it untidily.
+    patina::install_cancel_handler();
     namespace pr = patina::render;
     CLI::App app{"patina-render: spectral path tracer with Patina shading plugins"};
     app.set_version_flag("--version", std::string("patina-render ") + PATINA_VERSION_STRING);
@@ -84,7 +87,6 @@ int main(int argc, char** argv)
         return 2;
     }
 
-    patina::install_cancel_handler();
     try {
         search.bundled = !no_bundled;
         search.command_line.assign(plugin_paths.begin(), plugin_paths.end());

@@ -146,11 +146,22 @@ file(COPY "${WORK_DIR}/render/out.exr" DESTINATION "${WORK_DIR}/render2")
 expect_failure_changes_nothing("${WORK_DIR}/render2" "out.png"
   "${PATINA_RENDER}" "${WORK_DIR}/scene.toml" --quiet --output "${WORK_DIR}/render2/out.exr")
 
-# A real SIGTERM from outside, mid-render (coreutils timeout sends it after 1 s).
+# A real SIGTERM from outside, mid-render: sent once the render reports progress (its
+# first progress line: the plugins are loaded and the film is being rendered), so that a
+# loaded machine cannot send it before the run has started.
 tree_digest("${WORK_DIR}/render" before)
-execute_process(COMMAND timeout --preserve-status -s TERM 1 "${PATINA_RENDER}"
-  "${WORK_DIR}/scene.toml" --quiet --spp 10000000 --output "${WORK_DIR}/render/out.exr"
-  RESULT_VARIABLE rc ERROR_VARIABLE err)
+execute_process(COMMAND bash -c [=[
+  "$0" "$1" --spp 10000000 --output "$2" 2> "$3" &
+  pid=$!
+  for i in $(seq 1200); do
+    grep -q "render:" "$3" 2> /dev/null && break
+    sleep 0.05
+  done
+  kill -TERM "$pid"
+  wait "$pid"]=] "${PATINA_RENDER}" "${WORK_DIR}/scene.toml" "${WORK_DIR}/render/out.exr"
+  "${WORK_DIR}/term.log"
+  RESULT_VARIABLE rc)
+file(READ "${WORK_DIR}/term.log" err)
 if(NOT rc EQUAL 130)
   message(FATAL_ERROR "patina-render under SIGTERM: expected exit 130, got ${rc}:\n${err}")
 endif()
