@@ -265,7 +265,8 @@ size_t JobStatus::count(const std::string& state) const
     return static_cast<size_t>(std::count(tasks.begin(), tasks.end(), state));
 }
 
-JobStatus job_status(const JobShape& job, const std::function<bool(size_t)>& done,
+JobStatus job_status(const JobShape& job,
+                     const std::function<std::string(size_t)>& output_state,
                      std::vector<bool> merged)
 {
     JobStatus st;
@@ -311,11 +312,9 @@ JobStatus job_status(const JobShape& job, const std::function<bool(size_t)>& don
         }
     }
     for (size_t i = 0; i < job.tasks; ++i) {
-        if (!queued[i].empty())
+        if (!queued[i].empty()) {
             st.tasks[i] = queued[i];
-        else if (done(i))
-            st.tasks[i] = "done";
-        else {
+        } else if (st.tasks[i] = output_state(i); st.tasks[i] != "done") {
             // Its log says why: the first error line (the program's, before the task's
             // own), else the last line.
             std::ifstream log(job.folder / "logs" / fmt::format("task_{}.log", i));
@@ -346,7 +345,7 @@ Submitted resubmit_job(const JobShape& job, const JobStatus& st, const SubmitOpt
             st.merge_queued ? "a" : "no"));
     std::vector<size_t> missing;
     for (size_t i = 0; i < st.tasks.size(); ++i)
-        if (st.tasks[i] == "missing")
+        if (st.tasks[i] == "missing" || st.tasks[i] == "broken")
             missing.push_back(i);
     if (missing.empty() && std::all_of(st.merged.begin(), st.merged.end(), [](bool b) { return b; }))
         return {};

@@ -61,20 +61,24 @@ Submitted submit_job(const JobShape& job, const std::vector<size_t>& tasks,
 
 /// Where a job stands (docs/farm.md "status and resubmit").
 struct JobStatus {
-    std::vector<std::string> tasks;     ///< per task: done, running, pending, missing
-    std::vector<std::string> failures;  ///< per task: what its log says when missing
+    /// per task: done, running, pending, broken (its output is there but not whole or not
+    /// the task's) or missing
+    std::vector<std::string> tasks;
+    std::vector<std::string> failures;  ///< per task: what its log says when broken or missing
     std::vector<bool> merged;           ///< per output of the finishing job: written
     bool merge_queued = false;
     bool queue_known = true;            ///< false when squeue could not be asked
     size_t count(const std::string& state) const;
 };
 
-/// The status from Slurm's queue (squeue over submitted.toml's ids), `done(i)` for a task
-/// not in it, its log for a task neither queued nor done, and `merged`.
-JobStatus job_status(const JobShape& job, const std::function<bool(size_t)>& done,
+/// The status from Slurm's queue (squeue over submitted.toml's ids), `output_state(i)`
+/// ("done", "broken" or "missing") for a task not in it, its log for a task neither queued
+/// nor done, and `merged`.
+JobStatus job_status(const JobShape& job,
+                     const std::function<std::string(size_t)>& output_state,
                      std::vector<bool> merged);
 
-/// Submits the missing tasks of `st` and the finishing job after them (or the finishing job
+/// Submits the broken and missing tasks of `st` and the finishing job after them (or the finishing job
 /// alone when only it is missing). Refuses while a task or finishing job of the job is still
 /// queued. Returns empty ids when the job is complete.
 Submitted resubmit_job(const JobShape& job, const JobStatus& st, const SubmitOptions& options);

@@ -172,8 +172,9 @@ void register_status(CLI::App& app)
 {
     auto folder = std::make_shared<fs::path>();
     CLI::App* cmd = app.add_subcommand(
-        "status", "where a job stands: each task done, running, pending or missing (with the "
-                  "last line of its log), and the frames merged");
+        "status", "where a job stands: each task done, running, pending, broken (its output "
+                  "there but cut short or not the task's) or missing, with the error line of "
+                  "its log (else its last line), and the frames merged");
     cmd->add_option("job", *folder, "the job folder")->required()->check(CLI::ExistingDirectory);
     cmd->callback([folder] {
         // Each task's description, and what the finishing job writes.
@@ -202,9 +203,10 @@ void register_status(CLI::App& app)
         for (size_t i = 0; i < st.tasks.size(); ++i)
             std::printf("task %zu (%s): %s%s%s\n", i, labels[i].c_str(), st.tasks[i].c_str(),
                         st.failures[i].empty() ? "" : ": ", st.failures[i].c_str());
-        std::printf("%zu task(s): %zu done, %zu running, %zu pending, %zu missing; %s%s%s\n",
+        std::printf("%zu task(s): %zu done, %zu running, %zu pending, %zu broken, %zu missing; "
+                    "%s%s%s\n",
                     st.tasks.size(), st.count("done"), st.count("running"), st.count("pending"),
-                    st.count("missing"), finished.c_str(),
+                    st.count("broken"), st.count("missing"), finished.c_str(),
                     st.merge_queued ? "; the merge is queued" : "",
                     st.queue_known ? "" : " (Slurm's queue could not be asked)");
     });

@@ -41,13 +41,14 @@ Submitted submit_render_job(const RenderJob& job, const SubmitOptions& options)
                                 options);
 }
 
-bool valid_part(const RenderJob& job, const RenderTask& task, const fs::path& part)
+std::string part_state(const RenderJob& job, const RenderTask& task, const fs::path& part)
 {
     std::error_code ec;
-    if (!fs::is_regular_file(part, ec))
-        return false;
+    if (!fs::exists(part, ec))
+        return "missing";
     try {
-        const RenderPart p = read_render_part(part, false);
+        // The pixels too: a part cut short after its header reads its header, not them.
+        const RenderPart p = read_render_part(part, true);
         // Its samples: the task's range, or the job's spp from sample 0.
         const bool samples =
             task.sample_end > 0
@@ -60,9 +61,11 @@ bool valid_part(const RenderJob& job, const RenderTask& task, const fs::path& pa
         const bool pixels = p.x == band.x0 && p.y == band.y0 && p.width == band.width() &&
                             p.height == band.height();
         return samples && pixels && p.header.scene_hash == render::scene_hash(task.scene) &&
-               (job.plugins.empty() || p.header.plugins == job.plugins);
+                       (job.plugins.empty() || p.header.plugins == job.plugins)
+                   ? "done"
+                   : "broken";
     } catch (const std::exception&) {
-        return false;
+        return "broken";
     }
 }
 
@@ -130,7 +133,7 @@ JobStatus render_job_status(const fs::path& folder)
     }
     return job_status(
         render_job_shape(job),
-        [&](size_t i) { return valid_part(job, job.tasks[i], job.folder / job.tasks[i].output); },
+        [&](size_t i) { return part_state(job, job.tasks[i], job.folder / job.tasks[i].output); },
         std::move(merged));
 }
 

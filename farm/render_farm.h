@@ -26,10 +26,17 @@ JobShape render_job_shape(const RenderJob& job);
 /// arguments. Returns the exit status.
 int run_render_task(const std::filesystem::path& folder, int index);
 
-/// True when `part` is a complete output of `task`: its header names the task's scene
-/// (hash), sample range (or the job's spp) and the job's plugins, and it holds the task's
-/// band of the frame.
-bool valid_part(const RenderJob& job, const RenderTask& task, const std::filesystem::path& part);
+/// "done" when `part` is a complete output of `task`: its header names the task's scene
+/// (hash), sample range (or the job's spp) and the job's plugins, it holds the task's band
+/// of the frame, and its pixels read whole (a file cut short after its header is not);
+/// "broken" when the file is there but is not that; "missing" when there is none.
+std::string part_state(const RenderJob& job, const RenderTask& task,
+                       const std::filesystem::path& part);
+inline bool valid_part(const RenderJob& job, const RenderTask& task,
+                       const std::filesystem::path& part)
+{
+    return part_state(job, task, part) == "done";
+}
 
 /// The plugin set (render/plugin_setup.h scene_plugin_set) `scene` renders with here: the
 /// plugins patina-render would load (bundled, $PATINA_PLUGIN_PATH, the scene's trusted

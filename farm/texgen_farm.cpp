@@ -176,7 +176,8 @@ void finish_texgen_job(const fs::path& folder)
 JobStatus texgen_job_status(const fs::path& folder)
 {
     const TexgenJob job = read_texgen_job(folder);
-    return job_status(texgen_job_shape(job), [&](size_t i) { return texgen_task_done(job, i); },
+    return job_status(texgen_job_shape(job),
+                      [&](size_t i) { return std::string(texgen_task_done(job, i) ? "done" : "missing"); },
                       series_written(job));
 }
 

@@ -103,6 +103,23 @@ endif()
 # The plain shell loop renders and merges the same frame without a scheduler.
 expect_success(bash "${WORK_DIR}/dry/run_local.sh")
 expect_identical("${WORK_DIR}/one_process.0001.exr" "${WORK_DIR}/dry/frames/frame.0000.exr" 0)
+# A part cut short after its header (a node lost while writing it) is broken, not done, and
+# the task renders it again.
+file(GLOB dry_parts "${WORK_DIR}/dry/parts/*.exr")
+list(GET dry_parts 0 cut_part)
+file(SIZE "${cut_part}" cut_size)
+math(EXPR cut_size "${cut_size} * 2 / 3")
+execute_process(COMMAND truncate -s ${cut_size} "${cut_part}")
+file(SIZE "${cut_part}" cut_now)
+if(NOT cut_now EQUAL cut_size)
+  message(FATAL_ERROR "could not cut ${cut_part} to ${cut_size} bytes (${cut_now})")
+endif()
+expect_success("${PATINA_FARM}" status "${WORK_DIR}/dry")
+expect_in("${LAST_STDOUT}" ": broken")
+expect_in("${LAST_STDOUT}" "1 broken, 0 missing")
+expect_success(bash "${WORK_DIR}/dry/run_local.sh")
+expect_success("${PATINA_FARM}" status "${WORK_DIR}/dry")
+expect_in("${LAST_STDOUT}" "0 broken, 0 missing")
 
 # A broken scene: every task fails, so the merge job (afterok) never runs; status names each
 # task's failure from its log.
@@ -132,7 +149,7 @@ endif()
 expect_success("${PATINA_FARM}" status "${WORK_DIR}/broken")
 expect_in("${LAST_STDOUT}" "task 0 (frame 0, tile 0): missing: patina-render: error:")
 expect_in("${LAST_STDOUT}" "no_such_shader")
-expect_in("${LAST_STDOUT}" "2 task(s): 0 done, 0 running, 0 pending, 2 missing; 0 of 1 frame(s) merged")
+expect_in("${LAST_STDOUT}" "2 task(s): 0 done, 0 running, 0 pending, 0 broken, 2 missing; 0 of 1 frame(s) merged")
 
 # A task cancelled while it runs and requeued (what preemption does): the array's afterok
 # fails, so Slurm cancels the merge; resubmit finds every part there and valid, submits the
@@ -174,7 +191,7 @@ foreach(i RANGE 120)
 endforeach()
 wait_for_jobs("${array},${merge}")
 expect_success("${PATINA_FARM}" status "${WORK_DIR}/requeue")
-expect_in("${LAST_STDOUT}" "2 task(s): 2 done, 0 running, 0 pending, 0 missing; 0 of 1 frame(s) merged")
+expect_in("${LAST_STDOUT}" "2 task(s): 2 done, 0 running, 0 pending, 0 broken, 0 missing; 0 of 1 frame(s) merged")
 expect_success("${PATINA_FARM}" resubmit "${WORK_DIR}/requeue")
 string(STRIP "${LAST_STDOUT}" ids)
 if(NOT ids MATCHES "^merge job ([0-9]+)$")
