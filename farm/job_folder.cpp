@@ -159,12 +159,17 @@ std::vector<fs::path> write_job_scripts(const JobShape& job, const std::vector<s
         write_file_atomic(file, {text}, "job file");
         files.push_back(file);
     };
-    // An array task's index is SLURM_ARRAY_TASK_ID; a chain's job passes it as $1.
+    // An array task's index is SLURM_ARRAY_TASK_ID; a chain's job passes it as $1. Each
+    // attempt (a requeue, a resubmit) writes a log of its own, task_<i>.<attempt>.log, so
+    // that the first failure's message is kept; Slurm's own lines go to
+    // slurm_task_<i>.log.
     write("slurm_task.sh",
           fmt::format("#!/bin/bash\n# Written by patina-farm submit: one task of the job "
-                      "(job.toml lists them), $1 or SLURM_ARRAY_TASK_ID.\nexec {} task {} "
-                      "\"${{1:-$SLURM_ARRAY_TASK_ID}}\"\n",
-                      farm, folder));
+                      "(job.toml lists them), $1 or SLURM_ARRAY_TASK_ID.\n"
+                      "i=\"${{1:-$SLURM_ARRAY_TASK_ID}}\"\nn=1\n"
+                      "while [ -e {}/logs/task_$i.$n.log ]; do n=$((n + 1)); done\n"
+                      "exec > {}/logs/task_$i.$n.log 2>&1\nexec {} task {} \"$i\"\n",
+                      folder, folder, farm, folder));
     write("slurm_merge.sh",
           fmt::format("#!/bin/bash\n# Written by patina-farm submit: the finishing job, after "
                       "every task succeeded.\nexec {} finish {}\n",
@@ -209,7 +214,8 @@ Submitted submit_job(const JobShape& job, const std::vector<size_t>& tasks,
     const fs::path& dir = job.folder;
     auto base = [&](const std::string& name, const fs::path& log) {
         std::vector<std::string> a = {"sbatch", "--parsable", "--job-name", name,
-                                      "--output", log.string(), "--chdir", dir.string()};
+                                      "--output", log.string(), "--open-mode=append",
+                                      "--chdir", dir.string()};
         if (!options.partition.empty())
             a.insert(a.end(), {"--partition", options.partition});
         return a;
@@ -228,8 +234,8 @@ Submitted submit_job(const JobShape& job, const std::vector<size_t>& tasks,
     if (!tasks.empty() && job.chained) {
         std::vector<std::string> chain;
         for (size_t i : tasks) {
-            std::vector<std::string> a =
-                base(fmt::format("{}-{}", name, i), dir / "logs" / fmt::format("task_{}.log", i));
+            std::vector<std::string> a = base(fmt::format("{}-{}", name, i),
+                                              dir / "logs" / fmt::format("slurm_task_{}.log", i));
             if (!last.empty())
                 after(a, last);
             cpus(a);
@@ -242,7 +248,7 @@ Submitted submit_job(const JobShape& job, const std::vector<size_t>& tasks,
         }
         out.array_job = fmt::format("{}", fmt::join(chain, ","));
     } else if (!tasks.empty()) {
-        std::vector<std::string> a = base(name, dir / "logs" / "task_%a.log");
+        std::vector<std::string> a = base(name, dir / "logs" / "slurm_task_%a.log");
         a.push_back("--array=" + index_list(tasks) +
                     (options.throttle > 0 ? fmt::format("%{}", options.throttle) : ""));
         cpus(a);
@@ -315,17 +321,28 @@ JobStatus job_status(const JobShape& job,
         if (!queued[i].empty()) {
             st.tasks[i] = queued[i];
         } else if (st.tasks[i] = output_state(i); st.tasks[i] != "done") {
-            // Its log says why: the first error line (the program's, before the task's
-            // own), else the last line.
-            std::ifstream log(job.folder / "logs" / fmt::format("task_{}.log", i));
-            std::string line, last, error;
-            while (std::getline(log, line)) {
-                if (!line.empty())
-                    last = line;
-                if (error.empty() && line.find("error:") != std::string::npos)
-                    error = line;
-            }
-            st.failures[i] = error.empty() ? last : error;
+            // Its latest attempt's log says why: the first error line (the program's,
+            // before the task's own), else the last line; else what Slurm wrote of it (a
+            // cancellation, a lost node).
+            int attempt = 0;
+            std::error_code ec;
+            while (fs::exists(job.folder / "logs" / fmt::format("task_{}.{}.log", i, attempt + 1), ec))
+                ++attempt;
+            auto read_log = [](const fs::path& file) {
+                std::ifstream log(file);
+                std::string line, last, error;
+                while (std::getline(log, line)) {
+                    if (!line.empty())
+                        last = line;
+                    if (error.empty() && line.find("error:") != std::string::npos)
+                        error = line;
+                }
+                return error.empty() ? last : error;
+            };
+            if (attempt > 0)
+                st.failures[i] = read_log(job.folder / "logs" / fmt::format("task_{}.{}.log", i, attempt));
+            if (st.failures[i].empty())
+                st.failures[i] = read_log(job.folder / "logs" / fmt::format("slurm_task_{}.log", i));
         }
     }
     return st;
