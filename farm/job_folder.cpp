@@ -291,13 +291,22 @@ JobStatus job_status(const JobShape& job,
             // one by one.
             const std::string out = run_and_capture(
                 {"squeue", "-h", "-r", "-j", fmt::format("{}", fmt::join(all, ",")), "-o",
-                 "%F %K %t"});
+                 "%F %K %t %r"});
             std::istringstream lines(out);
-            std::string id, task, state;
-            while (lines >> id >> task >> state) {
+            std::string line;
+            while (std::getline(lines, line)) {
+                std::istringstream fields(line);
+                std::string id, task, state, reason;
+                if (!(fields >> id >> task >> state))
+                    continue;
+                fields >> reason;
                 const std::string s = state == "PD" ? "pending" : "running";
                 if (std::find(ids.merges.begin(), ids.merges.end(), id) != ids.merges.end()) {
                     st.merge_queued = true;
+                    st.merge_state = reason.rfind("JobHeld", 0) == 0 ? "held"
+                                     : reason == "DependencyNeverSatisfied"
+                                         ? "waiting on a task that failed"
+                                         : "queued";
                     continue;
                 }
                 if (auto c = std::find(ids.chain_jobs.begin(), ids.chain_jobs.end(), id);
@@ -313,8 +322,9 @@ JobStatus job_status(const JobShape& job,
                     index < queued.size())
                     queued[index] = s;
             }
-        } catch (const std::exception&) {
-            st.queue_known = false;  // squeue failed: the files alone tell
+        } catch (const std::exception& e) {
+            st.queue_known = false;  // squeue failed: a queued task cannot be told apart
+            st.queue_error = e.what();
         }
     }
     for (size_t i = 0; i < job.tasks; ++i) {
@@ -343,6 +353,26 @@ JobStatus job_status(const JobShape& job,
                 st.failures[i] = read_log(job.folder / "logs" / fmt::format("task_{}.{}.log", i, attempt));
             if (st.failures[i].empty())
                 st.failures[i] = read_log(job.folder / "logs" / fmt::format("slurm_task_{}.log", i));
+        }
+    }
+    // The finishing job out of the queue with its outputs not all written: it ran and
+    // failed (its log says why), or Slurm dropped it because a task it waited for failed.
+    const bool finished = std::all_of(st.merged.begin(), st.merged.end(), [](bool b) { return b; });
+    if (!st.merge_queued && !finished && !ids.merges.empty() && st.queue_known) {
+        const fs::path log = job.folder / "logs" / "merge.log";
+        std::ifstream in(log);
+        std::string line, error, last;
+        while (std::getline(in, line)) {
+            if (!line.empty())
+                last = line;
+            if (error.empty() && line.find("error") != std::string::npos)
+                error = line;
+        }
+        if (in.is_open() || !last.empty()) {
+            st.merge_state = "failed";
+            st.merge_error = fmt::format("{}: {}", log.string(), error.empty() ? last : error);
+        } else {
+            st.merge_state = "not run: a task it waits for failed";
         }
     }
     return st;

@@ -67,7 +67,14 @@ struct JobStatus {
     std::vector<std::string> failures;  ///< per task: what its log says when broken or missing
     std::vector<bool> merged;           ///< per output of the finishing job: written
     bool merge_queued = false;
+    /// What became of the finishing job when its outputs are not all written: "queued",
+    /// "held" (in the queue, held by a user or an administrator), "waiting on a task that
+    /// failed" (in the queue, its dependency never satisfiable), "failed" (it ran: see
+    /// merge_error), "not run: a task it waits for failed" (Slurm dropped it), or empty.
+    std::string merge_state;
+    std::string merge_error;            ///< "logs/merge.log: <its first error line>"
     bool queue_known = true;            ///< false when squeue could not be asked
+    std::string queue_error;            ///< why not
     size_t count(const std::string& state) const;
 };
 

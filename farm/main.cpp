@@ -200,15 +200,27 @@ void register_status(CLI::App& app)
                        : st.merged.front() ? "the series manifest written"
                                            : "the series manifest not written";
         }
+        if (!st.queue_known)
+            throw std::runtime_error(fmt::format(
+                "status of '{}': Slurm's queue could not be asked ({}), so which tasks are "
+                "queued is not known", folder->string(), st.queue_error));
         for (size_t i = 0; i < st.tasks.size(); ++i)
             std::printf("task %zu (%s): %s%s%s\n", i, labels[i].c_str(), st.tasks[i].c_str(),
                         st.failures[i].empty() ? "" : ": ", st.failures[i].c_str());
+        if (!st.merge_error.empty())
+            std::printf("merge: failed: %s\n", st.merge_error.c_str());
         std::printf("%zu task(s): %zu done, %zu running, %zu pending, %zu broken, %zu missing; "
                     "%s%s%s\n",
                     st.tasks.size(), st.count("done"), st.count("running"), st.count("pending"),
                     st.count("broken"), st.count("missing"), finished.c_str(),
-                    st.merge_queued ? "; the merge is queued" : "",
-                    st.queue_known ? "" : " (Slurm's queue could not be asked)");
+                    st.merge_state.empty() ? "" : "; the merge ",
+                    st.merge_state == "queued" ? "is queued"
+                    : st.merge_state == "held" ? "is held"
+                    : st.merge_state == "waiting on a task that failed"
+                        ? "is queued but can never run: a task it waits for failed"
+                    : st.merge_state == "failed" ? "failed (see above)"
+                    : st.merge_state.empty() ? ""
+                                             : "did not run: a task it waits for failed");
     });
 }
 

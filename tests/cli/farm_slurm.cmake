@@ -150,7 +150,14 @@ endif()
 expect_success("${PATINA_FARM}" status "${WORK_DIR}/broken")
 expect_in("${LAST_STDOUT}" "task 0 (frame 0, tile 0): missing: patina-render: error:")
 expect_in("${LAST_STDOUT}" "no_such_shader")
-expect_in("${LAST_STDOUT}" "2 task(s): 0 done, 0 running, 0 pending, 0 broken, 2 missing; 0 of 1 frame(s) merged")
+expect_in("${LAST_STDOUT}" "2 task(s): 0 done, 0 running, 0 pending, 0 broken, 2 missing; 0 of 1 frame(s) merged; the merge did not run: a task it waits for failed")
+# When squeue cannot be asked, status says so and fails, rather than show queued tasks as
+# missing (a squeue that fails, first on the PATH).
+file(MAKE_DIRECTORY "${WORK_DIR}/no_squeue")
+file(WRITE "${WORK_DIR}/no_squeue/squeue" "#!/bin/sh\necho 'slurm_load_jobs error: Unable to contact slurm controller' >&2\nexit 1\n")
+file(CHMOD "${WORK_DIR}/no_squeue/squeue" PERMISSIONS OWNER_READ OWNER_WRITE OWNER_EXECUTE)
+expect_failure("Slurm's queue could not be asked" "${CMAKE_COMMAND}" -E env
+               "PATH=${WORK_DIR}/no_squeue:$ENV{PATH}" "${PATINA_FARM}" status "${WORK_DIR}/broken")
 
 # A task cancelled while it runs and requeued (what preemption does): the array's afterok
 # fails, so Slurm cancels the merge; resubmit finds every part there and valid, submits the
