@@ -1,5 +1,7 @@
 #include "farm/frame_merge.h"
 
+#include "core/color_management.h"
+
 #include "core/image_io.h"
 
 #include <fmt/format.h>
@@ -165,10 +167,36 @@ MergeResult merge_render_parts(const std::vector<fs::path>& files, const fs::pat
         if (std::none_of(meta.begin(), meta.end(), [&](const auto& m) { return m.first == key; }))
             meta.emplace_back(key, value);
     const ImageWindow window{x0, y0, fw, fh};
+    // The display image the parts have (<stem>.png through the same OCIO display and view),
+    // computed before anything is written.
+    std::vector<float> display;
+    if (!header.display.empty()) {
+        const auto channel = [&](const char* name) {
+            const auto it = std::find(first.channels.begin(), first.channels.end(), name);
+            if (it == first.channels.end())
+                throw std::runtime_error(fmt::format("merge: '{}' has no channel {} for its "
+                                                     "display image", files.front().string(), name));
+            return static_cast<size_t>(it - first.channels.begin());
+        };
+        const size_t r = channel("R"), g = channel("G"), b = channel("B");
+        const size_t n = static_cast<size_t>(w) * h;
+        display.resize(3 * n);
+        for (size_t i = 0; i < n; ++i) {
+            display[3 * i] = pixels[i * nc + r];
+            display[3 * i + 1] = pixels[i * nc + g];
+            display[3 * i + 2] = pixels[i * nc + b];
+        }
+        const ColorManager colors(ColorManager::default_config_path());
+        colors.convert_display(header.colorspace.empty() ? colors.working_space() : header.colorspace,
+                               header.display, header.view, display.data(), n);
+    }
     write_image_atomic(output, pixels.data(), w, h, static_cast<int>(nc), first.channels,
                        first.format == OIIO::TypeDesc::HALF ? OIIO::TypeDesc::HALF
                                                             : OIIO::TypeDesc::FLOAT,
                        meta, &window);
+    if (!display.empty())
+        write_image_atomic(fs::path(output).replace_extension(".png"), display.data(), w, h, 3,
+                           {}, OIIO::TypeDesc::UINT8);
     return {parts.size(), ranges.begin()->first.first, previous->header.sample_end, x0, y0, w, h};
 }
 

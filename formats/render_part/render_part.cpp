@@ -19,6 +19,10 @@ Header render_header_attributes(const RenderHeader& h)
             {"patina:max_depth", h.max_depth},
             {"oiio:ColorSpace", h.colorspace},
             {"patina:colorspace", h.colorspace}};
+    if (!h.display.empty()) {
+        out.emplace_back("patina:display", h.display);
+        out.emplace_back("patina:view", h.view);
+    }
     if (h.merged_parts > 0)
         out.emplace_back("patina:merged_parts", h.merged_parts);
     return out;
@@ -67,6 +71,8 @@ RenderHeader read_render_header(const Header& attributes)
     take(attributes, "patina:max_depth", false, &h.max_depth);
     take(attributes, "patina:colorspace", false, &h.colorspace);
     take(attributes, "patina:merged_parts", false, &h.merged_parts);
+    take(attributes, "patina:display", false, &h.display);
+    take(attributes, "patina:view", false, &h.view);
     if (h.sample_end <= h.sample_begin || h.sample_begin < 0)
         throw std::runtime_error("sample range " + std::to_string(h.sample_begin) + "-" +
                                  std::to_string(h.sample_end) + " is empty");

@@ -24,12 +24,15 @@ struct RenderHeader {
     int max_depth = 0;        ///< patina:max_depth
     std::string colorspace;   ///< patina:colorspace and oiio:ColorSpace: the working space
     int merged_parts = 0;     ///< patina:merged_parts: a farm's merge of that many parts (0: none)
+    /// patina:display, patina:view: the OCIO display and view of the display image written
+    /// beside the file (<stem>.png); empty: none was written.
+    std::string display, view;
 
     int samples() const { return sample_end - sample_begin; }
 };
 
-/// The header's attributes in the order patina-render writes them (patina:merged_parts
-/// last, when there is one).
+/// The header's attributes in the order patina-render writes them (patina:display and
+/// patina:view when there is a display image, patina:merged_parts last, when there is one).
 Header render_header_attributes(const RenderHeader& header);
 
 /// The render header in `attributes` (a file's header, any order, other keys ignored).

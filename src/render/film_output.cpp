@@ -162,6 +162,10 @@ void write_film(const Scene& scene, const FilmResult& film, const fs::path& exr,
     header.wavelengths = scene.film.wavelengths;
     header.max_depth = scene.film.max_depth;
     header.colorspace = colors.working_space();
+    if (scene.output.png) {
+        header.display = scene.output.display;
+        header.view = scene.output.view;
+    }
     const Metadata meta = formats::render_header_attributes(header);
     const ImageWindow window{film.region.x0, film.region.y0, scene.film.width, scene.film.height};
     // The display image is computed before anything is written, so a bad view name leaves

@@ -22,6 +22,17 @@ execute_process(COMMAND oiiotool "${WORK_DIR}/full.exr" "${WORK_DIR}/tiles.exr" 
 if(NOT rc EQUAL 0 OR NOT out MATCHES "PASS")
   message(FATAL_ERROR "merged tiles differ from the whole frame:\n${out}${err}")
 endif()
+# The merged frame gets the display image the parts have, through the same display and
+# view (patina:display, patina:view in their headers): the whole frame's, pixel for pixel.
+if(NOT EXISTS "${WORK_DIR}/tiles.png")
+  message(FATAL_ERROR "the merge wrote no display image tiles.png")
+endif()
+execute_process(COMMAND oiiotool "${WORK_DIR}/full.png" "${WORK_DIR}/tiles.png" --diff
+                        --fail 0 --failpercent 0 --warn 0
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 0 OR NOT out MATCHES "PASS")
+  message(FATAL_ERROR "the merged display image differs from the whole frame's:\n${out}${err}")
+endif()
 
 # Four sample ranges of 4: the same random streams as the 16-sample render, so the mean of
 # their means is the full render up to the order of the sums (float rounding).

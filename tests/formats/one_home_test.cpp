@@ -25,6 +25,7 @@ const std::vector<std::pair<std::string, std::string>> kOwned = {
     {"\"patina:sample_end\"", "formats/render_part/render_part.h"},
     {"\"patina:sums_layout\"", "formats/render_part/render_part.h"},
     {"\"patina:merged_parts\"", "formats/render_part/render_part.h"},
+    {"\"patina:display\"", "formats/render_part/render_part.h"},
     {"\"gltf_base_color\"", "formats/texture_stack/texture_stack.h"},
     {"\"gltf_metallic_roughness\"", "formats/texture_stack/texture_stack.h"},
     {"\"gltf_clearcoat\"", "formats/texture_stack/texture_stack.h"},

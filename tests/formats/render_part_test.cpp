@@ -48,9 +48,15 @@ TEST(RenderHeaderFormat, RoundTripsEveryKeyInAnyOrder)
     EXPECT_EQ(back.max_depth, h.max_depth);
     EXPECT_EQ(back.colorspace, h.colorspace);
     EXPECT_EQ(back.merged_parts, 0);
+    EXPECT_EQ(back.display, "");  // no display image: no keys
     RenderHeader merged = h;
     merged.merged_parts = 3;
-    EXPECT_EQ(read_render_header(render_header_attributes(merged)).merged_parts, 3);
+    merged.display = "sRGB";
+    merged.view = "ACES 1.0 - SDR Video";
+    const RenderHeader again = read_render_header(render_header_attributes(merged));
+    EXPECT_EQ(again.merged_parts, 3);
+    EXPECT_EQ(again.display, "sRGB");
+    EXPECT_EQ(again.view, "ACES 1.0 - SDR Video");
 }
 
 TEST(RenderHeaderFormat, RefusesMissingMistypedKeysAndAnEmptyRange)
