@@ -31,6 +31,15 @@ namespace {
         return out + "'";
     }
 
+    /// `text` as a YAML single-quoted scalar (a quote inside doubled).
+    std::string yaml_quoted(const std::string& text)
+    {
+        std::string out = "'";
+        for (char c : text)
+            out += c == '\'' ? std::string("''") : std::string(1, c);
+        return out + "'";
+    }
+
     std::string trimmed(std::string s)
     {
         while (!s.empty() && (s.back() == '\n' || s.back() == '\r' || s.back() == ' '))
@@ -106,18 +115,33 @@ namespace {
     }
 
     /// The OpenJD template: the tasks as one step with an INT parameter (an array), or one
-    /// step per task each depending on the one before (a chain); then the Merge step.
+    /// step per task each depending on the one before (a chain); then the Merge step. The
+    /// job folder, the patina-farm program and the plugin path are job parameters (their
+    /// defaults this machine's), so that the template runs from wherever the folder is
+    /// mounted on another farm; the plugin path reaches every step through a job
+    /// environment's PATINA_PLUGIN_PATH.
     std::string openjd_template(const JobShape& job)
     {
-        const std::string farm = quoted(job.farm.string()), folder = quoted(job.folder.string());
+        const char* plugin_path = std::getenv("PATINA_PLUGIN_PATH");
         auto run = [&](const std::string& args) {
-            return fmt::format("  script:\n    actions:\n      onRun:\n        command: {}\n"
-                               "        args: [{}]\n",
-                               farm, args);
+            return fmt::format("  script:\n    actions:\n      onRun:\n        command: "
+                               "'{{{{Param.PatinaFarm}}}}'\n        args: [{}]\n",
+                               args);
         };
-        std::string text = fmt::format("specificationVersion: 'jobtemplate-2023-09'\n"
-                                       "name: 'patina {}'\nsteps:\n",
-                                       job.title);
+        std::string text = fmt::format(
+            "specificationVersion: 'jobtemplate-2023-09'\nname: {}\n"
+            "parameterDefinitions:\n"
+            "- name: JobRoot\n  type: PATH\n  objectType: DIRECTORY\n  dataFlow: INOUT\n"
+            "  default: {}\n"
+            "  description: 'the job folder: job.toml, parts, frames, logs'\n"
+            "- name: PatinaFarm\n  type: STRING\n  default: {}\n"
+            "  description: 'the patina-farm program'\n"
+            "- name: PluginPath\n  type: STRING\n  default: {}\n"
+            "  description: 'PATINA_PLUGIN_PATH for every task (colon-separated folders)'\n"
+            "jobEnvironments:\n- name: Patina\n  variables:\n"
+            "    PATINA_PLUGIN_PATH: '{{{{Param.PluginPath}}}}'\nsteps:\n",
+            yaml_quoted("patina " + job.title), yaml_quoted(job.folder.string()), yaml_quoted(job.farm.string()),
+            yaml_quoted(plugin_path ? plugin_path : ""));
         std::string last;
         if (job.chained) {
             for (size_t i = 0; i < job.tasks; ++i) {
@@ -125,18 +149,18 @@ namespace {
                 text += fmt::format("- name: {}\n", name);
                 if (!last.empty())
                     text += fmt::format("  dependencies:\n  - dependsOn: {}\n", last);
-                text += run(fmt::format("'task', {}, '{}'", folder, i));
+                text += run(fmt::format("'task', '{{{{Param.JobRoot}}}}', '{}'", i));
                 last = name;
             }
         } else {
             text += fmt::format("- name: Tasks\n  parameterSpace:\n    taskParameterDefinitions:\n"
                                 "    - name: Task\n      type: INT\n      range: '0-{}'\n",
                                 job.tasks - 1);
-            text += run(fmt::format("'task', {}, '{{{{Task.Param.Task}}}}'", folder));
+            text += run("'task', '{{Param.JobRoot}}', '{{Task.Param.Task}}'");
             last = "Tasks";
         }
         text += fmt::format("- name: Merge\n  dependencies:\n  - dependsOn: {}\n", last);
-        text += run(fmt::format("'finish', {}", folder));
+        text += run("'finish', '{{Param.JobRoot}}'");
         return text;
     }
 

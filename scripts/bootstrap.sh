@@ -15,7 +15,7 @@ packages=(
   libopenvdb-dev libboost-dev
   colord-data fonts-dejavu-core
   blender python3-numpy
-  slurm-wlm munge python3
+  slurm-wlm munge python3 python3-yaml
   argyll-ref ffmpeg chromium
 )
 # Tools of one script only (scripts/fuzz.sh: clang and libFuzzer), named by that script.

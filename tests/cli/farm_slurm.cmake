@@ -101,6 +101,18 @@ endforeach()
 if(EXISTS "${WORK_DIR}/dry/submitted.toml")
   message(FATAL_ERROR "the dry run submitted")
 endif()
+# The OpenJD template moves with its folder: its job folder, program and plugin path are job
+# parameters, and the plugin path reaches the tasks through a job environment. The folder
+# copied elsewhere and its template run there (tests/clients/openjd_run.py, a minimal runner)
+# render and merge the frame of the one-process render, PATINA_PLUGIN_PATH set from the
+# template's PluginPath (the runner also checks that no step spells the old folder).
+file(COPY "${WORK_DIR}/dry/" DESTINATION "${WORK_DIR}/moved/dry_elsewhere")
+expect_success(${CMAKE_COMMAND} -E env --unset=PATINA_PLUGIN_PATH
+               python3 "${SOURCE_DIR}/tests/clients/openjd_run.py"
+               "${WORK_DIR}/moved/dry_elsewhere/job.openjd.yaml"
+               "JobRoot=${WORK_DIR}/moved/dry_elsewhere" "PluginPath=${PLUGIN_DIR}")
+expect_identical("${WORK_DIR}/one_process.0001.exr"
+                 "${WORK_DIR}/moved/dry_elsewhere/frames/frame.0000.exr" 0)
 # The plain shell loop renders and merges the same frame without a scheduler.
 expect_success(bash "${WORK_DIR}/dry/run_local.sh")
 expect_identical("${WORK_DIR}/one_process.0001.exr" "${WORK_DIR}/dry/frames/frame.0000.exr" 0)
