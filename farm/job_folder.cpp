@@ -423,4 +423,17 @@ Submitted resubmit_job(const JobShape& job, const JobStatus& st, const SubmitOpt
     return submit_job(job, missing, options);
 }
 
+size_t remove_staging_leftovers(const fs::path& folder)
+{
+    std::error_code ec;
+    size_t removed = 0;
+    for (const fs::directory_entry& e : fs::directory_iterator(folder, ec)) {
+        if (!e.is_directory(ec) || e.path().filename().string().rfind(".patina-staging-", 0) != 0)
+            continue;
+        if (fs::remove_all(e.path(), ec) != static_cast<std::uintmax_t>(-1) && !ec)
+            ++removed;
+    }
+    return removed;
+}
+
 }  // namespace patina::farm

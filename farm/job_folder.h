@@ -90,4 +90,10 @@ JobStatus job_status(const JobShape& job,
 /// queued. Returns empty ids when the job is complete.
 Submitted resubmit_job(const JobShape& job, const JobStatus& st, const SubmitOptions& options);
 
+/// Removes the staging folders (`.patina-staging-*`, core/output_transaction.h) a killed
+/// task left directly in `folder` (a task killed with SIGKILL, or with its node, cannot
+/// remove its own). Called by the finishing job, after every task of the job has ended, on
+/// the folders only the job writes. Returns how many it removed.
+size_t remove_staging_leftovers(const std::filesystem::path& folder);
+
 }  // namespace patina::farm

@@ -121,6 +121,11 @@ void finish_render_job(const fs::path& folder)
         std::fprintf(stderr, "frame %d: %zu part(s), samples %d-%d -> %s\n", m.frame, r.parts,
                      r.sample_begin, r.sample_end, (job.folder / m.output).string().c_str());
     }
+    // What killed tasks left behind: the job's own folders only the job writes.
+    for (const char* sub : {"parts", "frames"})
+        if (const size_t n = remove_staging_leftovers(job.folder / sub))
+            std::fprintf(stderr, "finish: removed %zu staging folder(s) killed tasks left in %s\n",
+                         n, (job.folder / sub).string().c_str());
 }
 
 JobStatus render_job_status(const fs::path& folder)

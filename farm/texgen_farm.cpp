@@ -169,6 +169,16 @@ void finish_texgen_job(const fs::path& folder)
         write_file_atomic(job.output / formats::kSeriesManifest,
                           {formats::stack_series_text(series)}, "series manifest");
     }
+    // What killed tasks left behind, in the job's folders and in the series' output folder
+    // and its step folders (no other program should write there while the job runs).
+    std::vector<fs::path> folders = {job.folder / "done", job.folder / "checkpoints", job.output};
+    for (const TexgenTask& t : job.tasks)
+        if (!t.folder.empty())
+            folders.push_back(job.output / t.folder);
+    for (const fs::path& f : folders)
+        if (const size_t n = remove_staging_leftovers(f))
+            std::fprintf(stderr, "finish: removed %zu staging folder(s) killed tasks left in %s\n",
+                         n, f.string().c_str());
     std::fprintf(stderr, "finish: %zu task(s) of %s done -> %s\n", job.tasks.size(),
                  job.command.c_str(), job.output.string().c_str());
 }

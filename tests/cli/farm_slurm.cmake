@@ -113,8 +113,14 @@ expect_success(${CMAKE_COMMAND} -E env --unset=PATINA_PLUGIN_PATH
                "JobRoot=${WORK_DIR}/moved/dry_elsewhere" "PluginPath=${PLUGIN_DIR}")
 expect_identical("${WORK_DIR}/one_process.0001.exr"
                  "${WORK_DIR}/moved/dry_elsewhere/frames/frame.0000.exr" 0)
-# The plain shell loop renders and merges the same frame without a scheduler.
+# The plain shell loop renders and merges the same frame without a scheduler; the finishing
+# step removes the staging folder a killed task left (made here as one would be).
+file(MAKE_DIRECTORY "${WORK_DIR}/dry/parts/.patina-staging-Kx7q2a/parts")
+file(WRITE "${WORK_DIR}/dry/parts/.patina-staging-Kx7q2a/f0000_t000_s000.exr" "half written")
 expect_success(bash "${WORK_DIR}/dry/run_local.sh")
+if(EXISTS "${WORK_DIR}/dry/parts/.patina-staging-Kx7q2a")
+  message(FATAL_ERROR "finish left a killed task's staging folder in parts/")
+endif()
 expect_identical("${WORK_DIR}/one_process.0001.exr" "${WORK_DIR}/dry/frames/frame.0000.exr" 0)
 # A part cut short after its header (a node lost while writing it) is broken, not done, and
 # the task renders it again.
