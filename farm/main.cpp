@@ -104,6 +104,7 @@ struct SubmitTexgenCommand {
     fs::path folder;
     std::vector<std::string> args;
     patina::farm::SubmitOptions submit;
+    bool keep_checkpoints = false;
 };
 
 void register_submit_texgen(CLI::App& app)
@@ -116,14 +117,18 @@ void register_submit_texgen(CLI::App& app)
         "chain of jobs each resuming the last one's checkpoint; then a finishing job");
     cmd->add_option("--job", o->folder, "the job folder to write")->required();
     add_submit_options(cmd, o->submit, true);
+    cmd->add_flag("--keep-checkpoints", o->keep_checkpoints,
+                  "stone: keep the chain's checkpoints after the finishing job (by default it "
+                  "removes them once every step is written)");
     cmd->add_option("command", o->args,
                     "after '--': the patina-texgen command line, e.g. -- patina urban.patina "
                     "--times 0,6,12 -o urban")
         ->required();
     cmd->callback([o] {
         const fs::path self = fs::read_symlink("/proc/self/exe");
-        const patina::farm::TexgenJob job = patina::farm::plan_texgen_job(
+        patina::farm::TexgenJob job = patina::farm::plan_texgen_job(
             o->folder, o->args, self.parent_path() / "patina-texgen", self);
+        job.keep_checkpoints = o->keep_checkpoints;
         const patina::farm::Submitted s = patina::farm::submit_texgen_job(job, o->submit);
         if (o->submit.dry_run)
             std::printf("wrote %s (%zu tasks); not submitted\n", job.folder.string().c_str(),

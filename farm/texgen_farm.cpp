@@ -26,9 +26,35 @@ namespace {
         return job.folder / "done" / fmt::format("task_{}.toml", index);
     }
 
+    /// Written by the finishing job when it removed a chain's checkpoints: from then on the
+    /// tasks' records leave the checkpoints out (they served the chain only).
+    fs::path checkpoints_removed_marker(const TexgenJob& job)
+    {
+        return job.folder / "done" / "checkpoints_removed";
+    }
+
+    /// Whether the finishing job removed the chain's checkpoints (its marker is in place).
+    bool checkpoints_removed(const TexgenJob& job)
+    {
+        std::error_code ec;
+        return fs::exists(checkpoints_removed_marker(job), ec);
+    }
+
+    /// Whether `file` is one of the job's checkpoints, which a record leaves out when
+    /// `gone` (the finishing job removed them).
+    bool removed_checkpoint(const TexgenJob& job, const fs::path& file, bool gone)
+    {
+        if (!gone)
+            return false;
+        const fs::path checkpoints = (job.folder / "checkpoints").lexically_normal();
+        const fs::path f = file.lexically_normal();
+        const auto [end, _] = std::mismatch(checkpoints.begin(), checkpoints.end(), f.begin(), f.end());
+        return end == checkpoints.end();
+    }
+
     /// The task's command and the fingerprints of the files its arguments name (from the
     /// job's cwd), its outputs left out: what decides what it writes.
-    std::string command_fingerprint(const TexgenJob& job, const TexgenTask& task)
+    std::string command_fingerprint(const TexgenJob& job, const TexgenTask& task, bool gone)
     {
         std::string text = job.texgen.string();
         for (const std::string& arg : task.args) {
@@ -39,7 +65,8 @@ namespace {
             std::error_code ec;
             const bool output = std::find(task.outputs.begin(), task.outputs.end(),
                                           file.lexically_normal()) != task.outputs.end();
-            if (!output && !arg.empty() && fs::is_regular_file(file, ec))
+            if (!output && !arg.empty() && !removed_checkpoint(job, file, gone) &&
+                fs::is_regular_file(file, ec))
                 text += ' ' + file_fingerprint(file);
         }
         return bytes_fingerprint(text);
@@ -47,11 +74,13 @@ namespace {
 
     /// Every file of the task's outputs (a folder's files recursively), sorted, with its
     /// fingerprint: "path fingerprint" lines. Throws when an output is missing.
-    std::string outputs_fingerprint(const TexgenTask& task)
+    std::string outputs_fingerprint(const TexgenJob& job, const TexgenTask& task, bool gone)
     {
         std::vector<fs::path> files;
         for (const fs::path& out : task.outputs) {
             std::error_code ec;
+            if (removed_checkpoint(job, out, gone))
+                continue;
             if (fs::is_directory(out, ec)) {
                 for (const auto& e : fs::recursive_directory_iterator(out))
                     if (e.is_regular_file())
@@ -69,12 +98,12 @@ namespace {
         return text;
     }
 
-    void write_record(const TexgenJob& job, size_t index)
+    void write_record(const TexgenJob& job, size_t index, bool checkpoints_gone)
     {
         const TexgenTask& task = job.tasks[index];
         const toml::table t{{"label", task.label},
-                            {"command", command_fingerprint(job, task)},
-                            {"outputs", outputs_fingerprint(task)}};
+                            {"command", command_fingerprint(job, task, checkpoints_gone)},
+                            {"outputs", outputs_fingerprint(job, task, checkpoints_gone)}};
         std::ostringstream text;
         text << "# Written by patina-farm task when the task succeeded: its command (with the\n"
                 "# fingerprints of its input files) and the fingerprints of what it wrote.\n"
@@ -101,8 +130,9 @@ bool texgen_task_done(const TexgenJob& job, size_t index)
     try {
         const toml::table t = toml::parse_file(record.string());
         const TexgenTask& task = job.tasks[index];
-        return t["command"].value_or(std::string()) == command_fingerprint(job, task) &&
-               t["outputs"].value_or(std::string()) == outputs_fingerprint(task);
+        const bool gone = checkpoints_removed(job);
+        return t["command"].value_or(std::string()) == command_fingerprint(job, task, gone) &&
+               t["outputs"].value_or(std::string()) == outputs_fingerprint(job, task, gone);
     } catch (const std::exception&) {
         return false;  // a damaged record, an output gone or changed: not done
     }
@@ -137,7 +167,7 @@ int run_texgen_task(const fs::path& folder, int index)
     fs::current_path(job.cwd);
     const int status = run_program(argv);
     if (status == 0)
-        write_record(job, i);
+        write_record(job, i, checkpoints_removed(job));
     return status;
 }
 
@@ -179,6 +209,23 @@ void finish_texgen_job(const fs::path& folder)
         if (const size_t n = remove_staging_leftovers(f))
             std::fprintf(stderr, "finish: removed %zu staging folder(s) killed tasks left in %s\n",
                          n, f.string().c_str());
+    // A chain's checkpoints served the steps, which are all written: gone, unless kept.
+    // The tasks' records are written again without them first, so the tasks stay done.
+    if (job.chained && !job.keep_checkpoints) {
+        write_file_atomic(checkpoints_removed_marker(job),
+                          {"# Written by patina-farm finish: the chain's checkpoints are removed; "
+                           "the task records leave them out.\n"},
+                          "marker");
+        for (size_t i = 0; i < job.tasks.size(); ++i)
+            write_record(job, i, true);
+        std::error_code ec;
+        size_t removed = 0;
+        for (const fs::directory_entry& e : fs::directory_iterator(job.folder / "checkpoints", ec))
+            removed += fs::remove_all(e.path(), ec) != static_cast<std::uintmax_t>(-1) ? 1 : 0;
+        if (removed)
+            std::fprintf(stderr, "finish: removed the chain's %zu checkpoint(s) (keep them with "
+                                 "submit-texgen --keep-checkpoints)\n", removed);
+    }
     std::fprintf(stderr, "finish: %zu task(s) of %s done -> %s\n", job.tasks.size(),
                  job.command.c_str(), job.output.string().c_str());
 }

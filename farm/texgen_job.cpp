@@ -86,7 +86,8 @@ std::string texgen_job_text(const TexgenJob& job)
     toml::table header{{"kind", "texgen"},
                        {"texgen", job.texgen.string()},
                        {"farm", job.farm.string()},
-                       {"cwd", job.cwd.string()}};
+                       {"cwd", job.cwd.string()},
+                       {"keep_checkpoints", job.keep_checkpoints}};
     formats::add_plan_keys(header, plan);
     toml::table root{{"job", std::move(header)}, {"task", formats::plan_tasks(plan)}};
     std::ostringstream text;
@@ -117,13 +118,16 @@ TexgenJob read_texgen_job(const fs::path& folder)
         throw std::runtime_error(fmt::format("{}: no [job] of kind \"texgen\"", file.string()));
     formats::toml_check_keys(file, root, "", {"job", "task"});
     const formats::TexgenPlan plan =
-        formats::read_texgen_plan(file, *j, root, {"kind", "texgen", "farm", "cwd"});
+        formats::read_texgen_plan(file, *j, root,
+                                  {"kind", "texgen", "farm", "cwd", "keep_checkpoints"});
     TexgenJob job;
     job.folder = fs::absolute(folder).lexically_normal();
     job.command = plan.command;
     job.texgen = (*j)["texgen"].value_or(std::string());
     job.farm = (*j)["farm"].value_or(std::string());
     job.cwd = (*j)["cwd"].value_or(std::string());
+    if (j->get("keep_checkpoints"))
+        job.keep_checkpoints = formats::toml_value<bool>(file, *j, "keep_checkpoints", "job.");
     job.output = plan.output;
     job.chained = plan.chained;
     for (const formats::TexgenPlanTask& t : plan.tasks)

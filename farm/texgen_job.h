@@ -29,6 +29,9 @@ struct TexgenJob {
     std::filesystem::path cwd;             ///< where relative paths of `args` are from
     std::filesystem::path output;          ///< the series' folder (absolute)
     bool chained = false;                  ///< task i resumes task i - 1 (stone)
+    /// Keep a chain's checkpoints after the finishing job (submit-texgen
+    /// --keep-checkpoints); else it removes them once every step is written.
+    bool keep_checkpoints = false;
     std::vector<TexgenTask> tasks;
 };
 

@@ -111,6 +111,12 @@ foreach(c IN LISTS cycles)
 endforeach()
 expect_success("${PATINA_FARM}" resubmit "${WORK_DIR}/stone_job")
 expect_in("${LAST_STDOUT}" "nothing to resubmit")
+# Every step written, the finishing job removed the chain's checkpoints (not asked to keep
+# them with --keep-checkpoints).
+file(GLOB left "${WORK_DIR}/stone_job/checkpoints/*")
+if(left)
+  message(FATAL_ERROR "the finished chain kept its checkpoints: ${left}")
+endif()
 
 # Refused at submit, naming what is missing: a patina run without --times, a stone run
 # without --steps or with an option the farm sets.
