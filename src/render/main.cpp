@@ -47,7 +47,8 @@ int main(int argc, char** argv)
     app.add_option("-o,--output", options.output,
                    "output EXR (a display PNG is written beside it); default from the scene");
     app.add_option("--spp", options.spp, "samples per pixel (overrides the scene)")
-        ->check(patina::positive);
+        ->check(patina::positive)
+        ->check(CLI::Range(1, 1 << 20));
     app.add_option("--seed", options.seed, "random seed (overrides the scene)");
     app.add_option("--threads", options.threads, "worker threads (0 = all cores)")
         ->check(patina::non_negative);

@@ -282,6 +282,10 @@ std::pair<int, int> parse_samples(const std::string& text)
     if (range.first < 0 || range.second <= range.first)
         throw std::invalid_argument(fmt::format(
             "--samples '{}': expected 0 <= A < B (samples A to B - 1)", text));
+    if (range.second > 1 << 20)
+        throw std::invalid_argument(fmt::format(
+            "--samples '{}': B is at most {} (the samples per pixel a scene may ask for)", text,
+            1 << 20));
     return range;
 }
 

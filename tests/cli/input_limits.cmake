@@ -87,3 +87,13 @@ color = [1, 1, 1]
 expect_quick_failure("--resolution"
   "${PATINA_RENDER}" "${WORK_DIR}/scene.toml" --resolution 1000000 1000000 --quiet
   --output "${WORK_DIR}/r.exr")
+# Sample counts: the scene's own limit of 2^20 samples per pixel holds for the options too
+# (--spp 2000000000 rendered nothing and replaced the EXR with NaN).
+expect_quick_failure("--spp: Value 2000000000 not in range 1 to 1048576"
+  "${PATINA_RENDER}" "${WORK_DIR}/scene.toml" --spp 2000000000 --quiet --output "${WORK_DIR}/r.exr")
+expect_quick_failure("--samples '0-2000000000': B is at most 1048576"
+  "${PATINA_RENDER}" "${WORK_DIR}/scene.toml" --samples 0-2000000000 --quiet
+  --output "${WORK_DIR}/r.exr")
+if(EXISTS "${WORK_DIR}/r.exr")
+  message(FATAL_ERROR "a refused render wrote ${WORK_DIR}/r.exr")
+endif()
