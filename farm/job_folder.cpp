@@ -31,13 +31,25 @@ namespace {
         return out + "'";
     }
 
-    /// `text` as a YAML single-quoted scalar (a quote inside doubled).
+    /// `text` as a YAML double-quoted scalar: backslash, double quote and every control
+    /// character escaped (a newline as \n), so that any path survives as it is.
     std::string yaml_quoted(const std::string& text)
     {
-        std::string out = "'";
-        for (char c : text)
-            out += c == '\'' ? std::string("''") : std::string(1, c);
-        return out + "'";
+        std::string out = "\"";
+        for (const char c : text) {
+            const auto u = static_cast<unsigned char>(c);
+            if (c == '"' || c == '\\')
+                out += {'\\', c};
+            else if (c == '\n')
+                out += "\\n";
+            else if (c == '\t')
+                out += "\\t";
+            else if (u < 0x20 || u == 0x7f)
+                out += fmt::format("\\x{:02x}", u);
+            else
+                out += c;
+        }
+        return out + "\"";
     }
 
     std::string trimmed(std::string s)

@@ -113,6 +113,17 @@ expect_success(${CMAKE_COMMAND} -E env --unset=PATINA_PLUGIN_PATH
                "JobRoot=${WORK_DIR}/moved/dry_elsewhere" "PluginPath=${PLUGIN_DIR}")
 expect_identical("${WORK_DIR}/one_process.0001.exr"
                  "${WORK_DIR}/moved/dry_elsewhere/frames/frame.0000.exr" 0)
+# A job folder whose name holds quotes: the template still parses, with the folder as it is.
+set(odd "${WORK_DIR}/it's \"odd\" job")
+expect_success("${PATINA_FARM}" submit "${WORK_DIR}/shot.0001.toml" --tiles 2 --job "${odd}"
+               --dry-run)
+execute_process(COMMAND python3 -c "import sys, yaml
+t = yaml.safe_load(open(sys.argv[1]))
+print({p['name']: p.get('default') for p in t['parameterDefinitions']}['JobRoot'], end='')"
+                "${odd}/job.openjd.yaml" OUTPUT_VARIABLE root RESULT_VARIABLE rc ERROR_VARIABLE err)
+if(NOT rc EQUAL 0 OR NOT root STREQUAL "${odd}")
+  message(FATAL_ERROR "the template of '${odd}' reads back as '${root}':\n${err}")
+endif()
 # The plain shell loop renders and merges the same frame without a scheduler; the finishing
 # step removes the staging folder a killed task left (made here as one would be).
 file(MAKE_DIRECTORY "${WORK_DIR}/dry/parts/.patina-staging-Kx7q2a/parts")
