@@ -275,6 +275,7 @@ int main(int argc, char** argv)
     for (CLI::App* command : app.get_subcommands({}))
         command->footer(patina::manual_footer("farm.md"));
 
+    patina::refuse_non_finite_numbers(app);  // NaN and infinities, for every option
     try {
         // Each file is written under a temporary name and renamed at once: a job's scripts
         // must be in place before sbatch starts them.

@@ -58,6 +58,7 @@ int main(int argc, char** argv)
           std::pair{"export", "export.md"}, std::pair{"view", "viewer.md"}})
         app.get_subcommand(command)->footer(patina::manual_footer(page));
 
+    patina::refuse_non_finite_numbers(app);  // NaN and infinities, for every option
     try {
         // Every file the command writes is staged, and moves into place only when the
         // command has finished without error: all of its outputs, or none.

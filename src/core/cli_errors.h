@@ -7,6 +7,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <cmath>
 #include <cstdio>
 #include <string>
 
@@ -30,6 +31,28 @@ inline const CLI::Validator non_negative{
         return {};
     },
     ">= 0"};
+
+/// A number option's value must be finite: "nan", "inf" and their kin are refused.
+inline const CLI::Validator finite{
+    [](std::string& text) -> std::string {
+        double v = 0;
+        if (CLI::detail::lexical_cast(text, v) && !std::isfinite(v))
+            return "must be a finite number, got '" + one_line(text) + "'";
+        return {};
+    },
+    "finite"};
+
+/// Adds `finite` to every option of `app` and its sub-commands that takes floating-point
+/// numbers (CLI11's type name FLOAT): NaN and infinities are refused by every tool, whatever
+/// range checks the option has (or lacks). Call after the options are registered.
+inline void refuse_non_finite_numbers(CLI::App& app)
+{
+    for (CLI::Option* o : app.get_options())
+        if (o->get_type_name().rfind("FLOAT", 0) == 0)
+            o->check(finite);
+    for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; }))
+        refuse_non_finite_numbers(*sub);
+}
 
 /// Report a CLI11 parse error of `app` for `tool` ("patina-texgen") and return the exit
 /// status. An unknown sub-command is named with the list of the known ones.

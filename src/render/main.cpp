@@ -78,6 +78,7 @@ int main(int argc, char** argv)
         ->check(CLI::ExistingFile);
     app.add_flag("--quiet", options.quiet, "no progress on stderr");
 
+    patina::refuse_non_finite_numbers(app);  // NaN and infinities, for every option
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

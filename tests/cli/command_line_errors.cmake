@@ -45,3 +45,18 @@ file(WRITE "${WORK_DIR}/nan_uv.obj" "v -1 0 1\nv 1 0 1\nv 1 0 -1\nv -1 0 -1\n"
   "vt 0 0\nvt nan 0\nvt 1 1\nvt 0 1\nf 1/1 2/2 3/3 4/4\n")
 expect_failure("nan_uv.obj': line 6: 'vt' has a non-finite or malformed coordinate 'nan'"
   "${PATINA_TEXGEN}" uv-check "${WORK_DIR}/nan_uv.obj")
+
+# NaN and infinities are refused by every number option of every tool, whatever range checks
+# it has (the review found sky, sun, exposure and export options taking them and writing NaN
+# maps or printing NaN angles with exit 0).
+foreach(args "sky;-o;${WORK_DIR}/x.exr;--linke-turbidity;nan"
+             "sky;-o;${WORK_DIR}/x.exr;--sun-azimuth;inf"
+             "sun;--latitude;nan;--longitude;0;--date;2026-06-21"
+             "sun;--latitude;45;--longitude;0;--date;2026-06-21;--delta-t;nan"
+             "export;${WORK_DIR}/none;-o;${WORK_DIR}/x.glb;--normal-scale;nan")
+  expect_failure("must be a finite number" "${PATINA_TEXGEN}" ${args})
+endforeach()
+expect_failure("--spp" "${PATINA_RENDER}" "${WORK_DIR}/scene.toml" --spp nan)
+if(EXISTS "${WORK_DIR}/x.exr" OR EXISTS "${WORK_DIR}/x.glb")
+  message(FATAL_ERROR "a refused command wrote its output")
+endif()
