@@ -51,6 +51,18 @@ expect_failure("a binary glTF file" "${PATINA_TEXGEN}" export "${WORK_DIR}/urban
   -o "${WORK_DIR}/bad2.gltf")
 expect_failure("--target 'maya': expected khronos" "${PATINA_TEXGEN}" export "${WORK_DIR}/urban"
   -o "${WORK_DIR}/bad1.glb" --target maya)
+# Name templates that would write outside -o, or no distinct file, are refused.
+foreach(t "../$map" "/tmp/$map" "../../$map" "a/../../$map" "$map_$nosuch" "just_one")
+  expect_failure("--name-template '${t}'" "${PATINA_TEXGEN}" export "${WORK_DIR}/urban"
+    -o "${WORK_DIR}/bad_template" --preset unreal --name-template "${t}")
+endforeach()
+expect_failure("two maps would be written as" "${PATINA_TEXGEN}" export "${WORK_DIR}/urban"
+  -o "${WORK_DIR}/bad_template" --preset unreal --name-template "$map")
+expect_failure("two maps would be written as" "${PATINA_TEXGEN}" export "${WORK_DIR}/urban"
+  -o "${WORK_DIR}/bad_template/a.gltf" --separate --name-template "$map")
+if(EXISTS "${WORK_DIR}/bad_template" OR EXISTS "${WORK_DIR}/map.png")
+  message(FATAL_ERROR "a refused name template wrote files")
+endif()
 expect_failure("no such file" "${PATINA_TEXGEN}" export "${WORK_DIR}/nowhere"
   -o "${WORK_DIR}/bad3.glb")
 file(COPY "${WORK_DIR}/urban/" DESTINATION "${WORK_DIR}/broken")

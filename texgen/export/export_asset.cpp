@@ -6,6 +6,7 @@
 #include "texgen/export/gltf_geometry.h"
 #include "texgen/export/png_encode.h"
 #include "texgen/export/source_material.h"
+#include "core/one_line.h"
 #include "texgen/export/presets.h"
 #include "texgen/flatten/gltf_albedo.h"
 
@@ -16,7 +17,9 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <cstring>
 #include <map>
+#include <set>
 #include <stdexcept>
 
 namespace patina::texgen {
@@ -70,6 +73,34 @@ namespace {
         return pattern + ".png";
     }
 
+    /// Refuses a --name-template that could name a file outside the output folder or no file:
+    /// an absolute path, a `..` part, a control character, a `$key` other than $mesh,
+    /// $material, $map and $udim, or one without $map (every map would get one name).
+    void check_name_template(const std::string& t)
+    {
+        auto refuse = [&](const std::string& why) {
+            return std::runtime_error(fmt::format("--name-template '{}': {}", one_line(t), why));
+        };
+        if (t.empty() || t.front() == '/')
+            throw refuse("names a file inside the output folder: not empty, not absolute");
+        for (const char c : t)
+            if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
+                throw refuse("a control character");
+        for (const fs::path& part : fs::path(t))
+            if (part == "..")
+                throw refuse("'..' would leave the output folder");
+        for (size_t at = t.find('$'); at != std::string::npos; at = t.find('$', at + 1)) {
+            bool known = false;
+            for (const char* key : {"$mesh", "$material", "$map", "$udim"})
+                known |= t.compare(at, std::strlen(key), key) == 0;
+            if (!known)
+                throw refuse("unknown key at '" + one_line(t.substr(at, 12)) +
+                             "' (known: $mesh, $material, $map, $udim)");
+        }
+        if (t.find("$map") == std::string::npos)
+            throw refuse("has no $map: every map would get the same name");
+    }
+
     /// The PNG files of `maps`, encoded in parallel (each at max(bits, its min_bits)).
     std::vector<std::vector<unsigned char>> encode_all(const std::vector<PresetMap>& maps,
                                                        int width, int height, int bits)
@@ -103,6 +134,7 @@ namespace {
         const double range = height_range_um(steps);
         std::vector<fs::path> written;
         const std::string mesh = dir.filename().string();
+        std::set<std::string> names;  // two maps of one name would overwrite each other
         for (const ExportStep& step : steps) {
             const FlattenedStack& flat = step.flat;
             for (size_t tile = 0; tile < flat.udims.size(); ++tile) {
@@ -117,6 +149,10 @@ namespace {
                     const PresetMap& map = maps[m];
                     std::string name = expand(options.name_template, mesh, step.label, map.name,
                                               flat.udims[tile], flat.udims.size() > 1);
+                    if (!names.insert(name).second)
+                        throw std::runtime_error(fmt::format(
+                            "--name-template '{}': two maps would be written as '{}' (give each "
+                            "step its $material)", options.name_template, name));
                     const int channels = static_cast<int>(map.channels.size());
                     if (exr) {
                         name.replace(name.size() - 4, 4, ".exr");
@@ -166,6 +202,7 @@ void check_export_options(ExportOptions& options, const fs::path& output)
         options.bits = options.preset == "exr" ? 32 : 8;
     check_preset(options.preset);
     gltf_target(options.target);  // throws naming --target
+    check_name_template(options.name_template);
     const bool textures = preset_writes_textures(options.preset);
     if (textures ? !(options.bits == 8 || options.bits == 16 || options.bits == 32)
                  : options.bits != 8)
@@ -261,6 +298,7 @@ ExportResult write_export(std::vector<ExportStep>& steps, const ExportGeometry& 
 
     // One texture per map and step, identical ones shared.
     std::map<std::string, int> textures_by_bytes;  // the PNG's bytes -> its texture
+    std::set<std::string> file_names;              // --separate: each map a file of its own
     size_t texture_count = 0;
     auto texture = [&](const ExportStep& step, size_t tile, const std::string& map,
                        std::vector<unsigned char> png) {
@@ -273,6 +311,10 @@ ExportResult write_export(std::vector<ExportStep>& steps, const ExportGeometry& 
                                      : fmt::format("{} {}", step.label, map);
         const std::string file = expand(options.name_template, mesh_name, step.label, map,
                                         udims[tile], udims.size() > 1);
+        if (options.separate && !file_names.insert(file).second)
+            throw std::runtime_error(fmt::format(
+                "--name-template '{}': two maps would be written as '{}' (give each step its "
+                "$material)", options.name_template, file));
         const int image = doc.add_png(name, file, png);
         const int t = doc.add_texture(image, sampler);
         textures_by_bytes.emplace(std::move(key), t);
