@@ -151,7 +151,7 @@ expect_failure_changes_nothing("${WORK_DIR}/render2" "out.png"
 # loaded machine cannot send it before the run has started.
 tree_digest("${WORK_DIR}/render" before)
 execute_process(COMMAND bash -c [=[
-  "$0" "$1" --spp 1000000 --output "$2" 2> "$3" &
+  "$0" "$1" --spp 100000 --resolution 256 128 --output "$2" 2> "$3" &
   pid=$!
   for i in $(seq 1200); do
     grep -q "render:" "$3" 2> /dev/null && break
