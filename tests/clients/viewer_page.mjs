@@ -91,18 +91,26 @@ const failed = await page.evaluate(() => window.patinaViewer.failed);
 const out = { firstFrameMs: await page.evaluate(() => window.patinaViewer.firstFrameMs),
               openToFirstFrameMs: Date.now() - opened };
 
-/// The mean 8-bit sRGB colour of a PNG (bytes) in a rectangle given in fractions of it,
-/// decoded by the page's own image decoder.
-async function regionMean(png, x, y, w, h) {
-  return page.evaluate(async ([b64, fx, fy, fw, fh]) => {
+/// In the page: a PNG (base64) decoded by the page's own image decoder, as a 2D canvas
+/// context to read pixels from, with its size.
+await page.evaluate(() => {
+  globalThis.patinaDecodePng = async (b64) => {
     const img = new Image();
     img.src = `data:image/png;base64,${b64}`;
     await img.decode();
     const c = new OffscreenCanvas(img.width, img.height);
     const g = c.getContext('2d');
     g.drawImage(img, 0, 0);
+    return { g, width: img.width, height: img.height };
+  };
+});
+
+/// The mean 8-bit sRGB colour of a PNG (bytes) in a rectangle given in fractions of it.
+async function regionMean(png, x, y, w, h) {
+  return page.evaluate(async ([b64, fx, fy, fw, fh]) => {
+    const img = await globalThis.patinaDecodePng(b64);
     const x0 = Math.round(fx * img.width), y0 = Math.round(fy * img.height);
-    const d = g.getImageData(x0, y0, Math.max(1, Math.round(fw * img.width)), Math.max(1, Math.round(fh * img.height))).data;
+    const d = img.g.getImageData(x0, y0, Math.max(1, Math.round(fw * img.width)), Math.max(1, Math.round(fh * img.height))).data;
     const m = [0, 0, 0];
     for (let i = 0; i < d.length; i += 4) for (let k = 0; k < 3; ++k) m[k] += d[i + k];
     return m.map((v) => v / (d.length / 4));
@@ -164,13 +172,8 @@ if (!failed) {
     }
     const steps = await page.evaluate(async ([off, on]) => {
       const luma = async (b64) => {
-        const img = new Image();
-        img.src = `data:image/png;base64,${b64}`;
-        await img.decode();
-        const c = new OffscreenCanvas(img.width, img.height);
-        const g = c.getContext('2d');
-        g.drawImage(img, 0, 0);
-        const d = g.getImageData(0, 0, img.width, img.height).data;
+        const img = await globalThis.patinaDecodePng(b64);
+        const d = img.g.getImageData(0, 0, img.width, img.height).data;
         const y = new Float32Array(img.width * img.height);
         for (let i = 0; i < y.length; ++i) y[i] = 0.2126 * d[4 * i] + 0.7152 * d[4 * i + 1] + 0.0722 * d[4 * i + 2];
         return { y, w: img.width, h: img.height };

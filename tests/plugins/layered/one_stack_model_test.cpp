@@ -62,6 +62,30 @@ namespace {
         return out;
     }
 
+    /// The wavelengths of layered_km's grid, 360-830 nm every 5 nm.
+    std::vector<float> grid_wavelengths()
+    {
+        std::vector<float> grid;
+        for (int i = 0; i < 95; ++i)
+            grid.push_back(360.0f + 5.0f * i);
+        return grid;
+    }
+
+    /// A reflectance on that grid (linear between its values) as linear Rec.709 under D65:
+    /// CIE 15's 1 nm integration, then OCIO.
+    Imath::V3f grid_colour(const std::vector<float>& spectrum, const ColorManager& colors)
+    {
+        const Xyz xyz = spectrum_to_xyz([&](double lambda) {
+            const double x = std::clamp((lambda - 360.0) / 5.0, 0.0, 94.0);
+            const int i = std::min(static_cast<int>(x), 93);
+            return spectrum[i] + (x - i) * (spectrum[i + 1] - spectrum[i]);
+        });
+        float rgb[3] = {static_cast<float>(xyz[0]), static_cast<float>(xyz[1]),
+                        static_cast<float>(xyz[2])};
+        colors.convert("CIE-XYZ-D65", "lin_rec709", rgb, 1);
+        return {rgb[0], rgb[1], rgb[2]};
+    }
+
 }  // namespace
 
 TEST(OneStackModel, LayeredKmFlattenAndThePreviewGiveOneAnswer)
@@ -89,19 +113,8 @@ TEST(OneStackModel, LayeredKmFlattenAndThePreviewGiveOneAnswer)
     // 2. The shader's colour over the whole spectrum (5 nm, layered_km's grid, integrated
     //    on CIE 15's 1 nm grid under D65) and flatten's colour from its 16 bands agree to
     //    the quadrature (docs/flatten.md).
-    std::vector<float> grid;
-    for (int i = 0; i < 95; ++i)
-        grid.push_back(360.0f + 5.0f * i);
-    const std::vector<float> spectrum = shader_reflectance(shader, grid);
-    const Xyz xyz = spectrum_to_xyz([&](double lambda) {
-        const double x = std::clamp((lambda - 360.0) / 5.0, 0.0, 94.0);
-        const int i = std::min(static_cast<int>(x), 93);
-        return spectrum[i] + (x - i) * (spectrum[i + 1] - spectrum[i]);
-    });
-    float rgb[3] = {static_cast<float>(xyz[0]), static_cast<float>(xyz[1]),
-                    static_cast<float>(xyz[2])};
     const ColorManager colors(fs::path(PATINA_SOURCE_DIR) / "ocio" / "config.ocio");
-    colors.convert("CIE-XYZ-D65", "lin_rec709", rgb, 1);
+    const Imath::V3f rgb = grid_colour(shader_reflectance(shader, grid_wavelengths()), colors);
     const texgen::BandsToRgb to_rgb(colors);
     const texgen::FlatTexel texel = texgen::flatten_texel(bands, d, to_rgb);
     for (int c = 0; c < 3; ++c)
@@ -157,24 +170,18 @@ TEST(OneStackModel, FlattenComputesTheShadersAlbedo)
     for (int g = 0; g < shading::kGaussNodes; ++g) {
         const float mu = shading::kGaussMu[g];
         const Vec3 wo(std::sqrt(1.0f - mu * mu), 0.0f, mu);
+        const std::vector<float> grid = grid_wavelengths();
         std::vector<float> spectrum;
-        for (int first = 0; first < 95; first += PATINA_MAX_WAVELENGTHS) {
+        for (size_t first = 0; first < grid.size(); first += PATINA_MAX_WAVELENGTHS) {
             PatinaWavelengths wl{};
-            wl.count = std::min(PATINA_MAX_WAVELENGTHS, 95 - first);
+            wl.count = static_cast<int>(std::min<size_t>(PATINA_MAX_WAVELENGTHS, grid.size() - first));
             for (int i = 0; i < wl.count; ++i)
-                wl.lambda_nm[i] = 360.0f + 5.0f * (first + i);
+                wl.lambda_nm[i] = grid[first + i];
             shader.set_wavelengths(wl);
             const Spectrum a = shader.albedo(wo);
             spectrum.insert(spectrum.end(), a.begin(), a.begin() + wl.count);
         }
-        const Xyz xyz = spectrum_to_xyz([&](double lambda) {
-            const double x = std::clamp((lambda - 360.0) / 5.0, 0.0, 94.0);
-            const int i = std::min(static_cast<int>(x), 93);
-            return spectrum[i] + (x - i) * (spectrum[i + 1] - spectrum[i]);
-        });
-        float rgb[3] = {static_cast<float>(xyz[0]), static_cast<float>(xyz[1]),
-                        static_cast<float>(xyz[2])};
-        colors.convert("CIE-XYZ-D65", "lin_rec709", rgb, 1);
+        const Imath::V3f rgb = grid_colour(spectrum, colors);
         for (int k = 0; k < 3; ++k) {
             const double flat = parts.diffuse[g][k] + parts.glossy[g][k];
             worst = std::max(worst, std::abs(flat - rgb[k]));
